@@ -1,0 +1,31 @@
+"""kinepoly: velocity and acceleration polygons of planar mechanisms, constructed and checked.
+
+A notebook needs four names::
+
+    import kinepoly
+    scene = kinepoly.load_scene("examples/four-bar.toml")   # or kinepoly.loads_scene(text)
+    solution = kinepoly.solve(scene)
+    kinepoly.to_json(solution)["links"]["3"]["omega"]
+"""
+
+from kinepoly.errors import AssemblyError, KinepolyError, MobilityError, SceneError, SingularityError
+from kinepoly.report import steps_text, table_text, to_json
+from kinepoly.scene.loader import load_scene, loads_scene
+from kinepoly.scene.spec import Scene
+from kinepoly.solution import Solution, solve
+
+__all__ = [
+    "AssemblyError",
+    "KinepolyError",
+    "MobilityError",
+    "Scene",
+    "SceneError",
+    "SingularityError",
+    "Solution",
+    "load_scene",
+    "loads_scene",
+    "solve",
+    "steps_text",
+    "table_text",
+    "to_json",
+]

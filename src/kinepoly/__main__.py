@@ -1,0 +1,7 @@
+"""``python -m kinepoly``."""
+
+import sys
+
+from kinepoly.cli import main
+
+sys.exit(main())

@@ -1,0 +1,299 @@
+"""The acceleration polygon, constructed dyad by dyad after the velocity polygon.
+
+Known terms are laid end to end (normal terms omega^2 r toward the center, Coriolis terms
+2 omega x v_rel), then two direction lines are drawn (tangential: perpendicular to the link;
+sliding: parallel to the slide) and their crossing is the unknown tip. Alpha is read off the
+tangential term. A Coriolis step exists only where a block slides on a guide that can turn.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from kinepoly.construct.builder import PolygonBuilder, sense
+from kinepoly.construct.steps import DrawnVector, Step
+from kinepoly.construct.velocity import VelocityPolygon, read_rate, slide_direction
+from kinepoly.errors import SceneError
+from kinepoly.geom import Line
+from kinepoly.geom.vec import Vec, add, dot, norm, perp, scale, sub, unit
+from kinepoly.model.mechanism import Mechanism, Revolute
+from kinepoly.notice import Notice
+from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
+from kinepoly.solve.plan import Dyad, PositionPlan
+from kinepoly.solve.pose import Pose
+
+__all__ = ["AccelerationPolygon", "construct_acceleration"]
+
+
+@dataclass(frozen=True)
+class AccelerationPolygon:
+    """Tips (physical accelerations, pole at 0), alphas, sliding accelerations, Coriolis terms, steps."""
+
+    tips: dict[str, Vec]
+    alpha: dict[str, float]
+    sliding: dict[str, Vec]
+    coriolis: dict[str, Vec]
+    steps: tuple[Step, ...]
+    notices: tuple[Notice, ...]
+    members: dict[str, list[tuple[str, Vec]]]
+
+
+class _Context:
+    def __init__(self, builder: PolygonBuilder, velocity: VelocityPolygon) -> None:
+        self.b = builder
+        self.v = velocity
+        self.sliding: dict[str, Vec] = {}
+        self.coriolis: dict[str, Vec] = {}
+
+    def v_tip(self, link: str, point: str) -> Vec:
+        label = self.b.label(link, point)
+        if link == self.b.mechanism.ground:
+            return (0.0, 0.0)
+        return self.v.tips[label]
+
+    def normal_line(self, known_link: str, known_point: str, point: str, moving: str) -> tuple[Line, DrawnVector]:
+        """Locus of a_point: a_known + a^n (toward known_point), then perpendicular to known_point -> point."""
+        b = self.b
+        start = b.tip(known_link, known_point)
+        r = sub(b.world(point), b.world(known_point))
+        w = b.omega_of(moving)
+        normal = scale(-w * w, r)
+        end = add(start, normal)
+        vec = DrawnVector(f"a^n_{point}/{known_point}", start, end, "normal")
+        return Line(end, perp(r), f"a^t_{point}/{known_point} perpendicular to {known_point}{point}"), vec
+
+    def slide_line(self, slider: SliderSpec, other: str, moving: str, point: str) -> tuple[Line, list[DrawnVector]]:
+        """Locus of a_point (point of ``moving``): a_point@other + Coriolis, then along the slide."""
+        b = self.b
+        start = b.tip(other, point)
+        e = slide_direction(b.pose, slider)
+        vectors: list[DrawnVector] = []
+        at_other = b.label(other, point)
+        end = start
+        if b.mechanism.has_turning_guide(slider):
+            w = b.omega_of(other)
+            v_rel = sub(self.v_tip(moving, point), self.v_tip(other, point))
+            term = scale(2.0 * w, perp(v_rel))
+            end = add(start, term)
+            label = f"a^c_{b.label(moving, point)}/{at_other}"
+            vectors.append(DrawnVector(label, start, end, "coriolis"))
+            b.steps.append(Step("acceleration", "coriolis", f"{label} = 2 omega x v_{b.label(moving, point)}/{at_other}",
+                                f"Coriolis term {label} = 2 omega{b.mechanism.ground}{other} x "
+                                f"v_{b.label(moving, point)}/{at_other}: |{label}| = 2 x {abs(w):.6g} x "
+                                f"{norm(v_rel):.6g} = {norm(term):.6g} {b.unit}; its direction is the relative "
+                                f"velocity turned 90 deg in the sense of omega ({sense(w)}). Lay it from "
+                                f"{at_other.lower()}.", label, ((label, "magnitude and direction"),),
+                                tuple(vectors), value=term))
+        return Line(end, e, f"sliding term along slider {slider.name}"), vectors
+
+    def slide_values(self, slider: SliderSpec, link: str, point: str) -> None:
+        """Sliding acceleration and Coriolis term of the block relative to the guide."""
+        b = self.b
+        other = slider.guide if link == slider.block else slider.block
+        block_side, guide_side = (link, other) if link == slider.block else (other, link)
+        a_block, a_guide = b.tip(block_side, point), b.tip(guide_side, point)
+        v_rel = sub(self.v_tip(block_side, point), self.v_tip(guide_side, point))
+        cor = scale(2.0 * b.omega_of(slider.guide), perp(v_rel))
+        self.coriolis[slider.name] = cor
+        self.sliding[slider.name] = sub(sub(a_block, a_guide), cor)
+
+
+def _other(joint: Revolute | SliderSpec, link: str) -> str:
+    if isinstance(joint, Revolute):
+        return joint.other(link)
+    return joint.guide if joint.block == link else joint.block
+
+
+def _record(ctx: _Context, label: str, equation: str, first: Line, second: Line, value: Vec,
+            vectors: list[DrawnVector], known: tuple[tuple[str, str], ...]) -> None:
+    text = (f"Lay the known terms end to end, then draw {first.label} and {second.label}; they cross at "
+            f"{label.lower()}: o{label.lower()} is a_{label} = ({value[0]:.6g}, {value[1]:.6g}) {ctx.b.unit}.")
+    ctx.b.steps.append(Step("acceleration", "intersection", equation, text, label.lower(), known,
+                            tuple(vectors), (first, second), value=value))
+
+
+def _normals_step(ctx: _Context, vectors: list[DrawnVector]) -> None:
+    normals = [v for v in vectors if v.term == "normal"]
+    if normals:
+        text = "; ".join(f"{v.label} = omega^2 r = {norm(sub(v.end, v.start)):.6g} {ctx.b.unit}, toward the center"
+                         for v in normals)
+        ctx.b.steps.append(Step("acceleration", "known", " and ".join(v.label for v in normals),
+                                f"Lay the normal terms from the velocity polygon: {text}.",
+                                ", ".join(v.label for v in normals),
+                                tuple((v.label, "magnitude and direction") for v in normals), tuple(normals)))
+
+
+def _tangential(ctx: _Context, link: str, first: str, second: str, line: Line, value: Vec) -> None:
+    at = sub(ctx.b.world(second), ctx.b.world(first))
+    read_rate(ctx.b, link, first, second, sub(value, line.through), at)
+
+
+def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
+    b, i, j = ctx.b, dyad.first, dyad.second
+    if dyad.kind in ("RRR", "RRP"):
+        assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
+        p1, p2 = dyad.first_joint.point, dyad.inner.point
+        line1, n1 = ctx.normal_line(_other(dyad.first_joint, i), p1, p2, i)
+        vectors = [n1]
+        if isinstance(dyad.second_joint, Revolute):
+            p3 = dyad.second_joint.point
+            line2, n2 = ctx.normal_line(_other(dyad.second_joint, j), p3, p2, j)
+            vectors.append(n2)
+            equation = f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{p3} + a^n_{p2}/{p3} + a^t_{p2}/{p3}"
+        else:
+            k2 = _other(dyad.second_joint, j)
+            line2, cv = ctx.slide_line(dyad.second_joint, k2, j, p2)
+            vectors += cv
+            at2 = b.label(k2, p2)
+            cor = f" + a^c_{p2}/{at2}" if cv else ""
+            equation = f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{at2}{cor} + a_{p2}/{at2}"
+        _normals_step(ctx, vectors)
+        value = b.cross_lines(line1, line2, p2, where)
+        b.add_tip(i, p2, value)
+        _record(ctx, p2, equation, line1, line2, value, vectors,
+                tuple((v.label, "magnitude and direction") for v in vectors) + ((line1.label, "direction"),
+                                                                                 (line2.label, "direction")))
+        _tangential(ctx, i, p1, p2, line1, value)
+        if isinstance(dyad.second_joint, Revolute):
+            _tangential(ctx, j, dyad.second_joint.point, p2, line2, value)
+        else:
+            ctx.slide_values(dyad.second_joint, j, p2)
+    elif dyad.kind == "RPR":
+        slider = dyad.inner
+        assert isinstance(slider, SliderSpec)
+        outer = {i: dyad.first_joint, j: dyad.second_joint}
+        guide, block = slider.guide, slider.block
+        q, p = outer[guide].point, outer[block].point  # type: ignore[union-attr]
+        line1, n1 = ctx.normal_line(_other(outer[guide], guide), q, p, guide)
+        a_p = b.tip(_other(outer[block], block), p)
+        e = slide_direction(b.pose, slider)
+        at = b.label(guide, p)
+        vectors = [n1]
+        end = a_p
+        if b.mechanism.has_turning_guide(slider):
+            w = b.omega_of(guide)
+            v_rel = sub(ctx.v_tip(guide, p), ctx.v_tip(block, p))
+            term = scale(2.0 * w, perp(v_rel))
+            end = add(a_p, term)
+            label = f"a^c_{at}/{p}"
+            vectors.append(DrawnVector(label, a_p, end, "coriolis"))
+            b.steps.append(Step("acceleration", "coriolis", f"{label} = 2 omega x v_{at}/{p}",
+                                f"Coriolis term {label} = 2 omega{b.mechanism.ground}{guide} x v_{at}/{p}: "
+                                f"|{label}| = 2 x {abs(w):.6g} x {norm(v_rel):.6g} = {norm(term):.6g} {b.unit}; "
+                                f"v_{at}/{p} turned 90 deg in the sense of omega ({sense(w)}), laid from the tip "
+                                f"of a_{p}.", label, ((label, "magnitude and direction"),), (vectors[-1],),
+                                value=term))
+        line2 = Line(end, e, f"sliding term along slider {slider.name}")
+        _normals_step(ctx, vectors)
+        value = b.cross_lines(line1, line2, at, where)
+        b.add_tip(guide, p, value)
+        cor = f" + a^c_{at}/{p}" if len(vectors) > 1 else ""
+        _record(ctx, at, f"a_{at} = a_{q} + a^n_{at}/{q} + a^t_{at}/{q} = a_{p}{cor} + a_{at}/{p}", line1, line2,
+                value, vectors, tuple((v.label, "magnitude and direction") for v in vectors)
+                + ((line1.label, "direction"), (line2.label, "direction")))
+        _tangential(ctx, guide, q, p, line1, value)
+        ctx.slide_values(slider, block, p)
+    else:
+        first_slider = dyad.first_joint if dyad.kind == "PRP" else dyad.inner
+        assert isinstance(first_slider, SliderSpec) and isinstance(dyad.second_joint, SliderSpec)
+        if dyad.kind == "PRP":
+            assert isinstance(dyad.inner, Revolute)
+            point, moving, side1 = dyad.inner.point, i, _other(dyad.first_joint, i)
+        else:
+            assert isinstance(dyad.first_joint, Revolute)
+            b.tip(i, dyad.first_joint.point)
+            point, moving, side1 = b.mechanism.scene.link(j).points[0].name, j, i
+        side2 = _other(dyad.second_joint, j)
+        line1, v1 = ctx.slide_line(first_slider, side1, moving, point)
+        line2, v2 = ctx.slide_line(dyad.second_joint, side2, j, point)
+        value = b.cross_lines(line1, line2, point, where)
+        b.add_tip(moving, point, value)
+        _record(ctx, point, f"a_{point} = a_{b.label(side1, point)} + ... = a_{b.label(side2, point)} + ...",
+                line1, line2, value, v1 + v2, ((line1.label, "direction"), (line2.label, "direction")))
+        ctx.slide_values(first_slider, moving if dyad.kind == "RPP" else i, point)
+        ctx.slide_values(dyad.second_joint, j, point)
+
+
+def _drive(ctx: _Context) -> None:
+    b = ctx.b
+    mech = b.mechanism
+    inp = mech.scene.input
+    if isinstance(inp, LinkInput):
+        b.set_rate(inp.link, inp.alpha)
+        b.steps.append(Step("acceleration", "known", f"alpha{mech.ground}{inp.link} given",
+                            f"The input link {inp.link} has alpha{mech.ground}{inp.link} = {inp.alpha:.6g} rad/s^2 "
+                            f"({sense(inp.alpha)}); its pivot is at the pole o.", f"alpha{mech.ground}{inp.link}",
+                            value=(inp.alpha,)))
+    elif isinstance(inp, SliderInput):
+        slider = mech.slider(inp.slider)
+        e = slide_direction(b.pose, slider)
+        rel = scale(inp.s_ddot, e)
+        moving = slider.block if slider.guide == mech.ground else slider.guide
+        value = rel if moving == slider.block else scale(-1.0, rel)
+        label = b.add_tip(moving, slider.point, value)
+        ctx.sliding[slider.name] = rel
+        ctx.coriolis[slider.name] = (0.0, 0.0)
+        b.steps.append(Step("acceleration", "known", f"a_{label} = s_ddot{slider.name} along the slide",
+                            f"Lay a_{label}: |s_ddot{slider.name}| = {abs(inp.s_ddot):.6g} {b.unit} along slider "
+                            f"{slider.name}'s line, from the pole o.", label.lower(),
+                            ((f"a_{label}", "magnitude and direction"),),
+                            (DrawnVector(f"a_{label}", (0.0, 0.0), value, "absolute"),), value=value))
+    elif isinstance(inp, GivenInput):
+        _given(ctx, inp)
+
+
+def _given(ctx: _Context, given: GivenInput) -> None:
+    b = ctx.b
+    link = b.mechanism.link_names[0]
+    for g in given.points:
+        assert g.acceleration is not None
+        b.add_tip(link, g.name, g.acceleration)
+        b.steps.append(Step("acceleration", "known", f"a_{g.name} given", f"Lay the given a_{g.name} from the pole "
+                            f"o: |a_{g.name}| = {norm(g.acceleration):.6g} {b.unit}.", g.name.lower(),
+                            ((f"a_{g.name}", "magnitude and direction"),),
+                            (DrawnVector(f"a_{g.name}", (0.0, 0.0), g.acceleration, "absolute"),),
+                            value=g.acceleration))
+    first, second = given.points[0], given.points[1]
+    assert first.acceleration is not None and second.acceleration is not None
+    r = sub(b.world(second.name), b.world(first.name))
+    w = b.omega_of(link)
+    normal = scale(-w * w, r)
+    rel = sub(second.acceleration, first.acceleration)
+    misfit = dot(sub(rel, normal), unit(r))
+    if abs(misfit) > 1e-9 * max(norm(first.acceleration), norm(second.acceleration), norm(normal), 1e-300):
+        raise SceneError(f"{b.mechanism.scene.source}: given.{second.name}.acceleration: along "
+                         f"{first.name}{second.name} the given accelerations differ by {dot(rel, unit(r)):.6g} "
+                         f"{b.unit}, but a rigid body turning at omega = {w:.6g} rad/s needs "
+                         f"{dot(normal, unit(r)):.6g} (off by {misfit:.6g})")
+    mid = add(first.acceleration, normal)
+    b.steps.append(Step("acceleration", "known", f"a^n_{second.name}/{first.name}",
+                        f"Lay a^n_{second.name}/{first.name} = omega^2 |{first.name}{second.name}| = {norm(normal):.6g} "
+                        f"{b.unit} from a, toward {first.name}; the rest, to b, is a^t_{second.name}/{first.name}.",
+                        f"a^n_{second.name}/{first.name}",
+                        vectors=(DrawnVector(f"a^n_{second.name}/{first.name}", first.acceleration, mid, "normal"),
+                                 DrawnVector(f"a^t_{second.name}/{first.name}", mid, second.acceleration,
+                                             "tangential"))))
+    read_rate(b, link, first.name, second.name, sub(second.acceleration, mid), r)
+
+
+def construct_acceleration(mechanism: Mechanism, pose: Pose, plan: PositionPlan, velocity: VelocityPolygon,
+                           wanted: tuple[tuple[str, str], ...] = (), unit: str = "mm") -> AccelerationPolygon:
+    """Construct the acceleration polygon for every group of ``plan``, on top of its velocity polygon."""
+    from kinepoly.solve.position import describe_input
+
+    builder = PolygonBuilder(mechanism, pose, "acceleration", omega=velocity.omega, unit=unit)
+    ctx = _Context(builder, velocity)
+    _drive(ctx)
+    where = f"at {describe_input(mechanism)}"
+    for group in plan.groups:
+        if isinstance(group, Dyad):
+            _dyad(ctx, group, f"of group {group.name} {where}")
+        else:
+            from kinepoly.construct.group import acceleration_by_linear_solve
+
+            acceleration_by_linear_solve(ctx, group)
+    for link, point in wanted:
+        builder.tip(link, point)
+    return AccelerationPolygon(dict(builder.tips), dict(builder.rate), dict(ctx.sliding), dict(ctx.coriolis),
+                               tuple(builder.steps), tuple(builder.notices),
+                               {k: list(v) for k, v in builder.members.items()})

@@ -1,0 +1,203 @@
+"""The mechanism: links with points in their own frames, revolute joints, sliders, mobility.
+
+A revolute joint is implied by a point name that two links share. A slider's block turns
+with its guide, so links joined by sliders form a *rotation class*: they share omega and
+alpha. A block that slides on a guide of another rotation class than the frame's needs a
+Coriolis term; that is the test ``has_turning_guide``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+from kinepoly.errors import MobilityError, SceneError
+from kinepoly.scene.spec import LinkInput, Scene, SliderInput, SliderSpec
+
+__all__ = ["Joint", "Mechanism", "Revolute", "build_mechanism", "point_label"]
+
+Vec = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Revolute:
+    """A pin: ``point`` is a point of both ``links``."""
+
+    point: str
+    links: tuple[str, str]
+
+    def other(self, link: str) -> str:
+        return self.links[1] if self.links[0] == link else self.links[0]
+
+    @property
+    def name(self) -> str:
+        return self.point
+
+
+Joint = Revolute | SliderSpec
+
+
+def joint_links(joint: Joint) -> tuple[str, str]:
+    if isinstance(joint, Revolute):
+        return joint.links
+    return (joint.block, joint.guide)
+
+
+def point_label(point: str, link: str | None = None) -> str:
+    """The textbook name of a point as a point of ``link``: ``A`` or ``A@4``."""
+    return point if link is None else f"{point}@{link}"
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """The links (points in their own frames), the joints, the ground and the input of a scene."""
+
+    scene: Scene
+    revolutes: tuple[Revolute, ...]
+
+    @property
+    def ground(self) -> str | None:
+        return self.scene.ground
+
+    @property
+    def sliders(self) -> tuple[SliderSpec, ...]:
+        return self.scene.sliders
+
+    @cached_property
+    def link_names(self) -> tuple[str, ...]:
+        return tuple(link.name for link in self.scene.links)
+
+    def local(self, link: str, point: str) -> Vec:
+        """Coordinates of ``point`` in ``link``'s own frame."""
+        return self.scene.link(link).point(point).local
+
+    def has_point(self, link: str, point: str) -> bool:
+        return point in self.scene.link(link).point_names
+
+    def links_of_point(self, point: str) -> tuple[str, ...]:
+        return tuple(link.name for link in self.scene.links if point in link.point_names)
+
+    def owner(self, point: str) -> str:
+        """The first link (in scene order) that has ``point``."""
+        owners = self.links_of_point(point)
+        if not owners:
+            raise KeyError(point)
+        return owners[0]
+
+    def slider(self, name: str) -> SliderSpec:
+        for s in self.sliders:
+            if s.name == name:
+                return s
+        raise KeyError(name)
+
+    @cached_property
+    def joints(self) -> tuple[Joint, ...]:
+        return (*self.revolutes, *self.sliders)
+
+    def joints_of(self, link: str) -> tuple[Joint, ...]:
+        return tuple(j for j in self.joints if link in joint_links(j))
+
+    @cached_property
+    def rotation_class(self) -> dict[str, str]:
+        """Each link mapped to a representative of the links that must turn with it (sliders)."""
+        parent = {name: name for name in self.link_names}
+
+        def find(x: str) -> str:
+            while parent[x] != x:
+                x = parent[x]
+            return x
+
+        for s in self.sliders:
+            a, b = find(s.block), find(s.guide)
+            if a != b:
+                parent[max(a, b)] = min(a, b)
+        return {name: find(name) for name in self.link_names}
+
+    def turns_with_ground(self, link: str) -> bool:
+        """True when ``link`` can never turn: it is the ground or slides on it (via sliders)."""
+        if self.ground is None:
+            return False
+        return self.rotation_class[link] == self.rotation_class[self.ground]
+
+    def has_turning_guide(self, slider: SliderSpec) -> bool:
+        """A Coriolis term exists for this slider: its guide may turn."""
+        return not self.turns_with_ground(slider.guide)
+
+    @property
+    def input_slider(self) -> SliderSpec | None:
+        inp = self.scene.input
+        return self.slider(inp.slider) if isinstance(inp, SliderInput) else None
+
+    @property
+    def input_link(self) -> str | None:
+        inp = self.scene.input
+        return inp.link if isinstance(inp, LinkInput) else None
+
+    def input_pivot(self) -> Revolute:
+        """The revolute joint of the input link with the ground."""
+        link = self.input_link
+        for joint in self.revolutes:
+            if link in joint.links and self.ground in joint.links:
+                return joint
+        raise SceneError(
+            f"{self.scene.source}: input.link: link {link} has no joint with the frame link {self.ground}; "
+            "expected the input link to turn about a point it shares with the frame"
+        )
+
+
+def _revolutes(scene: Scene) -> tuple[Revolute, ...]:
+    owners: dict[str, list[str]] = {}
+    for link in scene.links:
+        for name in link.point_names:
+            owners.setdefault(name, []).append(link.name)
+    pins = []
+    for point, links in owners.items():
+        if len(links) > 2:
+            raise SceneError(
+                f"{scene.source}: links: point {point} is in links {', '.join(links)}; "
+                "a point name may join at most two links (rename one to make two joints)"
+            )
+        if len(links) == 2:
+            pins.append(Revolute(point, (links[0], links[1])))
+    return tuple(pins)
+
+
+def build_mechanism(scene: Scene) -> Mechanism:
+    """Build the mechanism and check its mobility by Gruebler's count.
+
+    Raises MobilityError when the count is not one (a ``[given]`` scene is one free body).
+    """
+    mechanism = Mechanism(scene=scene, revolutes=_revolutes(scene))
+    if scene.ground is None:
+        if len(scene.links) != 1 or mechanism.joints:
+            raise MobilityError(f"{scene.source}: given: a [given] scene is one free body; found "
+                                f"{len(scene.links)} links and {len(mechanism.joints)} joints")
+        return mechanism
+    n = len(scene.links)
+    j = len(mechanism.joints)
+    mobility = 3 * (n - 1) - 2 * j
+    if mobility != 1:
+        raise MobilityError(
+            f"{scene.source}: links: Gruebler's count gives mobility 3(n - 1) - 2j = 3*({n} - 1) - 2*{j} = "
+            f"{mobility} for n = {n} links and j = {j} joints ({len(mechanism.revolutes)} revolute, "
+            f"{len(scene.sliders)} sliding); kinepoly needs mobility 1 "
+            + ("(add a link or remove a joint)" if mobility < 1 else "(add a joint or a link with two joints)")
+        )
+    _check_connected(mechanism)
+    return mechanism
+
+
+def _check_connected(mechanism: Mechanism) -> None:
+    seen = {mechanism.ground}
+    frontier = [mechanism.ground]
+    while frontier:
+        link = frontier.pop()
+        for joint in mechanism.joints_of(link or ""):
+            for other in joint_links(joint):
+                if other not in seen:
+                    seen.add(other)
+                    frontier.append(other)
+    loose = [name for name in mechanism.link_names if name not in seen]
+    if loose:
+        raise MobilityError(f"{mechanism.scene.source}: links: link(s) {', '.join(loose)} are not joined "
+                            "to the frame through any chain of joints; expected one connected mechanism")

@@ -1,0 +1,208 @@
+"""Scene in, solution out: plan backwards from [find], solve the position, construct, check.
+
+``solve`` is the whole pipeline for one scene; every stage's output is a frozen value.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+from kinepoly.analysis.analytic import AnalyticSolution, solve_analytic
+from kinepoly.analysis.check import CheckReport, Quantity, compare
+from kinepoly.construct.acceleration import AccelerationPolygon, construct_acceleration
+from kinepoly.construct.steps import Step
+from kinepoly.construct.velocity import VelocityPolygon, construct_velocity
+from kinepoly.geom.tolerances import LOUD_ERROR
+from kinepoly.geom.vec import Vec, dot, rotate, sub
+from kinepoly.model.mechanism import Mechanism, build_mechanism
+from kinepoly.notice import Notice
+from kinepoly.scene.spec import Scene
+from kinepoly.solve.plan import PositionPlan, make_plan
+from kinepoly.solve.pose import Pose
+from kinepoly.solve.position import solve_position
+
+__all__ = ["Asked", "Solution", "SliderValues", "solve", "what_is_asked"]
+
+
+@dataclass(frozen=True)
+class Asked:
+    """What the scene asks, as (link, point) pairs and link names, planned backwards."""
+
+    velocity: tuple[tuple[str, str], ...]
+    acceleration: tuple[tuple[str, str], ...]
+    omega: tuple[str, ...]
+    alpha: tuple[str, ...]
+    sliders: tuple[str, ...]
+
+    @property
+    def needs_velocity(self) -> bool:
+        return bool(self.velocity or self.omega or self.sliders or self.needs_acceleration)
+
+    @property
+    def needs_acceleration(self) -> bool:
+        return bool(self.acceleration or self.alpha)
+
+
+@dataclass(frozen=True)
+class SliderValues:
+    s: float
+    s_dot: float | None
+    s_ddot: float | None
+    coriolis: Vec | None
+
+
+@dataclass(frozen=True)
+class Solution:
+    """Everything ``kinepoly solve`` reports for one scene."""
+
+    scene: Scene
+    mechanism: Mechanism
+    asked: Asked
+    plan: PositionPlan
+    pose: Pose
+    velocity: VelocityPolygon | None
+    acceleration: AccelerationPolygon | None
+    check: CheckReport
+    notices: tuple[Notice, ...]
+    timing: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def steps(self) -> tuple[Step, ...]:
+        v = self.velocity.steps if self.velocity else ()
+        a = self.acceleration.steps if self.acceleration else ()
+        return v + a
+
+    def position(self, label: str) -> Vec:
+        point, _, _ = label.partition("@")
+        owner = next(link for link in self.mechanism.links_of_point(point) if link in self.pose.links)
+        return self.pose.links[owner].world(self.mechanism.local(owner, point))
+
+    def angle(self, link: str) -> float:
+        """theta_1k in radians, in (-pi, pi]."""
+        theta = math.remainder(self.pose.links[link].theta, 2.0 * math.pi)
+        return math.pi if theta == -math.pi else theta
+
+    def slider(self, name: str) -> SliderValues:
+        spec = self.mechanism.slider(name)
+        e = rotate((1.0, 0.0), self.pose.links[spec.guide].theta + spec.angle_rad)
+        s = dot(e, sub(self.position(spec.point), self.pose.links[spec.guide].world(spec.through)))
+        s_dot = dot(e, self.velocity.sliding[name]) if self.velocity else None
+        s_ddot = dot(e, self.acceleration.sliding[name]) if self.acceleration else None
+        coriolis = self.acceleration.coriolis[name] if self.acceleration else None
+        return SliderValues(s, s_dot, s_ddot, coriolis)
+
+
+def _pair(mechanism: Mechanism, label: str) -> tuple[str, str]:
+    point, _, on = label.partition("@")
+    return (on, point) if on else (mechanism.owner(point), point)
+
+
+def what_is_asked(mechanism: Mechanism) -> Asked:
+    find = mechanism.scene.find
+    return Asked(
+        velocity=tuple(_pair(mechanism, p) for p in find.velocity),
+        acceleration=tuple(_pair(mechanism, p) for p in find.acceleration),
+        omega=tuple(find.omega),
+        alpha=tuple(find.alpha),
+        sliders=tuple(find.sliders),
+    )
+
+
+def _needed_links(mechanism: Mechanism, asked: Asked) -> set[str]:
+    links: set[str] = set(asked.omega) | set(asked.alpha)
+    for link, point in (*asked.velocity, *asked.acceleration):
+        links.add(link)
+        links.add(mechanism.owner(point))
+    for name in asked.sliders:
+        spec = mechanism.slider(name)
+        links.update((spec.block, spec.guide))
+    return links
+
+
+def _tips_needed(mechanism: Mechanism, asked_pairs: tuple[tuple[str, str], ...]) -> tuple[tuple[str, str], ...]:
+    return tuple(asked_pairs)
+
+
+def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
+    """Solve one scene: position, velocity and acceleration polygons as asked, cross-checked."""
+    t0 = time.perf_counter()
+    mechanism = build_mechanism(scene)
+    asked = what_is_asked(mechanism)
+    plan = make_plan(mechanism, _needed_links(mechanism, asked))
+    position = solve_position(mechanism, plan)
+    t1 = time.perf_counter()
+    unit = scene.units.length
+    velocity = acceleration = None
+    if asked.needs_velocity:
+        velocity = construct_velocity(mechanism, position.pose, plan, asked.velocity, unit)
+    if asked.needs_acceleration and velocity is not None:
+        acceleration = construct_acceleration(mechanism, position.pose, plan, velocity, asked.acceleration, unit)
+    t2 = time.perf_counter()
+    analytic = solve_analytic(mechanism, dict(position.pose.links), with_acceleration=asked.needs_acceleration)
+    draft = Solution(scene, mechanism, asked, plan, position.pose, velocity, acceleration,
+                     compare([], 1.0), ())
+    check = compare(_quantities(draft, analytic), analytic.condition_number, _natural_scales(draft))
+    t3 = time.perf_counter()
+    notices = list(position.notices)
+    notices += velocity.notices if velocity else ()
+    notices += acceleration.notices if acceleration else ()
+    if check.max_rel_error > LOUD_ERROR:
+        worst = max(check.relative, key=lambda k: check.relative[k])
+        notices.append(Notice("check-failed", f"the construction and the analytic solution disagree: "
+                              f"{worst} differs by {check.relative[worst]:.3g} (relative), above {LOUD_ERROR:g}"))
+    timing = {"load_s": load_s, "position_s": t1 - t0, "construction_s": t2 - t1, "check_s": t3 - t2,
+              "total_s": load_s + (t3 - t0)}
+    return Solution(scene, mechanism, asked, plan, position.pose, velocity, acceleration, check,
+                    tuple(notices), timing)
+
+
+def _label(mechanism: Mechanism, link: str, point: str) -> str:
+    return point if mechanism.has_point(link, point) else f"{point}@{link}"
+
+
+def _quantities(sol: Solution, analytic: AnalyticSolution) -> list[Quantity]:
+    mech, asked = sol.mechanism, sol.asked
+    out: list[Quantity] = []
+    labels = {_label(mech, lk, p) for lk, p in (*asked.velocity, *asked.acceleration)}
+    for label in sorted(labels):
+        out.append(Quantity(f"points.{label}.position", "position", sol.position(label),
+                            analytic.point_position(mech, label)))
+    if sol.velocity:
+        for link, point in asked.velocity:
+            label = _label(mech, link, point)
+            out.append(Quantity(f"points.{label}.velocity", "velocity", sol.velocity.tips[label],
+                                analytic.point_velocity(mech, label)))
+        for link in asked.omega:
+            out.append(Quantity(f"links.{link}.omega", "omega", sol.velocity.omega[link], analytic.omega[link]))
+    if sol.acceleration and analytic.alpha is not None:
+        for link, point in asked.acceleration:
+            label = _label(mech, link, point)
+            out.append(Quantity(f"points.{label}.acceleration", "acceleration", sol.acceleration.tips[label],
+                                analytic.point_acceleration(mech, label)))
+        for link in asked.alpha:
+            out.append(Quantity(f"links.{link}.alpha", "alpha", sol.acceleration.alpha[link], analytic.alpha[link]))
+    for link in dict.fromkeys((*asked.omega, *asked.alpha)):
+        out.append(Quantity(f"links.{link}.angle", "angle", sol.angle(link), analytic.poses[link].theta))
+    for name in asked.sliders:
+        got, ref = sol.slider(name), analytic.slider_values(mech, name)
+        out.append(Quantity(f"sliders.{name}.s", "position", got.s, float(ref["s"])))  # type: ignore[arg-type]
+        if got.s_dot is not None:
+            out.append(Quantity(f"sliders.{name}.s_dot", "velocity", got.s_dot, float(ref["s_dot"])))  # type: ignore[arg-type]
+        if got.s_ddot is not None and got.coriolis is not None:
+            out.append(Quantity(f"sliders.{name}.s_ddot", "acceleration", got.s_ddot, float(ref["s_ddot"])))  # type: ignore[arg-type]
+            out.append(Quantity(f"sliders.{name}.coriolis", "acceleration", got.coriolis, ref["coriolis"]))  # type: ignore[arg-type]
+    return out
+
+
+def _natural_scales(sol: Solution) -> dict[str, float]:
+    """Each kind's size in the whole solution: every tip and rate, and what the other kinds imply."""
+    points = [sol.pose.links[k].world(p.local) for k in sol.pose.links for p in sol.scene.link(k).points]
+    size = max((math.hypot(x - u, y - w) for (x, y) in points for (u, w) in points), default=0.0)
+    omega = max((abs(w) for w in sol.velocity.omega.values()), default=0.0) if sol.velocity else 0.0
+    alpha = max((abs(a) for a in sol.acceleration.alpha.values()), default=0.0) if sol.acceleration else 0.0
+    speed = max((math.hypot(*t) for t in sol.velocity.tips.values()), default=0.0) if sol.velocity else 0.0
+    accel = max((math.hypot(*t) for t in sol.acceleration.tips.values()), default=0.0) if sol.acceleration else 0.0
+    return {"position": size, "omega": omega, "alpha": max(alpha, omega * omega),
+            "velocity": max(speed, size * omega), "acceleration": max(accel, size * (omega * omega + alpha))}
