@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import cmath
 import math
+from collections.abc import Callable
 from dataclasses import replace
-from typing import Callable
 
 import mpmath as mp
 import pytest
@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 
 from kinepoly.analysis.analytic import AnalyticSolution, solve_analytic
 from kinepoly.errors import AssemblyError, SceneError, SingularityError
-from kinepoly.model.mechanism import Mechanism, build_mechanism
+from kinepoly.model.mechanism import build_mechanism
 from kinepoly.scene.spec import (
     GivenInput,
     GivenPoint,
@@ -48,7 +48,7 @@ def cvec(v: tuple[float, float]) -> complex:
     return complex(v[0], v[1])
 
 
-def close(actual: complex | float, expected: complex | float, scale: float, rel: float = 1e-10) -> bool:
+def close(actual: complex, expected: complex, scale: float, rel: float = 1e-10) -> bool:
     return abs(complex(actual) - complex(expected)) <= rel * max(abs(expected), scale)
 
 
@@ -61,8 +61,9 @@ def with_input(scene: Scene, **changes: float) -> Scene:
 # --------------------------------------------------------------------------------------------
 
 
-def slider_crank(a2: float, a3: float, c1: float, th12: float, w12: float, al12: float,
-                 b3: float = 50.0, gamma3_deg: float = 30.0) -> Scene:
+def slider_crank(
+    a2: float, a3: float, c1: float, th12: float, w12: float, al12: float, b3: float = 50.0, gamma3_deg: float = 30.0
+) -> Scene:
     return Scene(
         title="slider-crank",
         units=Units(),
@@ -123,8 +124,12 @@ def test_slider_crank_closed_forms(deg: float, w12: float, al12: float) -> None:
     # (10) re-derived: the real part of (8a) is
     # s14_ddot - a3 al13 sin th13 - a3 w13^2 cos th13 = -a2 al12 sin th12 - a2 w12^2 cos th12
     # (the seed prints "+ i a3 al13 sin th13"; there is no i).
-    s14_ddot = (-a2 * al12 * math.sin(th12) - a2 * w12**2 * math.cos(th12)
-                + a3 * al13 * math.sin(th13) + a3 * w13**2 * math.cos(th13))
+    s14_ddot = (
+        -a2 * al12 * math.sin(th12)
+        - a2 * w12**2 * math.cos(th12)
+        + a3 * al13 * math.sin(th13)
+        + a3 * w13**2 * math.cos(th13)
+    )
 
     vscale, ascale = a2 * abs(w12), a2 * (w12**2 + abs(al12))
     assert sol.poses["3"].theta == pytest.approx(th13, rel=1e-12)
@@ -143,8 +148,7 @@ def test_slider_crank_closed_forms(deg: float, w12: float, al12: float) -> None:
     eC = cmath.exp(1j * (th13 - g3))
     assert close(cvec(sol.point_position(mech, "C")), s14 + 1j * c1 + b3 * eC, a3)
     assert close(cvec(sol.point_velocity(mech, "C")), s14_dot + 1j * b3 * w13 * eC, vscale)
-    assert close(cvec(sol.point_acceleration(mech, "C")),
-                 s14_ddot + 1j * b3 * al13 * eC - b3 * w13**2 * eC, ascale)
+    assert close(cvec(sol.point_acceleration(mech, "C")), s14_ddot + 1j * b3 * al13 * eC - b3 * w13**2 * eC, ascale)
     # A as a point of the crank
     eA = cmath.exp(1j * th12)
     assert close(cvec(sol.point_velocity(mech, "A")), 1j * a2 * w12 * eA, vscale)
@@ -198,8 +202,17 @@ def test_missing_start_links_are_guessed() -> None:
 # --------------------------------------------------------------------------------------------
 
 
-def four_bar(a1: float, a2: float, a3: float, a4: float, th12: float, w12: float, al12: float,
-             b3: float = 60.0, beta_deg: float = 30.0) -> Scene:
+def four_bar(
+    a1: float,
+    a2: float,
+    a3: float,
+    a4: float,
+    th12: float,
+    w12: float,
+    al12: float,
+    b3: float = 60.0,
+    beta_deg: float = 30.0,
+) -> Scene:
     return Scene(
         title="four-bar",
         units=Units(),
@@ -215,8 +228,9 @@ def four_bar(a1: float, a2: float, a3: float, a4: float, th12: float, w12: float
     )
 
 
-def four_bar_position(a1: float, a2: float, a3: float, a4: float, th12: float, branch: int = 1
-                      ) -> tuple[float, float] | None:
+def four_bar_position(
+    a1: float, a2: float, a3: float, a4: float, th12: float, branch: int = 1
+) -> tuple[float, float] | None:
     """theta13, theta14 by intersecting circle(A, a3) and circle(B0, a4); branch +1 is left of A->B0."""
     A = a2 * cmath.exp(1j * th12)
     d = abs(a1 - A)
@@ -231,8 +245,9 @@ def four_bar_position(a1: float, a2: float, a3: float, a4: float, th12: float, b
     return cmath.phase(B - A), cmath.phase(B - a1)
 
 
-def four_bar_start(a1: float, a2: float, a3: float, a4: float, th12: float, jitter: float = 0.0,
-                   branch: int = 1) -> dict[str, LinkPose]:
+def four_bar_start(
+    a1: float, a2: float, a3: float, a4: float, th12: float, jitter: float = 0.0, branch: int = 1
+) -> dict[str, LinkPose]:
     pos = four_bar_position(a1, a2, a3, a4, th12, branch)
     assert pos is not None
     th13, th14 = pos
@@ -244,8 +259,9 @@ def four_bar_start(a1: float, a2: float, a3: float, a4: float, th12: float, jitt
     }
 
 
-def four_bar_closed_forms(a1: float, a2: float, a3: float, a4: float, th12: float, w12: float, al12: float
-                          ) -> dict[str, float]:
+def four_bar_closed_forms(
+    a1: float, a2: float, a3: float, a4: float, th12: float, w12: float, al12: float
+) -> dict[str, float]:
     """omega13, omega14, alpha13, alpha14 by Cramer's rule, re-derived here (own derivation).
 
     Velocity loop: i a2 w12 e^{i th12} + i a3 w13 e^{i th13} = i a4 w14 e^{i th14}.
@@ -267,15 +283,25 @@ def four_bar_closed_forms(a1: float, a2: float, a3: float, a4: float, th12: floa
     den = math.sin(th14 - th13)
     w13 = a2 * w12 * math.sin(th12 - th14) / (a3 * den)
     w14 = a2 * w12 * math.sin(th12 - th13) / (a4 * den)
-    al13 = (a2 * al12 * math.sin(th12 - th14) + a2 * w12**2 * math.cos(th12 - th14)
-            + a3 * w13**2 * math.cos(th14 - th13) - a4 * w14**2) / (a3 * den)
-    al14 = (a2 * al12 * math.sin(th12 - th13) + a2 * w12**2 * math.cos(th12 - th13)
-            + a3 * w13**2 - a4 * w14**2 * math.cos(th14 - th13)) / (a4 * den)
+    al13 = (
+        a2 * al12 * math.sin(th12 - th14)
+        + a2 * w12**2 * math.cos(th12 - th14)
+        + a3 * w13**2 * math.cos(th14 - th13)
+        - a4 * w14**2
+    ) / (a3 * den)
+    al14 = (
+        a2 * al12 * math.sin(th12 - th13)
+        + a2 * w12**2 * math.cos(th12 - th13)
+        + a3 * w13**2
+        - a4 * w14**2 * math.cos(th14 - th13)
+    ) / (a4 * den)
     return {"th13": th13, "th14": th14, "w13": w13, "w14": w14, "al13": al13, "al14": al14}
 
 
-@pytest.mark.parametrize(("deg", "w12", "al12"), [(60.0, 10.0, 5.0), (60.0, 10.0, 0.0), (200.0, -4.0, 30.0),
-                                                  (300.0, 2.5, -12.0), (100.0, 20.0, 0.0)])
+@pytest.mark.parametrize(
+    ("deg", "w12", "al12"),
+    [(60.0, 10.0, 5.0), (60.0, 10.0, 0.0), (200.0, -4.0, 30.0), (300.0, 2.5, -12.0), (100.0, 20.0, 0.0)],
+)
 def test_four_bar_closed_forms(deg: float, w12: float, al12: float) -> None:
     a1, a2, a3, a4, b3, beta = 100.0, 40.0, 120.0, 80.0, 60.0, RAD(30.0)
     th12 = RAD(deg)
@@ -298,8 +324,7 @@ def test_four_bar_closed_forms(deg: float, w12: float, al12: float) -> None:
     assert close(cvec(sol.point_acceleration(mech, "C")), aC, a2 * (w12**2 + abs(al12)))
     # B as a point of the rocker and of the coupler agree
     assert close(cvec(sol.point_velocity(mech, "B")), cvec(sol.point_velocity(mech, "B@4")), a2 * abs(w12))
-    assert close(cvec(sol.point_velocity(mech, "B")), 1j * a4 * ref["w14"] * cmath.exp(1j * ref["th14"]),
-                 a2 * abs(w12))
+    assert close(cvec(sol.point_velocity(mech, "B")), 1j * a4 * ref["w14"] * cmath.exp(1j * ref["th14"]), a2 * abs(w12))
 
 
 def test_four_bar_mpmath_reference() -> None:
@@ -317,28 +342,43 @@ def test_four_bar_mpmath_reference() -> None:
             z = a2 * mp.expj(th12) + a3 * mp.expj(t13) - a1 - a4 * mp.expj(t14)
             return [mp.re(z), mp.im(z)]
 
-        t13, t14 = mp.findroot(loop, (mp.mpf(sol.poses["3"].theta) + mp.mpf("0.01"),
-                                      mp.mpf(sol.poses["4"].theta) - mp.mpf("0.01")))
+        t13, t14 = mp.findroot(
+            loop, (mp.mpf(sol.poses["3"].theta) + mp.mpf("0.01"), mp.mpf(sol.poses["4"].theta) - mp.mpf("0.01"))
+        )
         # real and imaginary parts of i a3 w13 e^{i t13} - i a4 w14 e^{i t14} = -i a2 w12 e^{i th12}
         M = mp.matrix([[-a3 * mp.sin(t13), a4 * mp.sin(t14)], [a3 * mp.cos(t13), -a4 * mp.cos(t14)]])
         rv = -1j * a2 * w12 * mp.expj(th12)
         w13, w14 = mp.lu_solve(M, mp.matrix([mp.re(rv), mp.im(rv)]))
         # i a3 al13 e^{i t13} - i a4 al14 e^{i t14}
         #   = -(i al12 - w12^2) a2 e^{i th12} + a3 w13^2 e^{i t13} - a4 w14^2 e^{i t14}
-        ra = (-(1j * al12 - w12**2) * a2 * mp.expj(th12) + a3 * w13**2 * mp.expj(t13)
-              - a4 * w14**2 * mp.expj(t14))
+        ra = -(1j * al12 - w12**2) * a2 * mp.expj(th12) + a3 * w13**2 * mp.expj(t13) - a4 * w14**2 * mp.expj(t14)
         al13, al14 = mp.lu_solve(M, mp.matrix([mp.re(ra), mp.im(ra)]))
         eC = mp.expj(t13 + beta)
         vC = 1j * a2 * w12 * mp.expj(th12) + 1j * b3 * w13 * eC
         aC = (1j * al12 - w12**2) * a2 * mp.expj(th12) + (1j * al13 - w13**2) * b3 * eC
-        ref = {k: complex(v) for k, v in
-               {"t13": t13, "t14": t14, "w13": w13, "w14": w14, "al13": al13, "al14": al14, "vC": vC, "aC": aC}.items()}
+        ref = {
+            k: complex(v)
+            for k, v in {
+                "t13": t13,
+                "t14": t14,
+                "w13": w13,
+                "w14": w14,
+                "al13": al13,
+                "al14": al14,
+                "vC": vC,
+                "aC": aC,
+            }.items()
+        }
 
     rel = 1e-12
     assert sol.poses["3"].theta == pytest.approx(ref["t13"].real, rel=rel)
     assert sol.poses["4"].theta == pytest.approx(ref["t14"].real, rel=rel)
-    for got, key in ((sol.omega["3"], "w13"), (sol.omega["4"], "w14"),
-                     (sol.alpha["3"], "al13"), (sol.alpha["4"], "al14")):
+    for got, key in (
+        (sol.omega["3"], "w13"),
+        (sol.omega["4"], "w14"),
+        (sol.alpha["3"], "al13"),
+        (sol.alpha["4"], "al14"),
+    ):
         assert got == pytest.approx(ref[key].real, rel=rel)
     assert close(cvec(sol.point_velocity(mech, "C")), ref["vC"], 0.0, rel)
     assert close(cvec(sol.point_acceleration(mech, "C")), ref["aC"], 0.0, rel)
@@ -351,8 +391,11 @@ def test_dead_centre_is_singular() -> None:
     mech = build_mechanism(four_bar(a1, a2, a3, a4, th12, 10.0, 0.0, b3=20.0))
     A = a2 * cmath.exp(1j * th12)
     phase = cmath.phase(A - a1)
-    start = {"2": LinkPose(0.0, 0.0, th12), "3": LinkPose(A.real, A.imag, phase + math.pi + 0.01),
-             "4": LinkPose(a1, 0.0, phase - 0.01)}
+    start = {
+        "2": LinkPose(0.0, 0.0, th12),
+        "3": LinkPose(A.real, A.imag, phase + math.pi + 0.01),
+        "4": LinkPose(a1, 0.0, phase - 0.01),
+    }
     with pytest.raises(SingularityError, match=r"velocity equations are singular at input link 2 at angle 131\.49"):
         solve_analytic(mech, start, with_acceleration=True)
     # well away from it, the same start works
@@ -402,8 +445,9 @@ def slotted_lever_start(a1: float, a2: float, a4: float, th12: float, jitter: fl
     }
 
 
-@pytest.mark.parametrize(("deg", "w12", "al12"), [(60.0, 10.0, 0.0), (60.0, 10.0, 20.0), (170.0, -6.0, 3.0),
-                                                  (290.0, 4.0, -15.0)])
+@pytest.mark.parametrize(
+    ("deg", "w12", "al12"), [(60.0, 10.0, 0.0), (60.0, 10.0, 20.0), (170.0, -6.0, 3.0), (290.0, 4.0, -15.0)]
+)
 def test_slotted_lever_closed_forms(deg: float, w12: float, al12: float) -> None:
     a1, a2, a4 = 80.0, 40.0, 15.0
     th12 = RAD(deg)
@@ -425,7 +469,7 @@ def test_slotted_lever_closed_forms(deg: float, w12: float, al12: float) -> None
     al14 = (a2 * (al12 * math.sin(phi) + w12**2 * math.cos(phi)) - w14**2 * a4 - 2 * w14 * s_dot) / s
     s_ddot = a2 * (al12 * math.cos(phi) - w12**2 * math.sin(phi)) - al14 * a4 + w14**2 * s
     e14 = cmath.exp(1j * th14)
-    coriolis = -2 * w14 * s_dot * e14          # 2 w14 x (s_dot i e^{i th14})
+    coriolis = -2 * w14 * s_dot * e14  # 2 w14 x (s_dot i e^{i th14})
 
     vs, acs = a2 * abs(w12), a2 * (w12**2 + abs(al12))
     assert close(sol.omega["4"], w14, vs / a1)
@@ -467,8 +511,14 @@ def test_slider_driven_on_a_turning_guide() -> None:
 # --------------------------------------------------------------------------------------------
 
 
-def check_by_finite_differences(scene: Scene, start: dict[str, LinkPose], labels: tuple[str, ...],
-                                sliders: tuple[str, ...] = (), h: float = 1e-5, rtol: float = 1e-6) -> None:
+def check_by_finite_differences(
+    scene: Scene,
+    start: dict[str, LinkPose],
+    labels: tuple[str, ...],
+    sliders: tuple[str, ...] = (),
+    h: float = 1e-5,
+    rtol: float = 1e-6,
+) -> None:
     """Compare with central differences in the input angle (omega, alpha of the input given).
 
     x(th): v = w x', a = w^2 x'' + al x'; with v(th) the solved velocity (at the same w),
@@ -480,8 +530,12 @@ def check_by_finite_differences(scene: Scene, start: dict[str, LinkPose], labels
     mech = build_mechanism(scene)
     sol = solve_analytic(mech, start, with_acceleration=True)
     near = dict(sol.poses)
-    plus = solve_analytic(build_mechanism(with_input(scene, angle_rad=inp.angle_rad + h)), near, with_acceleration=False)
-    minus = solve_analytic(build_mechanism(with_input(scene, angle_rad=inp.angle_rad - h)), near, with_acceleration=False)
+    plus = solve_analytic(
+        build_mechanism(with_input(scene, angle_rad=inp.angle_rad + h)), near, with_acceleration=False
+    )
+    minus = solve_analytic(
+        build_mechanism(with_input(scene, angle_rad=inp.angle_rad - h)), near, with_acceleration=False
+    )
     size = max(math.hypot(*p.local) for lk in scene.links for p in lk.points)
     vscale, ascale = size * abs(w), size * (w * w + abs(al))
 
@@ -492,26 +546,45 @@ def check_by_finite_differences(scene: Scene, start: dict[str, LinkPose], labels
         assert abs(got - expected) <= rtol * max(scale, abs(expected)), (what, got, expected)
 
     for name in mech.link_names:
-        check(sol.omega[name], w * d(lambda s: s.poses[name].theta), abs(w), f"omega {name}")
-        check(sol.alpha[name], w * d(lambda s: s.omega[name]) + al / w * sol.omega[name], w * w + abs(al),
-              f"alpha {name}")
-        check(cvec(sol.linear_velocity[name]), w * d(lambda s: complex(s.poses[name].x, s.poses[name].y)),
-              vscale, f"v {name}")
-        check(cvec(sol.linear_acceleration[name]),
-              w * d(lambda s: cvec(s.linear_velocity[name])) + al / w * cvec(sol.linear_velocity[name]),
-              ascale, f"a {name}")
+        check(sol.omega[name], w * d(lambda s, n=name: s.poses[n].theta), abs(w), f"omega {name}")
+        check(
+            sol.alpha[name],
+            w * d(lambda s, n=name: s.omega[n]) + al / w * sol.omega[name],
+            w * w + abs(al),
+            f"alpha {name}",
+        )
+        check(
+            cvec(sol.linear_velocity[name]),
+            w * d(lambda s, n=name: complex(s.poses[n].x, s.poses[n].y)),
+            vscale,
+            f"v {name}",
+        )
+        check(
+            cvec(sol.linear_acceleration[name]),
+            w * d(lambda s, n=name: cvec(s.linear_velocity[n])) + al / w * cvec(sol.linear_velocity[name]),
+            ascale,
+            f"a {name}",
+        )
     for label in labels:
         # the material point the label names now, followed as a fixed point of its link
         lk, local = sol.material_point(mech, label)
         v = cvec(sol.point_velocity(mech, label))
-        check(v, w * d(lambda s: cvec(s.position(lk, local))), vscale, f"v {label}")
-        check(cvec(sol.point_acceleration(mech, label)),
-              w * d(lambda s: cvec(s.velocity(lk, local))) + al / w * v, ascale, f"a {label}")
+        check(v, w * d(lambda s, k=lk, p=local: cvec(s.position(k, p))), vscale, f"v {label}")
+        check(
+            cvec(sol.point_acceleration(mech, label)),
+            w * d(lambda s, k=lk, p=local: cvec(s.velocity(k, p))) + al / w * v,
+            ascale,
+            f"a {label}",
+        )
     for name in sliders:
         sv = sol.slider_values(mech, name)
-        check(sv["s_dot"], w * d(lambda s: s.slider_values(mech, name)["s"]), vscale, f"s_dot {name}")
-        check(sv["s_ddot"], w * d(lambda s: s.slider_values(mech, name)["s_dot"]) + al / w * sv["s_dot"],
-              ascale, f"s_ddot {name}")
+        check(sv["s_dot"], w * d(lambda s, n=name: s.slider_values(mech, n)["s"]), vscale, f"s_dot {name}")
+        check(
+            sv["s_ddot"],
+            w * d(lambda s, n=name: s.slider_values(mech, n)["s_dot"]) + al / w * sv["s_dot"],
+            ascale,
+            f"s_ddot {name}",
+        )
 
 
 def shaper(th12: float, w12: float, al12: float) -> tuple[Scene, dict[str, LinkPose]]:
@@ -547,6 +620,7 @@ def shaper(th12: float, w12: float, al12: float) -> tuple[Scene, dict[str, LinkP
 
 @pytest.mark.parametrize(("deg", "w12", "al12"), [(30.0, 6.0, 0.0), (30.0, 6.0, 40.0), (200.0, -3.0, 10.0)])
 def test_shaper_by_finite_differences(deg: float, w12: float, al12: float) -> None:
+    """Two sliders, one on a turning guide: A@4 (the lever under the block) followed as a lever point."""
     scene, start = shaper(RAD(deg), w12, al12)
     check_by_finite_differences(scene, start, ("A", "A@4", "C", "D"), sliders=("43", "16"))
     mech = build_mechanism(scene)
@@ -561,34 +635,48 @@ def test_shaper_by_finite_differences(deg: float, w12: float, al12: float) -> No
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(
-    a1=st.floats(50, 150), a2=st.floats(15, 150), a3=st.floats(15, 150), a4=st.floats(15, 150),
-    th12=st.floats(0, 2 * math.pi), w12=st.floats(0.5, 20), al12=st.floats(-50, 50),
-    branch=st.sampled_from([1, -1]), flip=st.booleans(),
+    a1=st.floats(50, 150),
+    a2=st.floats(15, 150),
+    a3=st.floats(15, 150),
+    a4=st.floats(15, 150),
+    th12=st.floats(0, 2 * math.pi),
+    w12=st.floats(0.5, 20),
+    al12=st.floats(-50, 50),
+    branch=st.sampled_from([1, -1]),
+    flip=st.booleans(),
 )
-def test_four_bar_finite_differences(a1: float, a2: float, a3: float, a4: float, th12: float, w12: float,
-                                     al12: float, branch: int, flip: bool) -> None:
+def test_four_bar_finite_differences(
+    a1: float, a2: float, a3: float, a4: float, th12: float, w12: float, al12: float, branch: int, flip: bool
+) -> None:
     pos = four_bar_position(a1, a2, a3, a4, th12, branch)
     assume(pos is not None)
     assert pos is not None
-    assume(abs(math.sin(pos[1] - pos[0])) > 0.2)          # transmission well away from a dead-centre
+    assume(abs(math.sin(pos[1] - pos[0])) > 0.2)  # transmission well away from a dead-centre
     w = -w12 if flip else w12
     scene = four_bar(a1, a2, a3, a4, th12, w, al12)
-    check_by_finite_differences(scene, four_bar_start(a1, a2, a3, a4, th12, jitter=0.005, branch=branch),
-                                ("A", "B", "C", "B@4", "A@3"))
+    check_by_finite_differences(
+        scene, four_bar_start(a1, a2, a3, a4, th12, jitter=0.005, branch=branch), ("A", "B", "C", "B@4", "A@3")
+    )
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(
-    a2=st.floats(10, 80), ratio=st.floats(1.2, 5), c1=st.floats(-50, 50), th12=st.floats(0, 2 * math.pi),
-    w12=st.floats(-20, 20).filter(lambda x: abs(x) > 0.5), al12=st.floats(-50, 50),
+    a2=st.floats(10, 80),
+    ratio=st.floats(1.2, 5),
+    c1=st.floats(-50, 50),
+    th12=st.floats(0, 2 * math.pi),
+    w12=st.floats(-20, 20).filter(lambda x: abs(x) > 0.5),
+    al12=st.floats(-50, 50),
 )
-def test_slider_crank_finite_differences(a2: float, ratio: float, c1: float, th12: float, w12: float,
-                                         al12: float) -> None:
+def test_slider_crank_finite_differences(
+    a2: float, ratio: float, c1: float, th12: float, w12: float, al12: float
+) -> None:
     a3 = ratio * a2
-    assume(abs(a2 * math.sin(th12) - c1) < 0.9 * a3)       # the coupler well away from perpendicular
+    assume(abs(a2 * math.sin(th12) - c1) < 0.9 * a3)  # the coupler well away from perpendicular
     scene = slider_crank(a2, a3, c1, th12, w12, al12)
-    check_by_finite_differences(scene, slider_crank_start(a2, a3, c1, th12, jitter=0.005), ("A", "B", "C"),
-                                sliders=("14",))
+    check_by_finite_differences(
+        scene, slider_crank_start(a2, a3, c1, th12, jitter=0.005), ("A", "B", "C"), sliders=("14",)
+    )
 
 
 # --------------------------------------------------------------------------------------------
@@ -603,8 +691,7 @@ def image_point(vB: tuple[float, float] = (0.0, -100.0), aB: tuple[float, float]
         ground=None,
         links=(link("3", A=(0.0, 0.0), B=(80.0, 0.0), S=(30.0, 40.0)),),
         sliders=(),
-        input=GivenInput((GivenPoint("A", (0.0, 300.0), (-50.0, 0.0), line=9),
-                          GivenPoint("B", vB, aB, line=12))),
+        input=GivenInput((GivenPoint("A", (0.0, 300.0), (-50.0, 0.0), line=9), GivenPoint("B", vB, aB, line=12))),
         source="image.toml",
     )
 

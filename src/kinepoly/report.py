@@ -80,11 +80,11 @@ def to_json(solution: Solution) -> dict[str, Any]:
     out: dict[str, Any] = {"title": scene.title, "units": {"length": scene.units.length, "angle": scene.units.angle}}
     links: dict[str, dict[str, float]] = {}
     for name in dict.fromkeys((*asked.omega, *asked.alpha)):
-        entry = links.setdefault(name, {"angle": _angle(solution, solution.angle(name))})
+        link_entry = links.setdefault(name, {"angle": _angle(solution, solution.angle(name))})
         if name in asked.omega and solution.velocity is not None:
-            entry["omega"] = solution.velocity.omega[name]
+            link_entry["omega"] = solution.velocity.omega[name]
         if name in asked.alpha and solution.acceleration is not None:
-            entry["alpha"] = solution.acceleration.alpha[name]
+            link_entry["alpha"] = solution.acceleration.alpha[name]
     if links:
         out["links"] = links
     points: dict[str, dict[str, list[float]]] = {}
@@ -113,7 +113,7 @@ def to_json(solution: Solution) -> dict[str, Any]:
     scales = polygon_scales(solution)
     polygons: dict[str, Any] = {}
     for kind, k in scales.items():
-        tips = {"o": [0.0, 0.0]}
+        tips: dict[str, list[float]] = {"o": [0.0, 0.0]}
         tips.update({label.lower(): _pair((k * v[0], k * v[1])) for label, v in _shown_tips(solution, kind).items()})
         polygons[kind] = {"scale": k, "points": tips}
     if polygons:
@@ -150,7 +150,10 @@ def _input_text(solution: Solution) -> str:
 
 def _rows(header: list[str], rows: list[list[str]]) -> list[str]:
     widths = [max(len(r[c]) for r in [header, *rows]) for c in range(len(header))]
-    line = lambda r: "  ".join(v.rjust(w) if k else v.ljust(w) for k, (v, w) in enumerate(zip(r, widths)))  # noqa: E731
+
+    def line(row: list[str]) -> str:
+        return "  ".join(v.rjust(w) if k else v.ljust(w) for k, (v, w) in enumerate(zip(row, widths, strict=True)))
+
     return [line(header), "  ".join("-" * w for w in widths), *(line(r) for r in rows)]
 
 

@@ -23,7 +23,7 @@ from kinepoly.solve.plan import PositionPlan, make_plan
 from kinepoly.solve.pose import Pose
 from kinepoly.solve.position import solve_position
 
-__all__ = ["Asked", "Solution", "SliderValues", "solve", "what_is_asked"]
+__all__ = ["Asked", "SliderValues", "Solution", "solve", "what_is_asked"]
 
 
 @dataclass(frozen=True)
@@ -187,12 +187,12 @@ def _quantities(sol: Solution, analytic: AnalyticSolution) -> list[Quantity]:
         out.append(Quantity(f"links.{link}.angle", "angle", sol.angle(link), analytic.poses[link].theta))
     for name in asked.sliders:
         got, ref = sol.slider(name), analytic.slider_values(mech, name)
-        out.append(Quantity(f"sliders.{name}.s", "position", got.s, float(ref["s"])))  # type: ignore[arg-type]
+        out.append(Quantity(f"sliders.{name}.s", "position", got.s, ref["s"]))
         if got.s_dot is not None:
-            out.append(Quantity(f"sliders.{name}.s_dot", "velocity", got.s_dot, float(ref["s_dot"])))  # type: ignore[arg-type]
+            out.append(Quantity(f"sliders.{name}.s_dot", "velocity", got.s_dot, ref["s_dot"]))
         if got.s_ddot is not None and got.coriolis is not None:
-            out.append(Quantity(f"sliders.{name}.s_ddot", "acceleration", got.s_ddot, float(ref["s_ddot"])))  # type: ignore[arg-type]
-            out.append(Quantity(f"sliders.{name}.coriolis", "acceleration", got.coriolis, ref["coriolis"]))  # type: ignore[arg-type]
+            out.append(Quantity(f"sliders.{name}.s_ddot", "acceleration", got.s_ddot, ref["s_ddot"]))
+            out.append(Quantity(f"sliders.{name}.coriolis", "acceleration", got.coriolis, ref["coriolis"]))
     return out
 
 

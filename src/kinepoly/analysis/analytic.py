@@ -759,12 +759,17 @@ def _solve_given(mechanism: Mechanism, *, with_acceleration: bool) -> AnalyticSo
     if len(pts) < 2:
         raise SceneError(f"{scene.source}: given: {len(pts)} given point(s); expected two points of link {link}")
     local = _given_locals(mechanism, link, pts)
-    size = max(1.0, max(float(np.hypot(*p)) for p in local))
+    size = _size(mechanism)
     _check_distinct(scene.source, pts, local, size)
 
+    # rows of v_P = v_o + omega J P; the omega column made a length per L, as in _System
     matrix = np.array([row for p in local for row in ([1.0, 0.0, -p[1]], [0.0, 1.0, p[0]])])
-    scaled = matrix * np.array([1.0, 1.0, size])[None, :]
-    condition = _condition(scaled)
+    condition = _condition(matrix * np.array([1.0, 1.0, 1.0 / size])[None, :])
+    if condition > SINGULAR_CONDITION:
+        raise SceneError(
+            f"{_at(scene.source, pts[1])}given: the given points {', '.join(p.name for p in pts)} are too close "
+            f"together (condition {condition:.3g}) to fix the body's rotation; give two points farther apart"
+        )
 
     v = [_vec(p.velocity) for p in pts]
     _check_rigid_velocity(scene.source, scene.units.length, pts, local, v)

@@ -98,6 +98,11 @@ class _Context:
         self.sliding[slider.name] = sub(sub(a_block, a_guide), cor)
 
 
+def _pin(joint: Revolute | SliderSpec) -> Revolute:
+    assert isinstance(joint, Revolute), "an RPR dyad's outer joints are pins"
+    return joint
+
+
 def _other(joint: Revolute | SliderSpec, link: str) -> str:
     if isinstance(joint, Revolute):
         return joint.other(link)
@@ -163,7 +168,7 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         assert isinstance(slider, SliderSpec)
         outer = {i: dyad.first_joint, j: dyad.second_joint}
         guide, block = slider.guide, slider.block
-        q, p = outer[guide].point, outer[block].point  # type: ignore[union-attr]
+        q, p = _pin(outer[guide]).point, _pin(outer[block]).point
         line1, n1 = ctx.normal_line(_other(outer[guide], guide), q, p, guide)
         a_p = b.tip(_other(outer[block], block), p)
         e = slide_direction(b.pose, slider)

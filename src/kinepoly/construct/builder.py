@@ -128,8 +128,9 @@ class PolygonBuilder:
             text = (f"Lay v_{name} = omega{self._ground()}{link} x {ref_label}{label}: |v_{name}| = "
                     f"{abs(w):.6g} x {norm(r):.6g} = {norm(rel):.6g} {self.unit}, perpendicular to "
                     f"{ref_label}{label}, in the sense of omega ({sense(w)}), from the tip of v_{ref_label}.")
-            vectors = (DrawnVector(f"v_{name}", start, end, "relative"),)
-            known = ((f"v_{ref_label}", "magnitude and direction"), (f"v_{name}", "magnitude and direction"))
+            vectors: tuple[DrawnVector, ...] = (DrawnVector(f"v_{name}", start, end, "relative"),)
+            known: tuple[tuple[str, str], ...] = ((f"v_{ref_label}", "magnitude and direction"),
+                                                  (f"v_{name}", "magnitude and direction"))
         else:
             w = self.omega_of(link)
             alpha = self.rate_of(link) or 0.0

@@ -123,6 +123,11 @@ def _slide_line(builder: PolygonBuilder, slider: SliderSpec, other: str, point: 
     return Line(start, e, f"parallel to slider {slider.name} through {builder.label(other, point).lower()}")
 
 
+def _pin(joint: Revolute | SliderSpec) -> Revolute:
+    assert isinstance(joint, Revolute), "an RPR dyad's outer joints are pins"
+    return joint
+
+
 def _other(joint: Revolute | SliderSpec, link: str) -> str:
     if isinstance(joint, Revolute):
         return joint.other(link)
@@ -161,8 +166,8 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
             known = ((f"v_{p1}", "magnitude and direction"), (f"v_{p2}/{p1}", "direction"),
                      (f"v_{p3}", "magnitude and direction"), (f"v_{p2}/{p3}", "direction"))
         else:
-            slider, k2 = dyad.second_joint, _other(dyad.second_joint, j)
-            line2 = _slide_line(builder, slider, k2, p2)
+            k2 = _other(dyad.second_joint, j)
+            line2 = _slide_line(builder, dyad.second_joint, k2, p2)
             at2 = builder.label(k2, p2)
             equation = f"v_{p2} = v_{p1} + v_{p2}/{p1} = v_{at2} + v_{p2}/{at2}"
             known = ((f"v_{p1}", "magnitude and direction"), (f"v_{p2}/{p1}", "direction"),
@@ -181,7 +186,7 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
         assert isinstance(slider, SliderSpec)
         outer = {i: dyad.first_joint, j: dyad.second_joint}
         guide, block = slider.guide, slider.block
-        q, p = outer[guide].point, outer[block].point  # type: ignore[union-attr]
+        q, p = _pin(outer[guide]).point, _pin(outer[block]).point
         line1 = _revolute_line(builder, _other(outer[guide], guide), q, p)
         start = builder.tip(_other(outer[block], block), p)
         line2 = Line(start, slide_direction(builder.pose, slider),

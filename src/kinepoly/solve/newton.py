@@ -61,15 +61,15 @@ def solve_newton_group(mechanism: Mechanism, group: NewtonGroup, poses: dict[str
     for link, pose in poses.items():
         for p in mechanism.scene.link(link).points:
             known[p.name] = pose.world(p.local)
-    start = {}
+    start: dict[str, LinkPose] = {}
     for link in group.links:
-        pose = _start_pose(mechanism, link, known)
-        if pose is None:
+        found = _start_pose(mechanism, link, known)
+        if found is None:
             raise AssemblyError(
                 f"group {group.name} is not a dyad and is solved by Newton's method from [guess]; "
                 f"link {link} has no guessed or known point: add [guess] positions for its points"
             )
-        start[link] = pose
+        start[link] = found
     size = max(1.0, *(abs(v) for xy in known.values() for v in xy))
     q = np.array([v for link in group.links for v in (start[link].x, start[link].y, start[link].theta)])
 

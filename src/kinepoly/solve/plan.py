@@ -41,8 +41,8 @@ class Dyad:
         return (self.first, self.second)
 
     def known_links(self) -> tuple[str, str]:
-        a = [x for x in joint_links(self.first_joint) if x != self.first][0]
-        b = [x for x in joint_links(self.second_joint) if x != self.second][0]
+        a = next(x for x in joint_links(self.first_joint) if x != self.first)
+        b = next(x for x in joint_links(self.second_joint) if x != self.second)
         return (a, b)
 
     @property
@@ -125,10 +125,10 @@ def _find_dyad(mechanism: Mechanism, known: set[str]) -> Dyad | None:
 
 def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
     driven = _driven_links(mechanism)
-    known = {mechanism.ground, *driven} if mechanism.ground is not None else set(mechanism.link_names)
+    known: set[str] = {mechanism.ground, *driven} if mechanism.ground is not None else set(mechanism.link_names)
     groups: list[Group] = []
     while True:
-        dyad = _find_dyad(mechanism, known)  # type: ignore[arg-type]
+        dyad = _find_dyad(mechanism, known)
         if dyad is None:
             break
         groups.append(dyad)
