@@ -36,6 +36,11 @@ from kinepoly.solve.pose import LinkPose
 RAD = math.radians
 
 
+
+def _expj(x: object) -> object:
+    """e^{ix} in mpmath, written out (mpmath 1.4's expj no longer takes a real mpf)."""
+    return mp.mpc(mp.cos(x), mp.sin(x))
+
 def link(name: str, **points: tuple[float, float]) -> LinkSpec:
     return LinkSpec(name, tuple(PointSpec(k, v) for k, v in points.items()))
 
@@ -339,7 +344,7 @@ def test_four_bar_mpmath_reference() -> None:
         beta = mp.radians(beta_deg)
 
         def loop(t13: mp.mpf, t14: mp.mpf) -> list[mp.mpf]:
-            z = a2 * mp.expj(th12) + a3 * mp.expj(t13) - a1 - a4 * mp.expj(t14)
+            z = a2 * _expj(th12) + a3 * _expj(t13) - a1 - a4 * _expj(t14)
             return [mp.re(z), mp.im(z)]
 
         t13, t14 = mp.findroot(
@@ -347,15 +352,15 @@ def test_four_bar_mpmath_reference() -> None:
         )
         # real and imaginary parts of i a3 w13 e^{i t13} - i a4 w14 e^{i t14} = -i a2 w12 e^{i th12}
         M = mp.matrix([[-a3 * mp.sin(t13), a4 * mp.sin(t14)], [a3 * mp.cos(t13), -a4 * mp.cos(t14)]])
-        rv = -1j * a2 * w12 * mp.expj(th12)
+        rv = -1j * a2 * w12 * _expj(th12)
         w13, w14 = mp.lu_solve(M, mp.matrix([mp.re(rv), mp.im(rv)]))
         # i a3 al13 e^{i t13} - i a4 al14 e^{i t14}
         #   = -(i al12 - w12^2) a2 e^{i th12} + a3 w13^2 e^{i t13} - a4 w14^2 e^{i t14}
-        ra = -(1j * al12 - w12**2) * a2 * mp.expj(th12) + a3 * w13**2 * mp.expj(t13) - a4 * w14**2 * mp.expj(t14)
+        ra = -(1j * al12 - w12**2) * a2 * _expj(th12) + a3 * w13**2 * _expj(t13) - a4 * w14**2 * _expj(t14)
         al13, al14 = mp.lu_solve(M, mp.matrix([mp.re(ra), mp.im(ra)]))
-        eC = mp.expj(t13 + beta)
-        vC = 1j * a2 * w12 * mp.expj(th12) + 1j * b3 * w13 * eC
-        aC = (1j * al12 - w12**2) * a2 * mp.expj(th12) + (1j * al13 - w13**2) * b3 * eC
+        eC = _expj(t13 + beta)
+        vC = 1j * a2 * w12 * _expj(th12) + 1j * b3 * w13 * eC
+        aC = (1j * al12 - w12**2) * a2 * _expj(th12) + (1j * al13 - w13**2) * b3 * eC
         ref = {
             k: complex(v)
             for k, v in {

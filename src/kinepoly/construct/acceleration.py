@@ -67,24 +67,32 @@ class _Context:
         b = self.b
         start = b.tip(other, point)
         e = slide_direction(b.pose, slider)
-        vectors: list[DrawnVector] = []
-        at_other = b.label(other, point)
-        end = start
-        if b.mechanism.has_turning_guide(slider):
-            w = b.omega_of(other)
-            v_rel = sub(self.v_tip(moving, point), self.v_tip(other, point))
-            term = scale(2.0 * w, perp(v_rel))
-            end = add(start, term)
-            label = f"a^c_{b.label(moving, point)}/{at_other}"
-            vectors.append(DrawnVector(label, start, end, "coriolis"))
-            b.steps.append(Step("acceleration", "coriolis", f"{label} = 2 omega x v_{b.label(moving, point)}/{at_other}",
-                                f"Coriolis term {label} = 2 omega{b.mechanism.ground}{other} x "
-                                f"v_{b.label(moving, point)}/{at_other}: |{label}| = 2 x {abs(w):.6g} x "
-                                f"{norm(v_rel):.6g} = {norm(term):.6g} {b.unit}; its direction is the relative "
-                                f"velocity turned 90 deg in the sense of omega ({sense(w)}). Lay it from "
-                                f"{at_other.lower()}.", label, ((label, "magnitude and direction"),),
-                                tuple(vectors), value=term))
+        coriolis = self.lay_coriolis(slider, start, moving, other, point)
+        vectors = [coriolis] if coriolis else []
+        end = coriolis.end if coriolis else start
         return Line(end, e, f"sliding term along slider {slider.name}"), vectors
+
+    def lay_coriolis(self, slider: SliderSpec, start: Vec, moving: str, frame: str, point: str) -> DrawnVector | None:
+        """Lay 2 omega_frame x v_{point of moving}/{point of frame} from ``start``, with its step.
+
+        None where the slider's guide cannot turn: then there is no Coriolis term at all.
+        """
+        b = self.b
+        if not b.mechanism.has_turning_guide(slider):
+            return None
+        w = b.omega_of(frame)
+        on_moving, on_frame = b.label(moving, point), b.label(frame, point)
+        v_rel = sub(self.v_tip(moving, point), self.v_tip(frame, point))
+        term = scale(2.0 * w, perp(v_rel))
+        label = f"a^c_{on_moving}/{on_frame}"
+        vector = DrawnVector(label, start, add(start, term), "coriolis")
+        b.steps.append(Step("acceleration", "coriolis", f"{label} = 2 omega x v_{on_moving}/{on_frame}",
+                            f"Coriolis term {label} = 2 omega{b.mechanism.ground}{slider.guide} x v_{on_moving}/{on_frame}: "
+                            f"|{label}| = 2 x {abs(w):.6g} x {norm(v_rel):.6g} = {norm(term):.6g} {b.unit}; its "
+                            f"direction is the relative velocity turned 90 deg in the sense of omega ({sense(w)}), "
+                            f"laid from the tip of a_{on_frame}.", label, ((label, "magnitude and direction"),),
+                            (vector,), value=term))
+        return vector
 
     def slide_values(self, slider: SliderSpec, link: str, point: str) -> None:
         """Sliding acceleration and Coriolis term of the block relative to the guide."""
@@ -173,21 +181,9 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         a_p = b.tip(_other(outer[block], block), p)
         e = slide_direction(b.pose, slider)
         at = b.label(guide, p)
-        vectors = [n1]
-        end = a_p
-        if b.mechanism.has_turning_guide(slider):
-            w = b.omega_of(guide)
-            v_rel = sub(ctx.v_tip(guide, p), ctx.v_tip(block, p))
-            term = scale(2.0 * w, perp(v_rel))
-            end = add(a_p, term)
-            label = f"a^c_{at}/{p}"
-            vectors.append(DrawnVector(label, a_p, end, "coriolis"))
-            b.steps.append(Step("acceleration", "coriolis", f"{label} = 2 omega x v_{at}/{p}",
-                                f"Coriolis term {label} = 2 omega{b.mechanism.ground}{guide} x v_{at}/{p}: "
-                                f"|{label}| = 2 x {abs(w):.6g} x {norm(v_rel):.6g} = {norm(term):.6g} {b.unit}; "
-                                f"v_{at}/{p} turned 90 deg in the sense of omega ({sense(w)}), laid from the tip "
-                                f"of a_{p}.", label, ((label, "magnitude and direction"),), (vectors[-1],),
-                                value=term))
+        coriolis = ctx.lay_coriolis(slider, a_p, guide, block, p)
+        vectors = [n1, coriolis] if coriolis else [n1]
+        end = coriolis.end if coriolis else a_p
         line2 = Line(end, e, f"sliding term along slider {slider.name}")
         _normals_step(ctx, vectors)
         value = b.cross_lines(line1, line2, at, where)
@@ -231,18 +227,8 @@ def _drive(ctx: _Context) -> None:
                             value=(inp.alpha,)))
     elif isinstance(inp, SliderInput):
         slider = mech.slider(inp.slider)
-        e = slide_direction(b.pose, slider)
-        rel = scale(inp.s_ddot, e)
-        moving = slider.block if slider.guide == mech.ground else slider.guide
-        value = rel if moving == slider.block else scale(-1.0, rel)
-        label = b.add_tip(moving, slider.point, value)
-        ctx.sliding[slider.name] = rel
+        ctx.sliding[slider.name] = b.lay_driven_slider(slider, inp.s_ddot, slide_direction(b.pose, slider))
         ctx.coriolis[slider.name] = (0.0, 0.0)
-        b.steps.append(Step("acceleration", "known", f"a_{label} = s_ddot{slider.name} along the slide",
-                            f"Lay a_{label}: |s_ddot{slider.name}| = {abs(inp.s_ddot):.6g} {b.unit} along slider "
-                            f"{slider.name}'s line, from the pole o.", label.lower(),
-                            ((f"a_{label}", "magnitude and direction"),),
-                            (DrawnVector(f"a_{label}", (0.0, 0.0), value, "absolute"),), value=value))
     elif isinstance(inp, GivenInput):
         _given(ctx, inp)
 

@@ -20,6 +20,7 @@ from kinepoly.geom.tolerances import COLLINEAR_SIN, NEAR_SINGULAR_SIN
 from kinepoly.geom.vec import Vec, add, angle_of, cross, norm, perp, rotate, scale, sub
 from kinepoly.model.mechanism import Mechanism, point_label
 from kinepoly.notice import Notice
+from kinepoly.scene.spec import SliderSpec
 from kinepoly.solve.pose import Pose
 
 __all__ = ["PolygonBuilder", "sense"]
@@ -203,6 +204,23 @@ class PolygonBuilder:
         self.steps.append(Step(self.kind, "proportional", equation, text, self.tip_name(label),
                                lines=(Line(a, polygon_side, f"{la.lower()}{lb.lower()}"),), value=value))
         return value
+
+    def lay_driven_slider(self, slider: SliderSpec, amount: float, direction: Vec) -> Vec:
+        """The tip of a driven slider's point: ``amount`` (s_dot or s_ddot) along the slide, from o.
+
+        Returns the block's motion relative to the guide (the guide or the block is the frame).
+        """
+        rel = scale(amount, direction)
+        moving = slider.block if slider.guide == self.mechanism.ground else slider.guide
+        value = rel if moving == slider.block else scale(-1.0, rel)
+        label = self.add_tip(moving, slider.point, value)
+        name = "s_dot" if self.kind == "velocity" else "s_ddot"
+        self.steps.append(Step(self.kind, "known", f"{self.symbol}_{label} = {name}{slider.name} along the slide",
+                               f"Lay {self.symbol}_{label}: |{name}{slider.name}| = {abs(amount):.6g} {self.unit} "
+                               f"along slider {slider.name}'s line, from the pole o.", label.lower(),
+                               ((f"{self.symbol}_{label}", "magnitude and direction"),),
+                               (DrawnVector(f"{self.symbol}_{label}", (0.0, 0.0), value, "absolute"),), value=value))
+        return rel
 
     # -- the intersection of two direction lines ----------------------------------------------------
     def cross_lines(self, first: Line, second: Line, what: str, where: str) -> Vec:

@@ -14,7 +14,7 @@ from kinepoly.construct.builder import PolygonBuilder, sense
 from kinepoly.construct.steps import DrawnVector, Step
 from kinepoly.errors import SceneError
 from kinepoly.geom import Line
-from kinepoly.geom.vec import Vec, cross, dot, norm, perp, rotate, scale, sub, unit
+from kinepoly.geom.vec import Vec, cross, dot, norm, perp, rotate, sub, unit
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
@@ -73,17 +73,7 @@ def _drive(builder: PolygonBuilder, sliding: dict[str, Vec]) -> None:
                                   f"omega{mech.ground}{inp.link}", value=(inp.omega,)))
     elif isinstance(inp, SliderInput):
         slider = mech.slider(inp.slider)
-        e = slide_direction(pose, slider)
-        rel = scale(inp.s_dot, e)
-        sliding[slider.name] = rel
-        moving = slider.block if slider.guide == mech.ground else slider.guide
-        value = rel if moving == slider.block else scale(-1.0, rel)
-        label = builder.add_tip(moving, slider.point, value)
-        builder.steps.append(Step("velocity", "known", f"v_{label} = s_dot{slider.name} along the slide",
-                                  f"Lay v_{label}: |s_dot{slider.name}| = {abs(inp.s_dot):.6g} {builder.unit} "
-                                  f"along slider {slider.name}'s line, from the pole o.", label.lower(),
-                                  ((f"v_{label}", "magnitude and direction"),),
-                                  (DrawnVector(f"v_{label}", (0.0, 0.0), value, "absolute"),), value=value))
+        sliding[slider.name] = builder.lay_driven_slider(slider, inp.s_dot, slide_direction(pose, slider))
     elif isinstance(inp, GivenInput):
         _given(builder, inp)
 
