@@ -121,10 +121,6 @@ def _needed_links(mechanism: Mechanism, asked: Asked) -> set[str]:
     return links
 
 
-def _tips_needed(mechanism: Mechanism, asked_pairs: tuple[tuple[str, str], ...]) -> tuple[tuple[str, str], ...]:
-    return tuple(asked_pairs)
-
-
 def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     """Solve one scene: position, velocity and acceleration polygons as asked, cross-checked."""
     t0 = time.perf_counter()

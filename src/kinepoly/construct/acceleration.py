@@ -21,6 +21,7 @@ from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
 from kinepoly.solve.plan import Dyad, PositionPlan
 from kinepoly.solve.pose import Pose
+from kinepoly.solve.position import describe_input
 
 __all__ = ["AccelerationPolygon", "construct_acceleration"]
 
@@ -270,8 +271,6 @@ def _given(ctx: _Context, given: GivenInput) -> None:
 def construct_acceleration(mechanism: Mechanism, pose: Pose, plan: PositionPlan, velocity: VelocityPolygon,
                            wanted: tuple[tuple[str, str], ...] = (), unit: str = "mm") -> AccelerationPolygon:
     """Construct the acceleration polygon for every group of ``plan``, on top of its velocity polygon."""
-    from kinepoly.solve.position import describe_input
-
     builder = PolygonBuilder(mechanism, pose, "acceleration", omega=velocity.omega, unit=unit)
     ctx = _Context(builder, velocity)
     _drive(ctx)

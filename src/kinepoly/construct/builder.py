@@ -83,7 +83,7 @@ class PolygonBuilder:
     # -- tips ---------------------------------------------------------------------------------
     def _register(self, label: str, value: Vec, point: str, links: list[str]) -> None:
         self.tips[label] = value
-        at = self.world(point) if self.pose.links else self.mechanism.local(links[0], point)
+        at = self.world(point)
         for link in links:
             entries = self.members.setdefault(link, [])
             if all(name != label for name, _ in entries):

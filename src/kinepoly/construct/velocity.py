@@ -20,6 +20,7 @@ from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
 from kinepoly.solve.plan import Dyad, PositionPlan
 from kinepoly.solve.pose import Pose
+from kinepoly.solve.position import describe_input
 
 __all__ = ["VelocityPolygon", "construct_velocity", "read_rate", "slide_direction"]
 
@@ -57,8 +58,6 @@ def read_rate(builder: PolygonBuilder, link: str, first: str, second: str, relat
 
 
 def _where(mechanism: Mechanism, dyad: Dyad) -> str:
-    from kinepoly.solve.position import describe_input
-
     return f"of group {dyad.name} at {describe_input(mechanism)}"
 
 
