@@ -54,6 +54,9 @@ BAD_SCENES: list[tuple[str, str | bytes, int, str]] = [
     ("not utf-8", b"title = \"\xff\xfe\"\n", 2, ""),
     ("dead point", slider_crank(40, 120, 0, 0, 10, 0).split("[input]")[0]
      + '[input]\nslider = "14"\ns = 160\ns_dot = 100\n', 3, "singular"),
+    ("change point", four_bar(10, 10, 10, 10, 0, 1, 0, guess_b=(10, 20)), 3, "the pins A and B0 coincide"),
+    ("change point, denormal input", four_bar(10, 10, 10, 10, 2.2250738585e-313, 1, 0, guess_b=(10, 20)), 3,
+     "coincide"),
     ("non-rigid given", (EXAMPLES / "image-point.toml").read_text().replace("velocity = [0, -100]",
                                                                              "velocity = [5, -100]"), 2, "rigid"),
     ("negative kv", FOUR_BAR + "\n[draw]\nkv = -1\n", 2, "draw.kv"),

@@ -100,7 +100,7 @@ def test_acceleration_is_the_time_derivative_of_the_constructed_velocity(a1, a2,
     well_conditioned_four_bar(a1, a2, a3, a4, th)
     base = solve_text(four_bar(a1, a2, a3, a4, th, w, al, guess_b=(a1, a3 + a4)))
     guess = base.position("B")
-    h = 1e-4 / max(abs(w), 1.0)
+    h = 1e-5 / max(abs(w), 1.0)
 
     def at(t: float) -> kinepoly.Solution:
         theta = th + math.degrees(w * t + 0.5 * al * t * t)

@@ -38,6 +38,23 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("scene", help="the scene file (TOML)")
     solve.add_argument("--json", action="store_true", help="print the result as one JSON object")
     solve.add_argument("--steps", action="store_true", help="print the construction step by step")
+    from kinepoly.draw_command import add_arguments
+
+    add_arguments(sub.add_parser("draw", help="draw the mechanism and its polygons: SVG, DXF, PNG, PDF, "
+                                 "and the construction step by step"))
+    from kinepoly.homework.arguments import add_check_arguments, add_variants_arguments
+
+    add_check_arguments(sub.add_parser("check", help="check a student's answers and diagnose the mistakes"))
+    add_variants_arguments(sub.add_parser("variants", help="randomised versions of a problem with answer keys"))
+    from kinepoly.bench.command import add_arguments as add_bench_arguments
+
+    add_bench_arguments(sub.add_parser("bench", help="error against run time of the construction and other "
+                                       "methods (closed forms, finite differences, GEOS), against a 50-digit "
+                                       "reference; --sweep over a full turn"))
+    from kinepoly.sweep.command import add_arguments as add_sweep_arguments
+
+    add_sweep_arguments(sub.add_parser("sweep", help="the input over a turn or a range: a CSV of the asked "
+                                       "quantities, their plots, centrodes"))
     return parser
 
 
@@ -61,6 +78,22 @@ def _solve(args: argparse.Namespace) -> int:
     return 0
 
 
+def _draw(args: argparse.Namespace) -> int:
+    from kinepoly.draw_command import run_draw
+
+    for line in run_draw(args):
+        print(line)
+    return 0
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from kinepoly.bench.command import run_bench_command
+
+    for line in run_bench_command(args):
+        print(line)
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status."""
     try:
@@ -68,6 +101,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as stop:
         return int(stop.code or 0)
     try:
+        if args.command == "draw":
+            return _draw(args)
+        if args.command == "bench":
+            return _bench(args)
+        if args.command == "sweep":
+            from kinepoly.sweep.command import run_command
+
+            return run_command(args)
+        if args.command in ("check", "variants"):
+            from kinepoly.homework.arguments import run
+
+            return run(args)
         return _solve(args)
     except KinepolyError as error:
         print(f"kinepoly: error: {error}", file=sys.stderr)

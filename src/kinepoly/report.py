@@ -7,6 +7,7 @@ from typing import Any
 
 from kinepoly.construct.steps import Step
 from kinepoly.geom.vec import Vec, norm, unit
+from kinepoly.report_centers import centers_json, centers_steps_text, centers_table, kennedy_steps_json
 from kinepoly.scene.spec import LinkInput, SliderInput
 from kinepoly.solution import Solution
 
@@ -42,7 +43,7 @@ def polygon_scales(solution: Solution) -> dict[str, float]:
 
 
 def _pair(v: Vec) -> list[float]:
-    return [float(v[0]), float(v[1])]
+    return [float(v[0]) + 0.0, float(v[1]) + 0.0]  # + 0.0 turns -0.0 into 0.0
 
 
 def _angle(solution: Solution, radians: float) -> float:
@@ -118,7 +119,10 @@ def to_json(solution: Solution) -> dict[str, Any]:
         polygons[kind] = {"scale": k, "points": tips}
     if polygons:
         out["polygons"] = polygons
+    if solution.centers is not None:
+        out["instant_centers"] = centers_json(solution.centers)
     out["steps"] = [_step_json(s, scales.get(s.polygon, 1.0)) for s in solution.steps]
+    out["steps"] += kennedy_steps_json(solution.centers) if solution.centers is not None else []
     check = solution.check
     out["check"] = {
         "reference": "analytic",
@@ -127,10 +131,41 @@ def to_json(solution: Solution) -> dict[str, Any]:
         "condition_number": check.condition_number,
         "differences": {q.key: q.difference for q in check.quantities},
     }
+    if solution.accuracy is not None:
+        out["check"].update(_accuracy_json(solution))
     out["plan"] = solution.plan.describe()
     out["timing"] = dict(solution.timing)
     out["warnings"] = [{"code": n.code, "message": n.message} for n in solution.notices]
     return out
+
+
+def _value_json(value: float | tuple[float, float]) -> float | list[float]:
+    return _pair(value) if isinstance(value, tuple) else float(value)
+
+
+def _accuracy_json(solution: Solution) -> dict[str, Any]:
+    """Per kind: normwise, componentwise and estimated relative errors; per quantity: both values and more."""
+    accuracy = solution.accuracy
+    assert accuracy is not None
+    return {
+        "estimate": accuracy.estimated,
+        "normwise": dict(accuracy.normwise),
+        "componentwise": dict(accuracy.componentwise),
+        "quantities": {q.key: {"kind": q.kind, "construction": _value_json(q.construction),
+                               "analytic": _value_json(q.analytic), "difference": q.difference,
+                               "estimate": q.estimate, "normwise": q.normwise, "componentwise": q.componentwise}
+                       for q in accuracy.quantities},
+    }
+
+
+def _accuracy_rows(solution: Solution) -> list[str]:
+    accuracy = solution.accuracy
+    if accuracy is None or not accuracy.normwise:
+        return []
+    rows = [[kind, f"{accuracy.normwise[kind]:.2g}",
+             "undefined" if accuracy.componentwise[kind] is None else f"{accuracy.componentwise[kind]:.2g}",
+             f"{accuracy.estimated.get(kind, 0.0):.2g}"] for kind in accuracy.normwise]
+    return _rows(["quantity", "normwise error", "componentwise error", "error estimate"], rows) + [""]
 
 
 def _fmt(x: float) -> str:
@@ -181,12 +216,15 @@ def table_text(solution: Solution) -> str:
                  f"({_fmt(v['coriolis'][0])}, {_fmt(v['coriolis'][1])})" if "coriolis" in v else ""]
                 for name, v in data["sliders"].items()]
         out += _rows(["slider", f"s ({u})", f"s_dot ({u}/s)", f"s_ddot ({u}/s^2)", "coriolis"], rows) + [""]
+    if solution.centers is not None:
+        out += centers_table(solution.centers, u, data["check"]["relative"].get("instant_center")) + [""]
     for kind, poly in data.get("polygons", {}).items():
         per = f"{u}/s" if kind == "velocity" else f"{u}/s^2"
         symbol = "kv" if kind == "velocity" else "ka"
         out.append(f"{kind} polygon: {symbol} = {poly['scale']:g} mm of paper per {per}")
     for w in data["warnings"]:
         out.append(f"warning [{w['code']}]: {w['message']}")
+    out += _accuracy_rows(solution)
     err = data["check"]["max_rel_error"]
     verdict = "ok" if err <= 1e-9 else "DISAGREES"
     t = data["timing"]
@@ -206,4 +244,6 @@ def steps_text(solution: Solution) -> str:
         out.append(f"    {step.text}")
         if step.known:
             out.append("    known: " + "; ".join(f"{t} ({what})" for t, what in step.known))
+    if solution.centers is not None:
+        out += centers_steps_text(solution.centers, len(solution.steps) + 1)
     return "\n".join(out)

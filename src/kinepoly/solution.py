@@ -9,11 +9,24 @@ import math
 import time
 from dataclasses import dataclass, field
 
+from kinepoly.accuracy import (
+    AccuracyReport,
+    LocalFrame,
+    assess,
+    estimate_errors,
+    localize,
+    near_singular_notice,
+    singular_position_error,
+    transmission_angles,
+    transmission_notices,
+)
 from kinepoly.analysis.analytic import AnalyticSolution, solve_analytic
 from kinepoly.analysis.check import CheckReport, Quantity, compare
 from kinepoly.construct.acceleration import AccelerationPolygon, construct_acceleration
+from kinepoly.construct.centers import InstantCenters, find_instant_centers, plan_instant_centers
 from kinepoly.construct.steps import Step
 from kinepoly.construct.velocity import VelocityPolygon, construct_velocity
+from kinepoly.errors import SingularityError
 from kinepoly.geom.tolerances import LOUD_ERROR
 from kinepoly.geom.vec import Vec, dot, rotate, sub
 from kinepoly.model.mechanism import Mechanism, build_mechanism
@@ -21,9 +34,9 @@ from kinepoly.notice import Notice
 from kinepoly.scene.spec import Scene
 from kinepoly.solve.plan import PositionPlan, make_plan
 from kinepoly.solve.pose import Pose
-from kinepoly.solve.position import solve_position
+from kinepoly.solve.position import describe_input, solve_position
 
-__all__ = ["Asked", "SliderValues", "Solution", "solve", "what_is_asked"]
+__all__ = ["Asked", "Inside", "SliderValues", "Solution", "solve", "what_is_asked"]
 
 
 @dataclass(frozen=True)
@@ -54,6 +67,19 @@ class SliderValues:
 
 
 @dataclass(frozen=True)
+class Inside:
+    """The solve's own frames (``kinepoly.accuracy.frame``): the localized mechanism and its pose.
+
+    Differences of positions (slider values, the cross-check) are taken here, where every
+    coordinate is of the mechanism's size; ``Solution.pose`` is the same pose in the user's frames.
+    """
+
+    frame: LocalFrame
+    mechanism: Mechanism
+    pose: Pose
+
+
+@dataclass(frozen=True)
 class Solution:
     """Everything ``kinepoly solve`` reports for one scene."""
 
@@ -67,6 +93,9 @@ class Solution:
     check: CheckReport
     notices: tuple[Notice, ...]
     timing: dict[str, float] = field(default_factory=dict)
+    inside: Inside | None = None
+    accuracy: AccuracyReport | None = None
+    centers: InstantCenters | None = None
 
     @property
     def steps(self) -> tuple[Step, ...]:
@@ -85,9 +114,12 @@ class Solution:
         return math.pi if theta == -math.pi else theta
 
     def slider(self, name: str) -> SliderValues:
-        spec = self.mechanism.slider(name)
-        e = rotate((1.0, 0.0), self.pose.links[spec.guide].theta + spec.angle_rad)
-        s = dot(e, sub(self.position(spec.point), self.pose.links[spec.guide].world(spec.through)))
+        mechanism, pose = (self.inside.mechanism, self.inside.pose) if self.inside else (self.mechanism, self.pose)
+        spec = mechanism.slider(name)
+        e = rotate((1.0, 0.0), pose.links[spec.guide].theta + spec.angle_rad)
+        owner = next(link for link in mechanism.links_of_point(spec.point) if link in pose.links)
+        at = pose.links[owner].world(mechanism.local(owner, spec.point))
+        s = dot(e, sub(at, pose.links[spec.guide].world(spec.through)))
         s_dot = dot(e, self.velocity.sliding[name]) if self.velocity else None
         s_ddot = dot(e, self.acceleration.sliding[name]) if self.acceleration else None
         coriolis = self.acceleration.coriolis[name] if self.acceleration else None
@@ -125,33 +157,50 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     """Solve one scene: position, velocity and acceleration polygons as asked, cross-checked."""
     t0 = time.perf_counter()
     mechanism = build_mechanism(scene)
-    asked = what_is_asked(mechanism)
-    plan = make_plan(mechanism, _needed_links(mechanism, asked))
-    position = solve_position(mechanism, plan)
+    frame = localize(scene)  # every coordinate of the solve near the mechanism: translation costs nothing
+    inner = mechanism if frame.is_identity else build_mechanism(frame.scene)
+    asked = what_is_asked(inner)
+    center_plan = plan_instant_centers(inner) if scene.find.instant_centers else None
+    plan = make_plan(inner, _needed_links(inner, asked) | set(center_plan.links_needed if center_plan else ()))
+    position = solve_position(inner, plan, origin=frame.origin)
     t1 = time.perf_counter()
     unit = scene.units.length
     velocity = acceleration = None
     if asked.needs_velocity:
-        velocity = construct_velocity(mechanism, position.pose, plan, asked.velocity, unit)
+        velocity = construct_velocity(inner, position.pose, plan, asked.velocity, unit)
     if asked.needs_acceleration and velocity is not None:
-        acceleration = construct_acceleration(mechanism, position.pose, plan, velocity, asked.acceleration, unit)
+        acceleration = construct_acceleration(inner, position.pose, plan, velocity, asked.acceleration, unit)
+    centers = find_instant_centers(inner, position.pose, center_plan, frame.origin) if center_plan else None
     t2 = time.perf_counter()
-    analytic = solve_analytic(mechanism, dict(position.pose.links), with_acceleration=asked.needs_acceleration)
-    draft = Solution(scene, mechanism, asked, plan, position.pose, velocity, acceleration,
-                     compare([], 1.0), ())
+    where = describe_input(inner)
+    transmissions = transmission_angles(inner, position.pose, plan)
+    draft = Solution(frame.scene, inner, asked, plan, position.pose, velocity, acceleration, compare([], 1.0), (),
+                     centers=centers)
+    try:
+        analytic = solve_analytic(inner, dict(position.pose.links), with_acceleration=asked.needs_acceleration)
+    except SingularityError as error:
+        raise singular_position_error(where, transmissions, draft.steps, str(error)) from error
     check = compare(_quantities(draft, analytic), analytic.condition_number, _natural_scales(draft))
+    kennedy = {"instant_center": max((s.relative_error for s in centers.steps), default=0.0)} if centers else None
+    estimate = estimate_errors(analytic.condition_number, draft.steps, check.relative, kennedy)
+    accuracy = assess(check, estimate, frame)
     t3 = time.perf_counter()
     notices = list(position.notices)
     notices += velocity.notices if velocity else ()
     notices += acceleration.notices if acceleration else ()
+    notices += centers.notices if centers else ()
+    notices += transmission_notices(transmissions, where)
+    near = near_singular_notice(estimate, where)
+    notices += [near] if near is not None else []
     if check.max_rel_error > LOUD_ERROR:
         worst = max(check.relative, key=lambda k: check.relative[k])
         notices.append(Notice("check-failed", f"the construction and the analytic solution disagree: "
-                              f"{worst} differs by {check.relative[worst]:.3g} (relative), above {LOUD_ERROR:g}"))
+                              f"{worst} differs by {check.relative[worst]:.3g} (relative), above {LOUD_ERROR:g} "
+                              f"(the error estimate of {worst} is {estimate.of_kind(worst):.2g})"))
     timing = {"load_s": load_s, "position_s": t1 - t0, "construction_s": t2 - t1, "check_s": t3 - t2,
               "total_s": load_s + (t3 - t0)}
-    return Solution(scene, mechanism, asked, plan, position.pose, velocity, acceleration, check,
-                    tuple(notices), timing)
+    return Solution(scene, mechanism, asked, plan, frame.pose_to_user(position.pose), velocity, acceleration, check,
+                    tuple(notices), timing, Inside(frame, inner, position.pose), accuracy, centers)
 
 
 def _label(mechanism: Mechanism, link: str, point: str) -> str:
@@ -189,6 +238,17 @@ def _quantities(sol: Solution, analytic: AnalyticSolution) -> list[Quantity]:
         if got.s_ddot is not None and got.coriolis is not None:
             out.append(Quantity(f"sliders.{name}.s_ddot", "acceleration", got.s_ddot, ref["s_ddot"]))
             out.append(Quantity(f"sliders.{name}.coriolis", "acceleration", got.coriolis, ref["coriolis"]))
+    return out + _center_quantities(sol, analytic)
+
+
+def _center_quantities(sol: Solution, analytic: AnalyticSolution) -> list[Quantity]:
+    """omega_1j from the instant centers against the polygon's (where it has it) and the analytic one."""
+    out: list[Quantity] = []
+    for found in sol.centers.omegas if sol.centers else ():
+        key = f"instant_centers.{found.symbol}"
+        if sol.velocity is not None and found.link in sol.velocity.omega:
+            out.append(Quantity(f"{key}.polygon", "instant_center", found.omega, sol.velocity.omega[found.link]))
+        out.append(Quantity(f"{key}.analytic", "instant_center", found.omega, analytic.omega[found.link]))
     return out
 
 
@@ -200,5 +260,5 @@ def _natural_scales(sol: Solution) -> dict[str, float]:
     alpha = max((abs(a) for a in sol.acceleration.alpha.values()), default=0.0) if sol.acceleration else 0.0
     speed = max((math.hypot(*t) for t in sol.velocity.tips.values()), default=0.0) if sol.velocity else 0.0
     accel = max((math.hypot(*t) for t in sol.acceleration.tips.values()), default=0.0) if sol.acceleration else 0.0
-    return {"position": size, "omega": omega, "alpha": max(alpha, omega * omega),
+    return {"position": size, "omega": omega, "alpha": max(alpha, omega * omega), "instant_center": omega,
             "velocity": max(speed, size * omega), "acceleration": max(accel, size * (omega * omega + alpha))}

@@ -10,11 +10,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from kinepoly.construct.builder import PolygonBuilder, sense
+from kinepoly.construct.builder import Crossing, PolygonBuilder, sense
 from kinepoly.construct.steps import DrawnVector, Step
 from kinepoly.construct.velocity import VelocityPolygon, read_rate, slide_direction
 from kinepoly.errors import SceneError
-from kinepoly.geom import Line
+from kinepoly.geom import Line, intersect
 from kinepoly.geom.vec import Vec, add, dot, norm, perp, scale, sub, unit
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.notice import Notice
@@ -269,9 +269,10 @@ def _given(ctx: _Context, given: GivenInput) -> None:
 
 
 def construct_acceleration(mechanism: Mechanism, pose: Pose, plan: PositionPlan, velocity: VelocityPolygon,
-                           wanted: tuple[tuple[str, str], ...] = (), unit: str = "mm") -> AccelerationPolygon:
+                           wanted: tuple[tuple[str, str], ...] = (), unit: str = "mm", *,
+                           crossing: Crossing = intersect) -> AccelerationPolygon:
     """Construct the acceleration polygon for every group of ``plan``, on top of its velocity polygon."""
-    builder = PolygonBuilder(mechanism, pose, "acceleration", omega=velocity.omega, unit=unit)
+    builder = PolygonBuilder(mechanism, pose, "acceleration", omega=velocity.omega, unit=unit, crossing=crossing)
     ctx = _Context(builder, velocity)
     _drive(ctx)
     where = f"at {describe_input(mechanism)}"

@@ -11,21 +11,24 @@ Points of an already-known link get their tips lazily, when a later step needs t
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Literal
 
 from kinepoly.construct.steps import DrawnVector, Step
 from kinepoly.errors import SingularityError
-from kinepoly.geom import Line, intersect
-from kinepoly.geom.tolerances import COLLINEAR_SIN, NEAR_SINGULAR_SIN
+from kinepoly.geom import Intersection, Line, ParallelLinesError, intersect
+from kinepoly.geom.tolerances import COLLINEAR_SIN
 from kinepoly.geom.vec import Vec, add, angle_of, cross, norm, perp, rotate, scale, sub
 from kinepoly.model.mechanism import Mechanism, point_label
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import SliderSpec
 from kinepoly.solve.pose import Pose
 
-__all__ = ["PolygonBuilder", "sense"]
+__all__ = ["Crossing", "PolygonBuilder", "sense"]
 
 Kind = Literal["velocity", "acceleration"]
+Crossing = Callable[[Line, Line], Intersection]
+"""How two direction lines are crossed: ``kinepoly.geom.intersect`` (the bench swaps in others)."""
 
 
 def sense(rate: float) -> str:
@@ -36,8 +39,9 @@ class PolygonBuilder:
     """Mutable while one polygon is constructed; ``steps`` and ``tips`` are its output."""
 
     def __init__(self, mechanism: Mechanism, pose: Pose, kind: Kind, omega: dict[str, float] | None = None,
-                 unit: str = "mm") -> None:
+                 unit: str = "mm", crossing: Crossing = intersect) -> None:
         self.mechanism = mechanism
+        self.crossing = crossing
         self.pose = pose
         self.kind = kind
         self.symbol = "v" if kind == "velocity" else "a"
@@ -49,7 +53,7 @@ class PolygonBuilder:
         self.steps: list[Step] = []
         self.notices: list[Notice] = []
         if mechanism.ground is not None:
-            self.rate[mechanism.ground] = 0.0
+            self.set_rate(mechanism.ground, 0.0)  # and every link that slides on it without turning
             for p in mechanism.scene.link(mechanism.ground).points:
                 self._register(p.name, (0.0, 0.0), p.name, list(mechanism.links_of_point(p.name)))
 
@@ -184,7 +188,7 @@ class PolygonBuilder:
             return value
         line_a = Line(a, rotate(polygon_side, angle_a), f"from {la.lower()} at angle {lb}{la}{label}")
         line_b = Line(b, rotate(scale(-1.0, polygon_side), angle_b), f"from {lb.lower()} at angle {la}{lb}{label}")
-        crossing = intersect(line_a, line_b)
+        crossing = self.crossing(line_a, line_b)
         if abs(crossing.sin_angle) >= COLLINEAR_SIN:
             value = crossing.point
             text = (f"Image of {label} on link {link} (Mehmke): from {la.lower()} draw a line at "
@@ -224,17 +228,20 @@ class PolygonBuilder:
 
     # -- the intersection of two direction lines ----------------------------------------------------
     def cross_lines(self, first: Line, second: Line, what: str, where: str) -> Vec:
-        crossing = intersect(first, second)
+        """The crossing of two direction lines; parallel lines are a singular position (a named error).
+
+        How near to parallel they may come is judged with the whole solution's error estimate
+        (``kinepoly.accuracy``), which the steps' lines feed.
+        """
+        try:
+            crossing = self.crossing(first, second)
+        except ParallelLinesError as error:  # a line with no direction: two joints of a link coincide
+            raise SingularityError(f"singular position {where}: at joint {what} the {self.kind} construction "
+                                   f"fails because {error}; two joints of one link are at the same place") from None
         if not crossing.is_finite:
             raise SingularityError(
-                f"singular position {where}: the {self.kind} direction lines {first.label} and {second.label} "
-                f"are parallel, so the {self.kind} of {what} is not determined (a dead point or a change point)"
+                f"singular position {where}: at joint {what} the {self.kind} direction lines ({first.label}; "
+                f"{second.label}) are parallel: the links that meet there are in line, or square to a slide (a "
+                f"dead centre or change point), so the {self.kind} of {what} is not determined by the input"
             )
-        if abs(crossing.sin_angle) < NEAR_SINGULAR_SIN:
-            self.notices.append(Notice(
-                "near-singular",
-                f"{self.kind} of {what} {where}: the direction lines {first.label} and {second.label} meet at "
-                f"{math.degrees(math.asin(min(1.0, abs(crossing.sin_angle)))):.3g} deg; relative error about "
-                f"{crossing.error_bound:.1g}",
-            ))
         return crossing.point

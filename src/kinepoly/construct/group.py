@@ -10,6 +10,7 @@ the Coriolis term 2 omega_g x v_rel).
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -86,11 +87,28 @@ def _rows(builder: PolygonBuilder, group: NewtonGroup,
 
 
 def _solve(builder: PolygonBuilder, group: NewtonGroup, matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    size = max(1.0, *(abs(builder.pose.links[k].x) + abs(builder.pose.links[k].y) for k in group.links))
+    """Solve, after judging the condition of the equations made dimensionless.
+
+    The rate columns hold arms (lengths) and are divided by the largest arm L; the rows that
+    hold only rates (a block turning with its guide) are multiplied by L. The condition of
+    that matrix does not change when the mechanism is scaled.
+    """
+    from kinepoly.solve.position import describe_input
+
+    rates = matrix[:, 2::3]
+    length = float(np.max(np.abs(rates[np.any(matrix[:, np.arange(matrix.shape[1]) % 3 != 2] != 0, axis=1)]),
+                          initial=0.0)) or 1.0
     scaled = matrix.copy()
-    scaled[:, 2::3] *= size
-    if matrix.shape[0] != matrix.shape[1] or np.linalg.cond(scaled) > _SINGULAR:
-        raise SingularityError(f"the {builder.kind} equations of group {group.name} are singular at this position")
+    scaled[:, 2::3] /= length
+    only_rates = ~np.any(matrix[:, np.arange(matrix.shape[1]) % 3 != 2] != 0, axis=1)
+    scaled[only_rates] *= length
+    condition = float(np.linalg.cond(scaled)) if matrix.shape[0] == matrix.shape[1] else math.inf
+    if not condition <= _SINGULAR:
+        joints = ", ".join(j.name for j in group.joints)
+        raise SingularityError(
+            f"singular position at {describe_input(builder.mechanism)}: the {builder.kind} equations of group "
+            f"{group.name} (joints {joints}) have condition number {condition:.3g}, above {_SINGULAR:.0e}: its "
+            f"links can move with the input held (a change point), so their {builder.kind}s are not determined")
     return np.asarray(np.linalg.solve(matrix, rhs))
 
 

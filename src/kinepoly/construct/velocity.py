@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from kinepoly.construct.builder import PolygonBuilder, sense
+from kinepoly.construct.builder import Crossing, PolygonBuilder, sense
 from kinepoly.construct.steps import DrawnVector, Step
 from kinepoly.errors import SceneError
-from kinepoly.geom import Line
+from kinepoly.geom import Line, intersect
 from kinepoly.geom.vec import Vec, cross, dot, norm, perp, rotate, sub, unit
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.notice import Notice
@@ -214,12 +214,14 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
 
 
 def construct_velocity(mechanism: Mechanism, pose: Pose, plan: PositionPlan,
-                       wanted: tuple[tuple[str, str], ...] = (), unit: str = "mm") -> VelocityPolygon:
+                       wanted: tuple[tuple[str, str], ...] = (), unit: str = "mm", *,
+                       crossing: Crossing = intersect) -> VelocityPolygon:
     """Construct the velocity polygon for every group of ``plan``, then the tips of ``wanted``.
 
-    ``wanted`` holds (link, point) pairs: the velocity of ``point`` as a point of ``link``.
+    ``wanted`` holds (link, point) pairs: the velocity of ``point`` as a point of ``link``;
+    ``crossing`` crosses two direction lines (the bench compares other primitives).
     """
-    builder = PolygonBuilder(mechanism, pose, "velocity", unit=unit)
+    builder = PolygonBuilder(mechanism, pose, "velocity", unit=unit, crossing=crossing)
     sliding: dict[str, Vec] = {}
     _drive(builder, sliding)
     for group in plan.groups:

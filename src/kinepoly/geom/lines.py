@@ -65,10 +65,12 @@ class Intersection:
 
 def intersect(first: Line, second: Line) -> Intersection:
     """Cross two lines. Homogeneous lines l = (a, b, c) relative to first.through; p = l1 x l2."""
-    d1, d2 = first.direction, second.direction
-    n1, n2 = norm(d1), norm(d2)
+    n1, n2 = norm(first.direction), norm(second.direction)
     if n1 == 0.0 or n2 == 0.0:
         raise ParallelLinesError("a construction line has no direction (zero vector)")
+    # unit directions: a direction of any size, 1e-200 or 1e200, crosses as well as any other
+    d1 = (first.direction[0] / n1, first.direction[1] / n1)
+    d2 = (second.direction[0] / n2, second.direction[1] / n2)
     offset = sub(second.through, first.through)
     # first line: through the local origin, normal perp(d1); second: through offset, normal perp(d2)
     a1, b1, c1 = -d1[1], d1[0], 0.0
@@ -77,7 +79,7 @@ def intersect(first: Line, second: Line) -> Intersection:
     x = b1 * c2 - c1 * b2
     y = c1 * a2 - a1 * c2
     w = a1 * b2 - b1 * a2
-    sin_angle = cross(d1, d2) / (n1 * n2)
+    sin_angle = cross(d1, d2)
     return Intersection(origin=first.through, homogeneous=(x, y, w), sin_angle=sin_angle)
 
 

@@ -2,6 +2,7 @@
 
 __all__ = [
     "ASSEMBLY_REL_TOL",
+    "COINCIDENT_SIN",
     "COLLINEAR_SIN",
     "LOUD_ERROR",
     "NEAR_SINGULAR_SIN",
@@ -23,6 +24,10 @@ COLLINEAR_SIN = 0.2
 
 ASSEMBLY_REL_TOL = 1e-12
 """Relative slack allowed when a circle just touches another circle or a line (a dead point)."""
+
+COINCIDENT_SIN = 1e-10
+"""Two points (or two lines) whose unit homogeneous vectors in a local frame make an angle with a
+sine below this are one point (one line): no line runs through them (they meet in no one point)."""
 
 LOUD_ERROR = 1e-9
 """A construction that disagrees with the analytic solution by more than this is reported loudly."""

@@ -44,7 +44,7 @@ from kinepoly.scene.spec import (
     Units,
 )
 
-__all__ = ["load_scene", "loads_scene"]
+__all__ = ["ProblemReport", "load_scene", "loads_scene", "parse_located", "read_quantity", "show_value", "suggest"]
 
 KeyPath = tuple[str, ...]
 Vector = tuple[float, float]
@@ -52,7 +52,7 @@ Table = Mapping[str, object]
 
 _NOWHERE: Vector = (math.nan, math.nan)  # stands in for a value that failed; never returned
 
-_TOP_KEYS = ("title", "units", "ground", "links", "sliders", "input", "given", "guess", "find", "draw")
+_TOP_KEYS = ("title", "units", "ground", "links", "sliders", "input", "given", "guess", "find", "draw", "vary")
 _UNITS_KEYS = ("length", "angle")
 _LINK_KEYS = ("points",)
 _POLAR_KEYS = ("polar",)
@@ -628,6 +628,8 @@ class _SceneReader:
         guess = self.read_guess(data.get("guess"))
         find = self.read_find(data.get("find"))
         draw = self.read_draw(data.get("draw"))
+        if "vary" in data:  # read by `kinepoly variants` (kinepoly.homework.vary); only its shape here
+            _table(self.report, ("vary",), data["vary"], "a [vary] table of ranges like angle = [30, 150]")
         if self.report.problems or spec_input is None or self.links is None:
             return None
         return Scene(
@@ -1156,3 +1158,31 @@ class _SceneReader:
 def _same_place(first: Vector, second: Vector) -> bool:
     size = max(1.0, abs(first[0]), abs(first[1]), abs(second[0]), abs(second[1]))
     return math.hypot(first[0] - second[0], first[1] - second[1]) <= 1e-12 * size
+
+
+# --------------------------------------------------------------------------------------------
+# For kinepoly's other TOML files (answers files, [vary]): the same parsing, lines and problems
+
+ProblemReport = _Report
+"""Collects ``FILE:LINE: key.path: what; expected`` problems; ``raise_if_any`` raises a SceneError."""
+
+show_value = _show
+suggest = _suggest
+
+
+def parse_located(text: str, source: str) -> tuple[Table, _Report]:
+    """Parse ``text`` as a scene is parsed (same syntax errors); the data and a report placing each key path."""
+    text = text.removeprefix("\ufeff")
+    lines = _scan(text)
+    return _parse_toml(text, source, lines), _Report(source, lines)
+
+
+def read_quantity(
+    report: _Report,
+    path: KeyPath,
+    value: object,
+    kind: Literal["length", "speed", "accel", "angle", "omega", "alpha"],
+    units: Units,
+) -> float | None:
+    """A number or unit string (``"4 cm"``, ``"300 rpm"``) as a scene's value of ``kind`` is read; None if wrong."""
+    return _quantity(report, path, value, getattr(_kinds(units), kind))

@@ -70,22 +70,28 @@ def solve_newton_group(mechanism: Mechanism, group: NewtonGroup, poses: dict[str
                 f"link {link} has no guessed or known point: add [guess] positions for its points"
             )
         start[link] = found
-    size = max(1.0, *(abs(v) for xy in known.values() for v in xy))
+    # the group's size sets every tolerance, so that scaling the mechanism scales nothing else
+    size = max((abs(v) for link in group.links for p in mechanism.scene.link(link).points for v in p.local),
+               default=0.0)
+    size = max(size, *(abs(v) for xy in known.values() for v in xy)) or 1.0
     q = np.array([v for link in group.links for v in (start[link].x, start[link].y, start[link].theta)])
+    # angle rows (a block turning with its guide) in lengths, like the others
+    rows = np.array([w for j in group.joints for w in ((1.0, 1.0) if isinstance(j, Revolute) else (size, 1.0))])
+    steps = np.array([v for _ in group.links for v in (size, size, 1.0)])
 
     def residual(vec: np.ndarray) -> np.ndarray:
         trial = dict(poses)
         for k, link in enumerate(group.links):
             trial[link] = LinkPose(float(vec[3 * k]), float(vec[3 * k + 1]), float(vec[3 * k + 2]))
-        return group_residual(mechanism, group, trial)
+        return np.asarray(rows * group_residual(mechanism, group, trial), dtype=float)
 
     r = residual(q)
-    for _ in range(100):
-        if np.linalg.norm(r) <= 1e-13 * size:
+    for _ in range(100):  # on to the rounding level: stop when no step lowers the residual
+        if not np.linalg.norm(r) > 0.0:
             break
         jac = np.empty((r.size, q.size))
         for c in range(q.size):
-            h = 1e-7 * max(1.0, abs(q[c]))
+            h = 1e-7 * max(float(steps[c]), abs(q[c]))
             e = np.zeros_like(q)
             e[c] = h
             jac[:, c] = (residual(q + e) - residual(q - e)) / (2 * h)

@@ -14,10 +14,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from kinepoly.errors import AssemblyError
+from kinepoly.errors import AssemblyError, SingularityError
 from kinepoly.geom import Line, circle_circle, circle_line, intersect, norm
 from kinepoly.geom.tolerances import ASSEMBLY_REL_TOL
-from kinepoly.geom.vec import Vec, angle_of, rotate, sub
+from kinepoly.geom.vec import Vec, add, angle_of, rotate, sub
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
@@ -50,9 +50,9 @@ def describe_input(mechanism: Mechanism) -> str:
     inp = scene.input
     if isinstance(inp, LinkInput):
         value = math.degrees(inp.angle_rad) if scene.units.angle == "deg" else inp.angle_rad
-        return f"theta{scene.ground}{inp.link} = {value:.6g} {scene.units.angle}"
+        return f"theta{scene.ground}{inp.link} = {value:.15g} {scene.units.angle}"
     if isinstance(inp, SliderInput):
-        return f"s{inp.slider} = {inp.s:.6g} {scene.units.length}"
+        return f"s{inp.slider} = {inp.s:.15g} {scene.units.length}"
     return "the given motion"
 
 
@@ -136,8 +136,13 @@ def _rrr(dyad: Dyad, mechanism: Mechanism, poses: dict[str, LinkPose]) -> list[_
     w3 = _world(mechanism, poses, _other(dyad.second_joint, j), p3)
     r1 = norm(sub(mechanism.local(i, p2), mechanism.local(i, p1)))
     r2 = norm(sub(mechanism.local(j, p2), mechanism.local(j, p3)))
-    left, right, slack = circle_circle(w1, r1, w3, r2)
     d = norm(sub(w3, w1))
+    if d <= ASSEMBLY_REL_TOL * max(r1, r2):
+        raise SingularityError(
+            f"singular position of group {dyad.name} at {describe_input(mechanism)}: the pins {p1} and {p3} "
+            f"coincide (|{p1} {p3}| = {d:.3g}), so {p2} may lie anywhere on a circle of radius {r1:.6g} about "
+            "them (a change point of the linkage)")
+    left, right, slack = circle_circle(w1, r1, w3, r2)
     slack = _touching(slack, max(r1, r2, d))
     if slack < 0.0:
         if d > r1 + r2:
@@ -192,6 +197,10 @@ def _rpr(dyad: Dyad, mechanism: Mechanism, poses: dict[str, LinkPose]) -> list[_
     offset = rotate(sub(mechanism.local(block, pb), mechanism.local(block, slider.point)), slider.angle_rad)
     locus = Line((slider.through[0] + offset[0], slider.through[1] + offset[1]), rotate((1.0, 0.0), slider.angle_rad))
     r = norm(sub(wb, wg))
+    if r <= ASSEMBLY_REL_TOL * norm(sub(mechanism.local(block, pb), mechanism.local(block, slider.point))) or r == 0.0:
+        raise SingularityError(
+            f"singular position of group {dyad.name} at {describe_input(mechanism)}: the pins {pg} and {pb} "
+            f"coincide, so the direction of slider {slider.name} is not determined (a change point)")
     ahead, behind, slack = circle_line(pg_local, r, locus)
     slack = _touching(slack, r)
     if slack < 0.0:
@@ -275,10 +284,11 @@ def _telling_point(mechanism: Mechanism, candidates: list[_Candidate]) -> tuple[
 
 
 def _solve_groups(mechanism: Mechanism, groups: tuple[Dyad | NewtonGroup, ...], poses: dict[str, LinkPose],
-                  guess: dict[str, Vec]) -> tuple[dict[str, LinkPose], list[Notice]]:
+                  guess: dict[str, Vec], origin: Vec = (0.0, 0.0)) -> tuple[dict[str, LinkPose], list[Notice]]:
     """Solve ``groups`` in order. Where the guessed points of a dyad's own links do not tell its
     assemblies apart, each assembly is carried through the later groups and the one that puts
-    all guessed points nearest to their guesses is kept."""
+    all guessed points nearest to their guesses is kept. ``origin`` is added to positions in
+    messages (the solve may run in a frame local to the mechanism)."""
     poses = dict(poses)
     notices: list[Notice] = []
     for index, group in enumerate(groups):
@@ -300,7 +310,7 @@ def _solve_groups(mechanism: Mechanism, groups: tuple[Dyad | NewtonGroup, ...], 
         failure: AssemblyError | None = None
         for cand in candidates:
             try:
-                full, later = _solve_groups(mechanism, rest, {**poses, **cand.poses}, guess)
+                full, later = _solve_groups(mechanism, rest, {**poses, **cand.poses}, guess, origin)
                 outcomes.append((_guess_score(mechanism, full, guess), full, later))
             except AssemblyError as error:
                 failure = error
@@ -320,6 +330,7 @@ def _solve_groups(mechanism: Mechanism, groups: tuple[Dyad | NewtonGroup, ...], 
         point, chosen_at, other_at = _telling_point(mechanism, candidates)
         if pick == 1:
             chosen_at, other_at = other_at, chosen_at
+        chosen_at, other_at = add(chosen_at, origin), add(other_at, origin)
         notices.append(Notice(
             "default-assembly",
             f"group {group.name}: no [guess] tells its assemblies apart, so the default was taken: "
@@ -330,10 +341,13 @@ def _solve_groups(mechanism: Mechanism, groups: tuple[Dyad | NewtonGroup, ...], 
     return poses, notices
 
 
-def solve_position(mechanism: Mechanism, plan: PositionPlan) -> PositionResult:
-    """Poses of the driven links and of every group in the plan, for the scene's input."""
+def solve_position(mechanism: Mechanism, plan: PositionPlan, origin: Vec = (0.0, 0.0)) -> PositionResult:
+    """Poses of the driven links and of every group in the plan, for the scene's input.
+
+    ``origin``: where the mechanism's frame origin lies in the user's frame, for messages.
+    """
     poses = _driver_poses(mechanism)
     if isinstance(mechanism.scene.input, GivenInput):
         return PositionResult(Pose(poses), ())
-    solved, notices = _solve_groups(mechanism, plan.groups, poses, dict(mechanism.scene.guess))
+    solved, notices = _solve_groups(mechanism, plan.groups, poses, dict(mechanism.scene.guess), origin)
     return PositionResult(Pose(solved), tuple(notices))

@@ -1,0 +1,266 @@
+"""The methods the bench compares, each able to give the scene's quantities at an array of inputs.
+
+Every method runs in the solve's own frame (``kinepoly.accuracy.frame``) and reports positions in
+the user's frame. Methods that work one position at a time (the construction, the analytic
+solve, finite differences, the construction with GEOS crossings) are timed per call; the closed
+forms and the series run over a whole batch of inputs in one numpy call.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from kinepoly.analysis.analytic import solve_analytic
+from kinepoly.analysis.check import compare
+from kinepoly.bench.closed_forms import closed_form
+from kinepoly.bench.motion import LinkMotion, Trig, evaluate
+from kinepoly.bench.series import slider_crank_series
+from kinepoly.construct.acceleration import construct_acceleration
+from kinepoly.construct.builder import Crossing
+from kinepoly.construct.velocity import construct_velocity
+from kinepoly.geom import Intersection, Line, ParallelLinesError, intersect
+from kinepoly.geom.vec import cross, norm, sub
+from kinepoly.model.mechanism import Mechanism
+from kinepoly.scene.spec import LinkInput, SliderInput
+from kinepoly.solution import Solution
+from kinepoly.solve.pose import Pose
+from kinepoly.solve.position import solve_position
+
+__all__ = ["FD_STEPS", "Guess", "Method", "Setting", "construct_at", "construction_values", "geos_crossing",
+           "methods_for", "with_input"]
+
+FD_STEPS = (1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
+"""Central-difference steps: radians for a turning input, times the mechanism's size for a slider."""
+
+Values = dict[str, Any]
+Guess = tuple[tuple[str, tuple[float, float]], ...]
+
+
+@dataclass(frozen=True)
+class Setting:
+    """What every method needs: the solved scene, its frame, the quantity keys and the input's size."""
+
+    solution: Solution
+    keys: tuple[str, ...]
+
+    @property
+    def mechanism(self) -> Mechanism:
+        assert self.solution.inside is not None
+        return self.solution.inside.mechanism
+
+    @property
+    def origin(self) -> tuple[float, float]:
+        assert self.solution.inside is not None
+        return self.solution.inside.frame.origin
+
+    @property
+    def pose(self) -> Pose:
+        assert self.solution.inside is not None
+        return self.solution.inside.pose
+
+    @property
+    def input_unit(self) -> float:
+        """1 rad for a turning input; the mechanism's size for a slider (FD steps scale with it)."""
+        if isinstance(self.mechanism.scene.input, SliderInput):
+            points = [p.local for link in self.mechanism.scene.links for p in link.points]
+            return max((math.hypot(a[0] - b[0], a[1] - b[1]) for a in points for b in points), default=1.0)
+        return 1.0
+
+
+@dataclass(frozen=True)
+class Method:
+    """One method: ``compute`` does the timed work for an array of inputs; ``values`` reads position i.
+
+    ``compute(ts, guesses)`` takes, for the methods that solve a position, one ``[guess]`` per input
+    (a sweep follows its assembly that way); the batched closed forms keep the scene's assembly.
+    """
+
+    name: str
+    family: str
+    batched: bool
+    compute: Callable[[np.ndarray, Sequence[Guess] | None], Any]
+    values: Callable[[Any, int], Values]
+    step: float | None = None
+
+
+def with_input(mechanism: Mechanism, t: float, guess: Guess | None = None) -> Mechanism:
+    """The mechanism with its input at ``t`` (theta in rad or s), and optionally another [guess]."""
+    scene = mechanism.scene
+    inp = scene.input
+    if isinstance(inp, LinkInput):
+        new_input: LinkInput | SliderInput = replace(inp, angle_rad=float(t))
+    elif isinstance(inp, SliderInput):
+        new_input = replace(inp, s=float(t))
+    else:
+        raise TypeError("the bench needs a scene driven by [input]")
+    scene = replace(scene, input=new_input, guess=scene.guess if guess is None else guess)
+    return replace(mechanism, scene=scene)
+
+
+def _label_and_what(key: str) -> tuple[str, str, str]:
+    family, rest = key.split(".", 1)
+    name, what = rest.rsplit(".", 1)
+    return family, name, what
+
+
+def construction_values(draft: Solution, keys: tuple[str, ...], origin: tuple[float, float]) -> Values:
+    """The construction's value of every key (``draft`` in the solve's frame)."""
+    out: Values = {}
+    for key in keys:
+        family, name, what = _label_and_what(key)
+        if family == "points":
+            if what == "position":
+                at = draft.position(name)
+                out[key] = (at[0] + origin[0], at[1] + origin[1])
+            else:
+                polygon = draft.velocity if what == "velocity" else draft.acceleration
+                assert polygon is not None
+                out[key] = polygon.tips[name]
+        elif family == "links":
+            if what == "angle":
+                out[key] = draft.angle(name)
+            elif what == "omega":
+                assert draft.velocity is not None
+                out[key] = draft.velocity.omega[name]
+            else:
+                assert draft.acceleration is not None
+                out[key] = draft.acceleration.alpha[name]
+        else:
+            values = draft.slider(name)
+            out[key] = {"s": values.s, "s_dot": values.s_dot, "s_ddot": values.s_ddot,
+                        "coriolis": values.coriolis}[what]
+    return out
+
+
+def construct_at(setting: Setting, mechanism: Mechanism, crossing: Crossing = intersect) -> Solution:
+    """Position and polygons at ``mechanism``'s input: the construction without the check."""
+    sol = setting.solution
+    unit = mechanism.scene.units.length
+    position = solve_position(mechanism, sol.plan)
+    velocity = construct_velocity(mechanism, position.pose, sol.plan, sol.asked.velocity, unit, crossing=crossing)
+    acceleration = None
+    if sol.asked.needs_acceleration:
+        acceleration = construct_acceleration(mechanism, position.pose, sol.plan, velocity, sol.asked.acceleration,
+                                              unit, crossing=crossing)
+    return Solution(mechanism.scene, mechanism, sol.asked, sol.plan, position.pose, velocity, acceleration,
+                    compare([], 1.0), ())
+
+
+def geos_crossing(first: Line, second: Line) -> Intersection:
+    """Two direction lines crossed by GEOS (shapely): each drawn as a segment long enough to meet the other.
+
+    The segments reach 2 |p2 - p1| / |sin eps| + |p2 - p1| either side of their points, past
+    the crossing; GEOS intersects them in doubles. Parallel lines raise ParallelLinesError.
+    """
+    import shapely
+
+    d1, d2 = first.direction, second.direction
+    n1, n2 = norm(d1), norm(d2)
+    sin_angle = cross(d1, d2) / (n1 * n2)
+    gap = norm(sub(second.through, first.through))
+    if abs(sin_angle) < 1e-300:
+        raise ParallelLinesError("the lines are parallel")
+    reach = 2.0 * gap / abs(sin_angle) + gap + 1e-300
+
+    def segment(line: Line, n: float) -> Any:
+        ux, uy = line.direction[0] / n, line.direction[1] / n
+        x, y = line.through
+        return shapely.LineString([(x - reach * ux, y - reach * uy), (x + reach * ux, y + reach * uy)])
+
+    found = shapely.intersection(segment(first, n1), segment(second, n2))
+    if found.is_empty or found.geom_type != "Point":
+        return Intersection((0.0, 0.0), (1.0, 0.0, 0.0), 0.0)
+    return Intersection((0.0, 0.0), (float(found.x), float(found.y), 1.0), sin_angle)
+
+
+def _per_position(setting: Setting, run: Callable[[Mechanism], Values]
+                  ) -> Callable[[np.ndarray, Sequence[Guess] | None], Any]:
+    def compute(ts: np.ndarray, guesses: Sequence[Guess] | None = None) -> list[Values]:
+        return [run(with_input(setting.mechanism, float(t), guesses[n] if guesses else None))
+                for n, t in enumerate(ts)]
+    return compute
+
+
+def _list_values(raw: Any, i: int) -> Values:
+    return dict(raw[i])
+
+
+def _construction(setting: Setting, name: str, family: str, crossing: Crossing) -> Method:
+    def run(mechanism: Mechanism) -> Values:
+        return construction_values(construct_at(setting, mechanism, crossing), setting.keys, setting.origin)
+    return Method(name, family, False, _per_position(setting, run), _list_values)
+
+
+def _analytic(setting: Setting) -> Method:
+    sol = setting.solution
+
+    def run(mechanism: Mechanism) -> Values:
+        start = solve_position(mechanism, sol.plan).pose
+        analytic = solve_analytic(mechanism, dict(start.links), with_acceleration=sol.asked.needs_acceleration)
+        motion = {k: LinkMotion(p.x, p.y, p.theta, *analytic.linear_velocity[k], analytic.omega[k],
+                                *(analytic.linear_acceleration or {}).get(k, (0.0, 0.0)),
+                                (analytic.alpha or {}).get(k, 0.0)) for k, p in analytic.poses.items()}
+        return evaluate(mechanism, motion, list(setting.keys), Trig(math.cos, math.sin), setting.origin)
+    return Method("analytic Jacobian solve", "analytic", False, _per_position(setting, run), _list_values)
+
+
+def _wrap(d: float) -> float:
+    return math.remainder(d, 2.0 * math.pi)
+
+
+def _finite_differences(setting: Setting, step: float) -> Method:
+    sol = setting.solution
+    h = step * setting.input_unit
+    inp = setting.mechanism.scene.input
+    rate, accel = (inp.omega, inp.alpha) if isinstance(inp, LinkInput) else (inp.s_dot, inp.s_ddot)  # type: ignore[union-attr]
+
+    def run(mechanism: Mechanism) -> Values:
+        t = mechanism.scene.input.angle_rad if isinstance(mechanism.scene.input, LinkInput) \
+            else mechanism.scene.input.s  # type: ignore[union-attr]
+        poses = [solve_position(with_input(mechanism, t + d), sol.plan).pose for d in (-h, 0.0, h)]
+        motion = {}
+        for link, mid in poses[1].links.items():
+            lo, hi = poses[0].links[link], poses[2].links[link]
+            first = [(hi.x - lo.x) / (2 * h), (hi.y - lo.y) / (2 * h), _wrap(hi.theta - lo.theta) / (2 * h)]
+            second = [(hi.x - 2 * mid.x + lo.x) / (h * h), (hi.y - 2 * mid.y + lo.y) / (h * h),
+                      (_wrap(hi.theta - mid.theta) - _wrap(mid.theta - lo.theta)) / (h * h)]
+            v = [d * rate for d in first]
+            a = [dd * rate * rate + d * accel for d, dd in zip(first, second, strict=True)]
+            motion[link] = LinkMotion(mid.x, mid.y, mid.theta, v[0], v[1], v[2], a[0], a[1], a[2])
+        return evaluate(mechanism, motion, list(setting.keys), Trig(math.cos, math.sin), setting.origin)
+    return Method(f"finite differences h={step:g}", "finite differences", False, _per_position(setting, run),
+                  _list_values, step)
+
+
+def _batched_values(raw: Any, i: int) -> Values:
+    def pick(v: Any) -> Any:
+        return tuple(float(x[i]) for x in v) if isinstance(v, tuple) else float(v[i])
+    return {key: pick(v) for key, v in raw.items()}
+
+
+def methods_for(setting: Setting, steps: tuple[float, ...] = FD_STEPS) -> list[Method]:
+    """Every method that applies to the scene: the construction first."""
+    out = [_construction(setting, "construction (polygons, homogeneous crossings)", "construction", intersect),
+           _analytic(setting)]
+    form = closed_form(setting.mechanism, setting.pose)
+    if form is not None:
+        keys, mech, origin = list(setting.keys), setting.mechanism, setting.origin
+
+        def closed(ts: np.ndarray, guesses: Sequence[Guess] | None = None) -> Values:
+            return evaluate(mech, form.motion(ts), keys, Trig(np.cos, np.sin), origin)
+        out.append(Method(form.name, "closed form", True, closed, _batched_values))
+    series = slider_crank_series(setting.mechanism, setting.pose, list(setting.keys))
+    if series is not None:
+        expand = series.values
+
+        def approximate(ts: np.ndarray, guesses: Sequence[Guess] | None = None) -> Values:
+            return expand(ts)
+        out.append(Method(series.name, "series", True, approximate, _batched_values))
+    out.append(_construction(setting, "construction with GEOS crossings (shapely)", "GEOS", geos_crossing))
+    out += [_finite_differences(setting, h) for h in steps]
+    return out

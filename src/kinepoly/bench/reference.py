@@ -1,0 +1,200 @@
+"""The bench's reference: the mechanism solved in mpmath, good to 50 digits.
+
+It is written from the position equations alone and shares no derivative with the analytic
+solver: the unknowns are every moving link's pose q = (x, y, theta); the equations Phi(q, t) = 0
+are the pins (r_i + A_i p_i = r_j + A_j p_j), the sliders (the block turns with its guide; its
+point stays on the line) and the driver (theta = t, or the slider variable s = t).
+
+* Jacobians by the complex step, dPhi/dq_k = Im Phi(q + i h e_k) / h, which has no
+  cancellation: with h = 1e-40 it is exact to the working precision (80 digits).
+* Position by Newton from the construction's double-precision pose (three or four steps).
+* q' = dq/dt from Phi_q q' = -Phi_t.
+* q'' from Phi_q q'' = -g, g = d^2/de^2 Phi(q + e q', t + e) at e = 0, taken as a central
+  difference (step 1e-27) of the complex-step first derivative: error about 1e-54.
+
+Then q_dot = q' t_dot and q_ddot = q'' t_dot^2 + q' t_ddot. The reference is rounded to 50
+digits; a method's error is computed against it in mpmath, so that an error below the unit
+roundoff of doubles is still seen.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from kinepoly.bench.motion import LinkMotion, Trig, evaluate
+from kinepoly.errors import SingularityError
+from kinepoly.model.mechanism import Mechanism
+from kinepoly.scene.spec import LinkInput, SliderInput
+from kinepoly.solve.pose import Pose
+
+__all__ = ["REFERENCE_DIGITS", "Reference", "input_rates", "reference_values"]
+
+REFERENCE_DIGITS = 50
+"""Digits the reference is good to (it is computed with 30 more)."""
+
+_WORK_DIGITS = 80
+_NEWTON_STEPS = 40
+
+
+@dataclass(frozen=True)
+class Reference:
+    """Reference values (mpmath numbers or pairs of them) by quantity key, at one input ``t``."""
+
+    t: Any
+    values: dict[str, Any]
+    determinant: Any
+    """det Phi_q (mpmath): its sign changes across a singular position."""
+
+
+def input_rates(mechanism: Mechanism) -> tuple[float, float, float]:
+    """(t, t_dot, t_ddot): the input's value and its rates (theta, omega, alpha or s, s_dot, s_ddot)."""
+    inp = mechanism.scene.input
+    if isinstance(inp, LinkInput):
+        return inp.angle_rad, inp.omega, inp.alpha
+    if isinstance(inp, SliderInput):
+        return inp.s, inp.s_dot, inp.s_ddot
+    raise TypeError("the bench needs a scene driven by [input]")
+
+
+class _Equations:
+    """Phi(q, t) in mpmath (real or complex), for the mechanism's moving links."""
+
+    def __init__(self, mechanism: Mechanism, mp: Any) -> None:
+        self.mp = mp
+        self.mechanism = mechanism
+        ground = mechanism.ground
+        assert ground is not None
+        self.ground = ground
+        self.moving = [k for k in mechanism.link_names if k != ground]
+        self.column = {k: 3 * n for n, k in enumerate(self.moving)}
+
+    def _pose(self, q: list[Any], link: str) -> tuple[Any, Any, Any, Any, Any]:
+        mp = self.mp
+        if link == self.ground:
+            return mp.mpf(0), mp.mpf(0), mp.mpf(0), mp.mpf(1), mp.mpf(0)
+        k = self.column[link]
+        return q[k], q[k + 1], q[k + 2], mp.cos(q[k + 2]), mp.sin(q[k + 2])
+
+    def _world(self, q: list[Any], link: str, local: tuple[float, float]) -> tuple[Any, Any]:
+        x, y, _, c, s = self._pose(q, link)
+        px, py = self.mp.mpf(local[0]), self.mp.mpf(local[1])
+        return x + c * px - s * py, y + s * px + c * py
+
+    def phi(self, q: list[Any], t: Any) -> list[Any]:
+        mp, mech = self.mp, self.mechanism
+        rows: list[Any] = []
+        for pin in mech.revolutes:
+            i, j = pin.links
+            a = self._world(q, i, mech.local(i, pin.point))
+            b = self._world(q, j, mech.local(j, pin.point))
+            rows += [a[0] - b[0], a[1] - b[1]]
+        for slider in mech.sliders:
+            rows += self._slider_rows(q, slider.name, t)
+        inp = mech.scene.input
+        if isinstance(inp, LinkInput):
+            rows.append(self._pose(q, inp.link)[2] - t)
+        else:
+            assert isinstance(inp, SliderInput)
+            rows.append(self._along(q, inp.slider, normal=False) - t)
+        return [mp.mpmathify(r) for r in rows]
+
+    def _slider_rows(self, q: list[Any], name: str, t: Any) -> list[Any]:
+        slider = self.mechanism.slider(name)
+        turn = self._pose(q, slider.block)[2] - self._pose(q, slider.guide)[2] - self.mp.mpf(slider.angle_rad)
+        return [turn, self._along(q, name, normal=True)]
+
+    def _along(self, q: list[Any], name: str, *, normal: bool) -> Any:
+        """(P - T) . n (normal=True) or . e: the block's point from the line's point."""
+        mp, mech = self.mp, self.mechanism
+        slider = mech.slider(name)
+        at = self._world(q, slider.block, mech.local(slider.block, slider.point))
+        start = self._world(q, slider.guide, slider.through)
+        angle = self._pose(q, slider.guide)[2] + mp.mpf(slider.angle_rad)
+        c, s = mp.cos(angle), mp.sin(angle)
+        dx, dy = at[0] - start[0], at[1] - start[1]
+        return -s * dx + c * dy if normal else c * dx + s * dy
+
+
+def _complex_step(eq: _Equations, q: list[Any], t: Any, dq: list[Any], dt: Any) -> list[Any]:
+    """d/de Phi(q + e dq, t + e dt) at e = 0 by the complex step."""
+    mp = eq.mp
+    h = mp.mpf(10) ** -40
+    qi = [mp.mpc(a, h * b) for a, b in zip(q, dq, strict=True)]
+    return [mp.im(v) / h for v in eq.phi(qi, mp.mpc(t, h * dt))]
+
+
+def _jacobian(eq: _Equations, q: list[Any], t: Any) -> Any:
+    mp = eq.mp
+    n = len(q)
+    columns = []
+    for k in range(n):
+        unit = [mp.mpf(0)] * n
+        unit[k] = mp.mpf(1)
+        columns.append(_complex_step(eq, q, t, unit, mp.mpf(0)))
+    return mp.matrix([[columns[c][r] for c in range(n)] for r in range(n)])
+
+
+def _newton(eq: _Equations, q: list[Any], t: Any, size: Any) -> tuple[list[Any], Any]:
+    mp = eq.mp
+    tol = size * mp.mpf(10) ** -(_WORK_DIGITS - 5)
+    for _ in range(_NEWTON_STEPS):
+        jac = _jacobian(eq, q, t)
+        step = mp.lu_solve(jac, mp.matrix([-v for v in eq.phi(q, t)]))
+        q = [a + step[k] for k, a in enumerate(q)]
+        if mp.norm(step, mp.inf) <= tol:
+            return q, _jacobian(eq, q, t)
+    raise SingularityError("the 50-digit reference did not converge at this input: the position is singular")
+
+
+def reference_values(mechanism: Mechanism, start: Pose, keys: list[str], *, t: float | None = None,
+                     origin: tuple[float, float] = (0.0, 0.0)) -> Reference:
+    """The reference value of every key at input ``t`` (default: the scene's), from ``start``.
+
+    ``start`` is a pose near the wanted assembly (the construction's); ``mechanism`` is the one
+    the solve used (its frame local to the mechanism); positions get ``origin`` added.
+    Raises SingularityError where the position equations are singular.
+    """
+    try:
+        return _reference(mechanism, start, keys, t, origin)
+    except ZeroDivisionError:  # mpmath's LU met an exactly singular Jacobian
+        raise SingularityError("the position equations are singular at this input (their Jacobian is singular "
+                               "to 80 digits)") from None
+
+
+def _reference(mechanism: Mechanism, start: Pose, keys: list[str], t: float | None,
+               origin: tuple[float, float]) -> Reference:
+    import mpmath  # type: ignore[import-untyped]
+
+    mp = mpmath.mp
+    t0, t_dot, t_ddot = input_rates(mechanism)
+    with mp.workdps(_WORK_DIGITS):
+        eq = _Equations(mechanism, mp)
+        tt = mp.mpf(t0 if t is None else t)
+        q = [mp.mpf(v) for k in eq.moving for v in (start.links[k].x, start.links[k].y, start.links[k].theta)]
+        size = max([mp.mpf(1)] + [abs(v) for v in q])
+        q, jac = _newton(eq, q, tt, size)
+        determinant = mp.det(jac)
+        zero = [mp.mpf(0)] * len(q)
+        q1 = list(mp.lu_solve(jac, mp.matrix([-v for v in _complex_step(eq, q, tt, zero, mp.mpf(1))])))
+        delta = mp.mpf(10) ** -27
+        ahead = _complex_step(eq, [a + delta * b for a, b in zip(q, q1, strict=True)], tt + delta, q1, mp.mpf(1))
+        behind = _complex_step(eq, [a - delta * b for a, b in zip(q, q1, strict=True)], tt - delta, q1, mp.mpf(1))
+        g = [(a - b) / (2 * delta) for a, b in zip(ahead, behind, strict=True)]
+        q2 = list(mp.lu_solve(jac, mp.matrix([-v for v in g])))
+        rate, accel = mp.mpf(t_dot), mp.mpf(t_ddot)
+        motion = {eq.ground: LinkMotion(*([mp.mpf(0)] * 9))}
+        for link, k in eq.column.items():
+            v = [q1[k + m] * rate for m in range(3)]
+            a = [q2[k + m] * rate * rate + q1[k + m] * accel for m in range(3)]
+            motion[link] = LinkMotion(q[k], q[k + 1], q[k + 2], v[0], v[1], v[2], a[0], a[1], a[2])
+        values = evaluate(mechanism, motion, keys, Trig(mp.cos, mp.sin), (mp.mpf(origin[0]), mp.mpf(origin[1])))
+        rounded = {key: _round(mp, value) for key, value in values.items()}
+    return Reference(tt, rounded, determinant)
+
+
+def _round(mp: Any, value: Any) -> Any:
+    if isinstance(value, tuple):
+        return tuple(_round(mp, v) for v in value)
+    with mp.workdps(REFERENCE_DIGITS):
+        return +value

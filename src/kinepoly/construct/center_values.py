@@ -1,0 +1,133 @@
+"""The values of the instant centers: each center, each Kennedy line and step, the plan, the whole.
+
+Frozen; made by ``construct.centers`` (plan, find) and ``construct.kennedy`` (the geometry).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from kinepoly.construct.center_velocity import CenterOmega
+from kinepoly.construct.circle_diagram import CircleDiagram, Edge, KennedyPlan, center_label, pair_name
+from kinepoly.geom.homogeneous import Place, Triple
+from kinepoly.geom.vec import Vec
+from kinepoly.model.mechanism import Joint
+from kinepoly.notice import Notice
+
+__all__ = ["CenterPlan", "InstantCenter", "InstantCenters", "KennedyLine", "KennedyStep"]
+
+
+@dataclass(frozen=True)
+class InstantCenter:
+    """I_ij: ``place`` is its position, or its direction when at infinity.
+
+    ``found`` says how: ``"pin A0"``, ``"slider 14"`` or ``"Kennedy step 3"``; ``number`` is 0 for
+    a joint's center and n for the n-th center derived.
+    """
+
+    links: Edge
+    place: Place
+    found: str
+    number: int
+
+    @property
+    def name(self) -> str:
+        return pair_name(self.links)
+
+    @property
+    def label(self) -> str:
+        return center_label(self.name)
+
+    @property
+    def is_at_infinity(self) -> bool:
+        return self.place.is_at_infinity
+
+    @property
+    def position(self) -> Vec | None:
+        return self.place.position
+
+    @property
+    def direction(self) -> Vec | None:
+        return self.place.direction
+
+    @property
+    def homogeneous(self) -> Triple:
+        """(x, y, 1) at a position, (ux, uy, 0) at infinity."""
+        return self.place.homogeneous
+
+
+@dataclass(frozen=True)
+class KennedyLine:
+    """The line through the centers I_ik and I_jk of triangle ijk (``third`` is k).
+
+    ``points`` are the two centers as world homogeneous triples (w = 0 at infinity);
+    ``through`` and ``direction`` give the line in the plane, both None for the line at
+    infinity (both centers at infinity).
+    """
+
+    third: str
+    centers: tuple[str, str]
+    points: tuple[Triple, Triple]
+    through: Vec | None
+    direction: Vec | None
+
+    @property
+    def label(self) -> str:
+        return f"{center_label(self.centers[0])} {center_label(self.centers[1])}"
+
+    @property
+    def is_at_infinity(self) -> bool:
+        return self.through is None
+
+
+@dataclass(frozen=True)
+class KennedyStep:
+    """One derived center: the two Kennedy lines and where they cross.
+
+    ``sin_angle`` is the sine of the angle between the two lines in the plane (None when one is
+    the line at infinity); ``conditioning`` the smallest sine of the step's three products (two
+    joins, one crossing); ``relative_error`` the estimated error of the result.
+    """
+
+    number: int
+    center: str
+    triangles: tuple[str, str]
+    lines: tuple[KennedyLine, KennedyLine]
+    result: Triple
+    sin_angle: float | None
+    conditioning: float
+    relative_error: float
+    equation: str
+    text: str
+
+
+@dataclass(frozen=True)
+class CenterPlan:
+    """Made before the position: the circle diagram's plan, the joints, what the scene asks."""
+
+    kennedy: KennedyPlan
+    joints: dict[Edge, Joint]
+    asked: tuple[tuple[str, Edge], ...]
+    links_needed: frozenset[str]
+
+
+@dataclass(frozen=True)
+class InstantCenters:
+    """Every center found (joints' and derived), the asked ones, the steps, the diagram, omegas.
+
+    ``asked`` pairs each key as the scene wrote it ("31") with the center's name ("13").
+    ``omegas`` are the angular velocities the centers give (omega_j from omega_i by the ratio
+    of distances along the Kennedy line of links 1, i and j).
+    """
+
+    centers: dict[str, InstantCenter]
+    asked: tuple[tuple[str, str], ...]
+    steps: tuple[KennedyStep, ...]
+    diagram: CircleDiagram
+    omegas: tuple[CenterOmega, ...]
+    notices: tuple[Notice, ...]
+
+    def center(self, key: str) -> InstantCenter:
+        """The center under the key the scene used (``"31"``) or its own name (``"13"``)."""
+        names = dict(self.asked)
+        return self.centers[names.get(key, key)]

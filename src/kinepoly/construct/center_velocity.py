@@ -1,0 +1,172 @@
+"""Angular velocities from instant centers: omega_1j = omega_1i (I_1i I_ij)/(I_1j I_ij), with its sense.
+
+I_ij is a point of link i and of link j with one velocity v. As a point of link i it moves with
+i's known motion; as a point of link j, which turns about I_1j, it moves at omega_1j x (I_ij - I_1j).
+So omega_1j = ((I_ij - I_1j) x v) / |I_ij - I_1j|^2. When link i turns about I_1i this is the
+textbook ratio of signed distances along the Kennedy line of links 1, i and j (the three centers
+lie on it), and its sign is the sense: the same as omega_1i when I_1i and I_1j lie on the same
+side of I_ij.
+
+Centers at infinity: I_1j at infinity means link j translates (omega_1j = 0) with the velocity v;
+I_ij at infinity means links i and j turn alike (omega_1j = omega_1i). Starting from the input
+link, every link whose centers I_1j and I_ij (for a link i already known) were found gets its
+omega. Nothing here reads the polygons: it is a third, independent check of them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from kinepoly.construct.builder import sense
+from kinepoly.construct.circle_diagram import Edge, edge, pair_name
+from kinepoly.geom.tolerances import COINCIDENT_SIN
+from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, scale, sub, unit
+from kinepoly.model.mechanism import Mechanism
+from kinepoly.scene.spec import LinkInput, SliderInput
+from kinepoly.solve.pose import Pose
+
+if TYPE_CHECKING:
+    from kinepoly.construct.centers import InstantCenter
+
+__all__ = ["CenterOmega", "Motion", "omegas_from_centers"]
+
+
+@dataclass(frozen=True)
+class Motion:
+    """A link's motion: it turns at ``omega`` and the point ``at`` moves with ``velocity``.
+
+    ``about`` names the center it turns about (``"12"``) when ``velocity`` is zero there.
+    """
+
+    omega: float
+    at: Vec
+    velocity: Vec
+    about: str | None = None
+
+    def velocity_of(self, point: Vec) -> Vec:
+        return add(self.velocity, scale(self.omega, perp(sub(point, self.at))))
+
+
+@dataclass(frozen=True)
+class CenterOmega:
+    """omega_1j (``symbol``, e.g. ``"omega13"``) from the centers I_1j and I_ij and the motion of link i."""
+
+    link: str
+    symbol: str
+    omega: float
+    reference: str
+    centers: tuple[str, str]
+    equation: str
+    text: str
+    motion: Motion
+
+
+def _input_motion(mechanism: Mechanism, pose: Pose) -> tuple[str, Motion] | None:
+    ground = mechanism.ground
+    assert ground is not None
+    inp = mechanism.scene.input
+    if isinstance(inp, LinkInput):
+        pivot = mechanism.input_pivot().point
+        at = pose.links[ground].world(mechanism.local(ground, pivot))
+        return inp.link, Motion(inp.omega, at, (0.0, 0.0), pair_name((ground, inp.link)))
+    if isinstance(inp, SliderInput):
+        slider = mechanism.slider(inp.slider)
+        e = rotate((1.0, 0.0), pose.links[slider.guide].theta + slider.angle_rad)
+        moving = slider.block if slider.guide == ground else slider.guide
+        v = scale(inp.s_dot if moving == slider.block else -inp.s_dot, e)
+        return moving, Motion(0.0, (0.0, 0.0), v)
+    return None
+
+
+def _fmt(v: Vec) -> str:
+    return f"({v[0]:.6g}, {v[1]:.6g})"
+
+
+class _Omegas:
+    def __init__(self, mechanism: Mechanism, centers: dict[Edge, InstantCenter], size: float) -> None:
+        self.mechanism, self.centers, self.size = mechanism, centers, size
+        self.links = mechanism.link_names
+        self.ground = mechanism.ground or ""
+        self.unit = f"{mechanism.scene.units.length}/s"
+
+    def omega_name(self, link: str) -> str:
+        return f"omega{pair_name((self.ground, link))}"
+
+    def center(self, a: str, b: str) -> InstantCenter | None:
+        return self.centers.get(edge(a, b, self.links))
+
+    def option(self, j: str, i: str, motion: Motion) -> tuple[tuple[int, float], CenterOmega] | None:
+        b, c = self.center(self.ground, j), self.center(i, j)
+        if b is None or c is None:
+            return None
+        wj, wi = self.omega_name(j), self.omega_name(i)
+        names = (b.name, c.name)
+        if c.position is None:
+            if b.position is None:
+                return None
+            new = Motion(motion.omega, b.position, (0.0, 0.0), b.name)
+            text = (f"{c.label} is at infinity: links {i} and {j} turn alike, so {wj} = {wi} = {motion.omega:.6g} "
+                    f"rad/s ({sense(motion.omega)}), about {b.label}.")
+            return (0, 0.0), CenterOmega(j, wj, motion.omega, i, names, f"{wj} = {wi} ({c.label} at infinity)", text, new)
+        v = motion.velocity_of(c.position)
+        if b.position is None:
+            new = Motion(0.0, c.position, v)
+            text = (f"{b.label} is at infinity: link {j} translates, {wj} = 0, with the velocity of {c.label} as a "
+                    f"point of link {i}, v = {_fmt(v)} {self.unit}.")
+            return (0, 0.0), CenterOmega(j, wj, 0.0, i, names, f"{wj} = 0 ({b.label} at infinity)", text, new)
+        r = sub(c.position, b.position)
+        length = norm(r)
+        if length <= COINCIDENT_SIN * self.size:
+            return None
+        omega = cross(r, v) / (length * length)
+        new = Motion(omega, b.position, (0.0, 0.0), b.name)
+        return (1, self.size / length), CenterOmega(j, wj, omega, i, names, *self.words(j, i, motion, b, c, omega), new)
+
+    def words(self, j: str, i: str, motion: Motion, b: InstantCenter, c: InstantCenter, omega: float) -> tuple[str, str]:
+        wj, wi = self.omega_name(j), self.omega_name(i)
+        assert b.position is not None and c.position is not None
+        a = self.center(self.ground, i)
+        if motion.about is not None and a is not None and a.position is not None and motion.about == a.name:
+            u = unit(sub(c.position, b.position))
+            p, q = dot(sub(c.position, a.position), u), norm(sub(c.position, b.position))
+            equation = f"{wj} = {wi} ({a.label} {c.label})/({b.label} {c.label})"
+            text = (f"{equation} = {motion.omega:.6g} x ({p:.6g} / {q:.6g}) = {omega:.6g} rad/s ({sense(omega)}): "
+                    f"{c.label} moves as a point of link {i} turning about {a.label} and of link {j} turning about "
+                    f"{b.label}; the distances are signed along {b.label} -> {c.label}.")
+            return equation, text
+        v = motion.velocity_of(c.position)
+        equation = f"{wj} = ({b.label}{c.label} x v_{c.label}) / |{b.label}{c.label}|^2"
+        text = (f"{c.label} as a point of link {i} moves at v = {_fmt(v)} {self.unit}; as a point of link {j}, "
+                f"turning about {b.label}, at {wj} x {b.label}{c.label}; so {wj} = {omega:.6g} rad/s ({sense(omega)}).")
+        return equation, text
+
+
+def omegas_from_centers(mechanism: Mechanism, pose: Pose, centers: dict[Edge, InstantCenter],
+                        size: float) -> tuple[CenterOmega, ...]:
+    """omega_1j of every link the centers reach from the input, in the order they are reached.
+
+    ``size`` is the mechanism's size (lengths): two centers closer than COINCIDENT_SIN times it
+    are one point and give no ratio.
+    """
+    if mechanism.ground is None:
+        return ()
+    start = _input_motion(mechanism, pose)
+    if start is None:
+        return ()
+    finder = _Omegas(mechanism, centers, size)
+    motions: dict[str, Motion] = {start[0]: start[1]}
+    out: list[CenterOmega] = []
+    while True:
+        found: list[CenterOmega] = []
+        for j in mechanism.link_names:
+            if j == mechanism.ground or j in motions:
+                continue
+            options = [option for i, m in motions.items() if (option := finder.option(j, i, m)) is not None]
+            if options:
+                found.append(min(options, key=lambda o: o[0])[1])
+        if not found:
+            return tuple(out)
+        for result in found:
+            motions[result.link] = result.motion
+            out.append(result)

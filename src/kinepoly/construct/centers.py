@@ -1,0 +1,122 @@
+"""Instant centers by the Aronhold-Kennedy theorem, found the way the circle diagram finds them.
+
+The centers of the joints come first: a pin is the center of its two links; a slider's center
+(block and guide) is the point at infinity perpendicular to the slide. Every other center I_ij
+is where the Kennedy line I_ik I_jk crosses the Kennedy line I_il I_jl, for an edge ij of the
+circle diagram that closes the two triangles ijk and ijl (``circle_diagram``). Only the centers
+on the path to the asked ones are derived.
+
+All of it is projective (``geom.homogeneous``): a center at infinity is an ordinary value, a
+Kennedy line through one runs parallel to its direction, the line through two of them is the
+line at infinity. Where an edge closes more than two triangles the best-conditioned pair of
+lines is taken. A center is reported with a warning when its step is ill-conditioned (two
+centers almost one point, or two lines almost one line) or its estimated error is large; when no
+pair of triangles gives one point (the centers of a line coincide, the two lines coincide) the
+position is degenerate and a SingularityError says which centers and lines.
+
+Two calls: ``plan_instant_centers`` before the position is solved (which links are needed),
+``find_instant_centers`` after. The combinatorics live in ``circle_diagram``, the geometry in
+``kennedy``, the omegas the centers give in ``center_velocity``, the values in ``center_values``.
+"""
+
+from __future__ import annotations
+
+from itertools import combinations
+
+from kinepoly.construct.center_values import CenterPlan, InstantCenter, InstantCenters, KennedyLine, KennedyStep
+from kinepoly.construct.center_velocity import omegas_from_centers
+from kinepoly.construct.circle_diagram import Edge, center_label, edge, pair_name, plan_kennedy, split_pair
+from kinepoly.construct.kennedy import derive_centers
+from kinepoly.errors import SceneError
+from kinepoly.geom.vec import Vec
+from kinepoly.model.mechanism import Joint, Mechanism, joint_links
+from kinepoly.solve.plan import make_plan
+from kinepoly.solve.pose import Pose
+
+__all__ = [
+    "CenterPlan",
+    "InstantCenter",
+    "InstantCenters",
+    "KennedyLine",
+    "KennedyStep",
+    "find_instant_centers",
+    "plan_instant_centers",
+]
+
+
+def _asked_edge(source: str, key: str, links: tuple[str, ...]) -> Edge:
+    try:
+        return split_pair(key, links)
+    except ValueError:
+        raise SceneError(f"{source}: find.instant_centers: {key!r} is not a pair of links of the scene") from None
+
+
+def _joints(mechanism: Mechanism) -> dict[Edge, Joint]:
+    links = mechanism.link_names
+    out: dict[Edge, Joint] = {}
+    for joint in mechanism.joints:
+        a, b = joint_links(joint)
+        out.setdefault(edge(a, b, links), joint)
+    return out
+
+
+def _joint_links_needed(mechanism: Mechanism, joint: Joint, solved_index: dict[str, int]) -> set[str]:
+    """A pin's place needs one of its links solved, a slide's direction one of its two; the ground none."""
+    a, b = joint_links(joint)
+    if mechanism.ground in (a, b):
+        return set()
+    return {min((a, b), key=lambda link: solved_index.get(link, len(solved_index)))}
+
+
+def plan_instant_centers(mechanism: Mechanism) -> CenterPlan:
+    """The centers the scene asks and the path of the circle diagram to them.
+
+    Raises SceneError for a ``[given]`` scene (one body and no frame link: no pair of links) and
+    for a center the Aronhold-Kennedy theorem cannot reach in this mechanism.
+    """
+    scene = mechanism.scene
+    wanted = scene.find.instant_centers
+    links = mechanism.link_names
+    if mechanism.ground is None:
+        raise SceneError(
+            f"{scene.source}: find.instant_centers: a [given] scene is one body with no frame link, so there "
+            "is no pair of links to have an instant center; remove instant_centers from [find], or model the "
+            "frame as a link with an [input] to find the centers of a mechanism"
+        )
+    if wanted == "all":
+        asked = tuple((pair_name(e), e) for e in combinations(links, 2))
+    else:
+        asked = tuple((key, _asked_edge(scene.source, key, links)) for key in wanted)
+    joints = _joints(mechanism)
+    targets = tuple(dict.fromkeys(e for _, e in asked))
+    kennedy = plan_kennedy(links, frozenset(joints), targets)
+    if kennedy.unreachable:
+        names = ", ".join(center_label(pair_name(e)) for e in kennedy.unreachable)
+        raise SceneError(
+            f"{scene.source}: find.instant_centers: {names} cannot be reached on the circle diagram: no edge "
+            "closes two triangles of known centers any more, so the Aronhold-Kennedy theorem alone does not "
+            "find it in this mechanism; ask for centers the diagram reaches"
+        )
+    solved = make_plan(mechanism)
+    order = [*solved.driven, *(link for group in solved.groups for link in group.links)]
+    solved_index = {link: n for n, link in enumerate(order)}
+    used = {e for e in targets if e in joints}
+    used.update(s for e in kennedy.order for s in kennedy.sides(e) if s in joints)
+    needed: set[str] = set()
+    for e in sorted(used, key=lambda pair: (links.index(pair[0]), links.index(pair[1]))):
+        needed |= _joint_links_needed(mechanism, joints[e], solved_index)
+    return CenterPlan(kennedy, joints, asked, frozenset(needed))
+
+
+def find_instant_centers(mechanism: Mechanism, pose: Pose, plan: CenterPlan,
+                         offset: Vec = (0.0, 0.0)) -> InstantCenters:
+    """Derive the planned centers at this pose (``kennedy``), then the omegas they give.
+
+    ``offset`` is added to every reported position (the solve's local frame to the user's).
+    Raises SingularityError when a center on the path is degenerate at this position.
+    """
+    found = derive_centers(mechanism, pose, plan, offset)
+    centers = {center.name: center for center in found.centers.values()}
+    omegas = omegas_from_centers(mechanism, pose, found.inside, found.size)
+    asked = tuple((key, pair_name(e)) for key, e in plan.asked)
+    return InstantCenters(centers, asked, found.steps, found.diagram, omegas, found.notices)

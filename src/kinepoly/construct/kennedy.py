@@ -1,0 +1,324 @@
+"""The geometry of the circle diagram's plan: joint centers from the pose, then each Kennedy step.
+
+Every center is a projective value (``geom.homogeneous``) in a frame local to the mechanism: a
+pin is a point, a slider's center the point at infinity perpendicular to its slide. A derived
+center I_ij is the crossing of the lines I_ik I_jk and I_il I_jl; of all the triangles that
+close edge ij with centers already known, the pair whose crossing has the smallest estimated
+error is taken. A pair is unusable when the two centers of a line coincide or the two lines are
+one line; when no pair is usable the position is degenerate (SingularityError naming them).
+Where the planned path is blocked so, one more center is derived if it opens other triangles.
+
+A step is reported with a ``center-ill-conditioned`` warning when one of its products has a sine
+below NEAR_SINGULAR_SIN (two centers almost one point, two lines almost one line) or the center's
+estimated relative error exceeds LOUD_ERROR (a crossing so far away that its distance lost digits).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from itertools import combinations
+
+from kinepoly.construct.center_values import CenterPlan, InstantCenter, KennedyLine, KennedyStep
+from kinepoly.construct.circle_diagram import (
+    CircleDiagram,
+    DiagramEdge,
+    Edge,
+    center_label,
+    circle_positions,
+    edge,
+    pair_name,
+    split_pair,
+    triangle_name,
+)
+from kinepoly.errors import SingularityError
+from kinepoly.geom.homogeneous import LocalFrame, Place, Projective, Wedge, canonical_direction, wedge
+from kinepoly.geom.tolerances import LOUD_ERROR, NEAR_SINGULAR_SIN
+from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, sub
+from kinepoly.model.mechanism import Joint, Mechanism, Revolute
+from kinepoly.notice import Notice
+from kinepoly.solve.pose import Pose
+from kinepoly.solve.position import describe_input
+
+__all__ = ["KennedyResult", "derive_centers"]
+
+
+@dataclass(frozen=True)
+class KennedyResult:
+    """The centers found (as reported, and in the pose's own coordinates), the steps, the diagram."""
+
+    centers: dict[Edge, InstantCenter]
+    inside: dict[Edge, InstantCenter]
+    steps: tuple[KennedyStep, ...]
+    diagram: CircleDiagram
+    notices: tuple[Notice, ...]
+    size: float
+
+
+@dataclass(frozen=True)
+class _Known:
+    """A center found: its projective value, its place in the pose's own coordinates, the reported center."""
+
+    value: Projective
+    inside: Place
+    center: InstantCenter
+
+
+@dataclass(frozen=True)
+class _Line:
+    third: str
+    sides: tuple[Edge, Edge]
+    join: Wedge
+
+
+@dataclass(frozen=True)
+class _Candidate:
+    first: _Line
+    second: _Line
+    meet: Wedge
+
+
+def _frame(mechanism: Mechanism, pose: Pose, offset: Vec) -> LocalFrame:
+    """Origin at the middle of the solved links' points, size their largest distance from it."""
+    points = [pose.links[k].world(p.local) for k in pose.links for p in mechanism.scene.link(k).points]
+    xs, ys = [p[0] for p in points], [p[1] for p in points]
+    origin = ((min(xs) + max(xs)) / 2.0, (min(ys) + max(ys)) / 2.0)
+    size = max((norm(sub(p, origin)) for p in points), default=0.0)
+    return LocalFrame(origin, size if size > 0.0 else 1.0, offset)
+
+
+def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame, joint: Joint) -> tuple[Projective, Place] | None:
+    """A pin's point, or the point at infinity perpendicular to a slide; None when its links were not solved."""
+    if isinstance(joint, Revolute):
+        owner = next((link for link in joint.links if link in pose.links), None)
+        if owner is None:
+            return None
+        at = pose.links[owner].world(mechanism.local(owner, joint.point))
+        value = frame.point(at)
+        return value, Place(at, None, value.error)
+    if joint.guide in pose.links:
+        slide = rotate((1.0, 0.0), pose.links[joint.guide].theta + joint.angle_rad)
+    elif joint.block in pose.links:
+        slide = rotate((1.0, 0.0), pose.links[joint.block].theta)
+    else:
+        return None
+    value = frame.point_at_infinity(perp(slide))
+    return value, Place(None, canonical_direction(perp(slide)), value.error)
+
+
+def _joint_name(joint: Joint) -> str:
+    return f"pin {joint.point}" if isinstance(joint, Revolute) else f"slider {joint.name}"
+
+
+class _Finder:
+    """Mutable while the centers are derived; its output is frozen into InstantCenters."""
+
+    def __init__(self, mechanism: Mechanism, pose: Pose, plan: CenterPlan, offset: Vec) -> None:
+        self.mechanism, self.pose, self.plan = mechanism, pose, plan
+        self.links = mechanism.link_names
+        self.frame = _frame(mechanism, pose, offset)
+        self.known: dict[Edge, _Known] = {}
+        self.steps: list[KennedyStep] = []
+        self.notices: list[Notice] = []
+        self.via: dict[Edge, str] = {}
+        for e, joint in plan.joints.items():
+            found = _joint_center(mechanism, pose, self.frame, joint)
+            if found is not None:
+                value, inside = found
+                place = inside if inside.position is None else replace(inside, position=add(offset, inside.position))
+                self.known[e] = _Known(value, inside, InstantCenter(e, place, _joint_name(joint), 0))
+
+    def where(self) -> str:
+        return f"at {describe_input(self.mechanism)}"
+
+    def label(self, e: Edge) -> str:
+        return center_label(pair_name(e))
+
+    # -- one derived center -----------------------------------------------------------------
+    def lines_for(self, e: Edge) -> tuple[list[_Line], list[str]]:
+        i, j = e
+        lines, trouble = [], []
+        for k in self.links:
+            if k in e:
+                continue
+            sides = (edge(i, k, self.links), edge(j, k, self.links))
+            if sides[0] not in self.known or sides[1] not in self.known:
+                continue
+            join = wedge(self.known[sides[0]].value, self.known[sides[1]].value)
+            if join.value is None:
+                trouble.append(f"{self.label(sides[0])} and {self.label(sides[1])} coincide, so no line runs "
+                               f"through them (triangle {triangle_name(self.links, i, j, k)})")
+            lines.append(_Line(k, sides, join))
+        return lines, trouble
+
+    def derive(self, e: Edge) -> tuple[_Candidate | None, list[str]]:
+        lines, trouble = self.lines_for(e)
+        usable = [line for line in lines if line.join.value is not None]
+        best: _Candidate | None = None
+        for first, second in combinations(usable, 2):
+            assert first.join.value is not None and second.join.value is not None
+            meet = wedge(first.join.value, second.join.value)
+            if meet.value is None:
+                trouble.append(f"the Kennedy lines {self.line_label(first)} and {self.line_label(second)} are one "
+                               "line (all four centers lie on it), so they meet in no single point")
+                continue
+            if best is None or meet.value.error < (best.meet.value.error if best.meet.value else math.inf):
+                best = _Candidate(first, second, meet)
+        if len(lines) < 2:
+            trouble.append("fewer than two triangles of known centers close it yet")
+        return best, trouble
+
+    def line_label(self, line: _Line) -> str:
+        return f"{self.label(line.sides[0])} {self.label(line.sides[1])}"
+
+    def record(self, e: Edge, candidate: _Candidate) -> None:
+        assert candidate.meet.value is not None
+        number = len(self.steps) + 1
+        place = self.frame.place(candidate.meet.value)
+        center = InstantCenter(e, place, f"Kennedy step {number}", number)
+        inside = replace(self.frame, offset=(0.0, 0.0)).place(candidate.meet.value)
+        self.known[e] = _Known(candidate.meet.value, inside, center)
+        i, j = e
+        triangles = (triangle_name(self.links, i, j, candidate.first.third),
+                     triangle_name(self.links, i, j, candidate.second.third))
+        self.via[e] = f"triangles {triangles[0]} and {triangles[1]}"
+        lines = (self.kennedy_line(candidate.first), self.kennedy_line(candidate.second))
+        sin_angle = _planar_sin(lines[0], lines[1])
+        conditioning = min(candidate.first.join.sin, candidate.second.join.sin, candidate.meet.sin)
+        equation = f"{center.label} = ({lines[0].label}) x ({lines[1].label})"
+        text = self.step_text(center, triangles, lines, sin_angle)
+        self.steps.append(KennedyStep(number, center.name, triangles, lines, place.homogeneous, sin_angle,
+                                      conditioning, place.relative_error, equation, text))
+        if conditioning < NEAR_SINGULAR_SIN or place.relative_error > LOUD_ERROR:
+            self.notices.append(Notice("center-ill-conditioned", self.ill_text(center, candidate, lines, sin_angle)))
+
+    def kennedy_line(self, line: _Line) -> KennedyLine:
+        assert line.join.value is not None
+        a, b = (self.known[s].center for s in line.sides)
+        placed = self.frame.line(line.join.value)
+        through: Vec | None = None
+        direction: Vec | None = None
+        if placed is not None:
+            through, direction = placed
+            if a.position is not None:  # a point of the line a reader can find: the first finite center
+                through = a.position
+            elif b.position is not None:
+                through = b.position
+            if a.position is not None and b.position is not None and dot(direction, sub(b.position, a.position)) < 0:
+                direction = (-direction[0], -direction[1])
+        return KennedyLine(line.third, (a.name, b.name), (a.homogeneous, b.homogeneous), through, direction)
+
+    # -- words --------------------------------------------------------------------------------
+    def describe_line(self, line: KennedyLine) -> str:
+        first, second = (center_label(c) for c in line.centers)
+        a, b = (self.known[_by_name(self.links, c)].center for c in line.centers)
+        if line.is_at_infinity:
+            return f"the line at infinity ({first} and {second} both lie at infinity)"
+        if a.is_at_infinity or b.is_at_infinity:
+            finite, infinite = (b, a) if a.is_at_infinity else (a, b)
+            return (f"the line through {finite.label} toward {infinite.label} at infinity "
+                    f"(direction {_fmt_vec(infinite.direction)})")
+        return f"the line through {first} and {second}"
+
+    def step_text(self, center: InstantCenter, triangles: tuple[str, str], lines: tuple[KennedyLine, KennedyLine],
+                  sin_angle: float | None) -> str:
+        unit_name = self.mechanism.scene.units.length
+        head = (f"Edge {center.name} of the circle diagram closes triangles {triangles[0]} and {triangles[1]}. "
+                f"By the Aronhold-Kennedy theorem {center.label} lies on {self.describe_line(lines[0])} and on "
+                f"{self.describe_line(lines[1])}; ")
+        if center.position is not None:
+            angle = f" at {math.degrees(math.asin(min(1.0, abs(sin_angle)))):.4g} deg" if sin_angle is not None else ""
+            return head + f"they cross{angle} in {center.label} = {_fmt_vec(center.position)} {unit_name}."
+        if sin_angle is None:
+            return head + f"so {center.label} is the point at infinity of the other line, direction " \
+                          f"{_fmt_vec(center.direction)}."
+        return head + (f"the two lines are parallel, so {center.label} is the point at infinity in the direction "
+                       f"{_fmt_vec(center.direction)}.")
+
+    def ill_text(self, center: InstantCenter, candidate: _Candidate, lines: tuple[KennedyLine, KennedyLine],
+                 sin_angle: float | None) -> str:
+        what = "direction" if center.is_at_infinity else "position"
+        tail = f"its {what} has a relative error of about {center.place.relative_error:.1g}"
+        worst = min((candidate.first.join.sin, f"the centers {self.line_label(candidate.first)} almost coincide"),
+                    (candidate.second.join.sin, f"the centers {self.line_label(candidate.second)} almost coincide"),
+                    (candidate.meet.sin, f"the Kennedy lines {lines[0].label} and {lines[1].label} almost coincide"))
+        if worst[0] < NEAR_SINGULAR_SIN:
+            return f"instant center {center.label} {self.where()}: {worst[1]} (conditioning sine {worst[0]:.2g}); " + tail
+        assert center.position is not None  # a far crossing of two lines that are nearly parallel
+        distance = norm(sub(center.position, add(self.frame.offset, self.frame.origin)))
+        angle = "" if sin_angle is None else f" (they meet at {math.degrees(math.asin(min(1.0, abs(sin_angle)))):.3g} deg)"
+        return (f"instant center {center.label} {self.where()}: the Kennedy lines {lines[0].label} and "
+                f"{lines[1].label} are nearly parallel{angle}, so {center.label} lies far away, {distance:.3g} "
+                f"{self.mechanism.scene.units.length} from the mechanism ({distance / self.frame.size:.2g} times its "
+                f"size); {tail}, while its direction from the mechanism is accurate")
+
+    def degenerate(self, e: Edge, trouble: list[str]) -> SingularityError:
+        return SingularityError(
+            f"instant center {self.label(e)} cannot be found {self.where()}: the position is degenerate for the "
+            f"Aronhold-Kennedy theorem: " + "; ".join(dict.fromkeys(trouble))
+            + f"; no other pair of triangles of the circle diagram closes edge {pair_name(e)}"
+        )
+
+    # -- the whole ----------------------------------------------------------------------------
+    def run(self) -> None:
+        pending = [e for e in self.plan.kennedy.order if e not in self.known]
+        trouble: dict[Edge, list[str]] = {}
+        while pending:
+            progress = False
+            for e in list(pending):
+                candidate, trouble[e] = self.derive(e)
+                if candidate is not None:
+                    self.record(e, candidate)
+                    pending.remove(e)
+                    progress = True
+            if not progress and not self.open_more(set(pending)):
+                stuck = next((e for e in pending if any(not t.startswith("fewer") for t in trouble[e])), pending[0])
+                raise self.degenerate(stuck, trouble[stuck])
+
+    def open_more(self, pending: set[Edge]) -> bool:
+        """Degenerate on the planned path: derive one more center that may open other triangles."""
+        for e in combinations(self.links, 2):
+            if e in self.known or e in pending:
+                continue
+            candidate, _ = self.derive(e)
+            if candidate is not None:
+                self.record(e, candidate)
+                return True
+        return False
+
+    def diagram(self) -> CircleDiagram:
+        edges = [DiagramEdge(e, "joint", 0, _joint_name(joint)) for e, joint in self.plan.joints.items()]
+        edges += [DiagramEdge(_by_name(self.links, s.center), "derived", s.number,
+                              self.via[_by_name(self.links, s.center)]) for s in self.steps]
+        return CircleDiagram(self.links, circle_positions(self.links), tuple(edges))
+
+
+def _by_name(links: tuple[str, ...], name: str) -> Edge:
+    return split_pair(name, links)
+
+
+def _planar_sin(first: KennedyLine, second: KennedyLine) -> float | None:
+    if first.direction is None or second.direction is None:
+        return None
+    return cross(first.direction, second.direction)
+
+
+def _fmt_vec(v: Vec | None) -> str:
+    assert v is not None
+    return f"({v[0]:.6g}, {v[1]:.6g})"
+
+
+def derive_centers(mechanism: Mechanism, pose: Pose, plan: CenterPlan, offset: Vec = (0.0, 0.0)) -> KennedyResult:
+    """The joints' centers at this pose and the planned derived ones, in the order found.
+
+    ``offset`` is added to every reported position (the solve's local frame to the user's).
+    Raises SingularityError when a center on the path is degenerate at this position.
+    """
+    finder = _Finder(mechanism, pose, plan, offset)
+    finder.run()
+    for _, e in plan.asked:
+        if e not in finder.known:  # a joint's center is known once one of its links is solved, as planned
+            raise SingularityError(f"instant center {finder.label(e)} {finder.where()}: not found")
+    return KennedyResult({e: k.center for e, k in finder.known.items()},
+                         {e: replace(k.center, place=k.inside) for e, k in finder.known.items()},
+                         tuple(finder.steps), finder.diagram(), tuple(finder.notices), finder.frame.size)

@@ -1,0 +1,307 @@
+"""Why an answer is wrong: the problem recomputed with each common mistake, matched to the answer.
+
+The mistakes tried, each with a stable code:
+
+``sign-reversed``          the sense (cw/ccw) of a rate or the direction of a vector reversed
+``coriolis-left-out``      the acceleration polygon drawn without the Coriolis term
+``coriolis-reversed``      ... with the Coriolis term the wrong way round
+``normal-reversed``        the normal terms omega^2 r drawn away from the center
+``kv-not-divided``         a length read off the velocity polygon (mm) not divided by kv
+``ka-not-divided``         ... off the acceleration polygon, not divided by ka
+``degrees-for-radians``    the input angle's degrees used as radians (a calculator in radian
+                           mode), an input omega in deg/s used as rad/s, or a rate or angle
+                           written in degrees where radians are meant (and the other way round)
+``rpm-for-rad/s``          an input omega in rpm used as rad/s
+``other-point``            the right value of another point
+``other-link``             the right value of another link (or slider, or instant center)
+
+The construction mistakes are recomputed honestly: the polygons' equations are solved again
+with the term left out, reversed or turned (kinepoly.homework.mistakes); the input mistakes
+solve the scene again at the mistaken input; only the reading mistakes (kv, ka, a unit) and the
+sign act on the right answer itself. An answer matches a mistake when it is within the answers
+file's tolerance of the recomputed value; the closest match wins, and a mistake that changes
+nothing visible is never offered.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from kinepoly.errors import KinepolyError
+from kinepoly.homework.answers import AnswerKey, Direction, Tolerance, Value
+from kinepoly.homework.compare import compare
+from kinepoly.homework.mistakes import RIGHT, Construction, student_solution
+from kinepoly.homework.reference import Reference, asked_keys, fixed_angles, solve_for, value_of
+from kinepoly.scene.spec import LinkInput, Scene
+
+__all__ = ["Candidate", "Diagnosis", "Recomputed", "candidates", "diagnose", "recompute"]
+
+_CONSTRUCTIONS = (
+    ("coriolis-left-out", "the Coriolis term 2 omega x v_rel left out of the acceleration polygon",
+     Construction(coriolis_factor=0.0)),
+    ("coriolis-reversed", "the Coriolis term 2 omega x v_rel laid the wrong way round",
+     Construction(coriolis_factor=-1.0)),
+    ("normal-reversed", "the normal terms omega^2 r drawn away from the center instead of toward it",
+     Construction(normal_sign=1.0)),
+)
+_AGREEMENT = 1e-9  # the student equations done right must reproduce the reference this closely
+_VELOCITY_LEVEL = ("velocity", "s_dot", "omega")
+_ACCELERATION_LEVEL = ("acceleration", "s_ddot", "alpha")
+_NOUNS = {"omega": "angular velocity", "alpha": "angular acceleration", "theta": "angle",
+          "velocity": "velocity", "acceleration": "acceleration", "s": "slider position s",
+          "s_dot": "sliding velocity s_dot", "s_ddot": "sliding acceleration s_ddot", "center": "instant center"}
+
+
+@dataclass(frozen=True)
+class Recomputed:
+    """The whole problem solved again with one mistake: ``data`` shaped like ``kinepoly solve --json``."""
+
+    code: str
+    text: str
+    data: Mapping[str, Any]
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """What the answer to one key would be with one mistake."""
+
+    code: str
+    text: str
+    value: Value
+
+
+@dataclass(frozen=True)
+class Diagnosis:
+    """The likely mistake behind a wrong answer (``value``: the answer that mistake gives).
+
+    ``code`` is ``unrecognised`` (and ``value`` None) when no mistake reproduces the answer, and
+    ``not-answered`` for a question of the scene's [find] that the file does not answer.
+    """
+
+    code: str
+    text: str
+    value: Value | None = None
+    alternatives: tuple[str, ...] = ()
+
+
+# --------------------------------------------------------------------------------------------
+# The problem recomputed with each mistake, once per scene
+
+
+def _agrees(reference: Reference, data: Mapping[str, Any]) -> bool:
+    """The student equations done right reproduce every rate, velocity and acceleration of the reference."""
+    ref = reference.data
+    for rate in ("omega", "alpha"):
+        allowed = _AGREEMENT * reference.scales["omega" if rate == "omega" else "alpha"]
+        for link, entry in ref.get("links", {}).items():
+            if rate in entry and abs(entry[rate] - data["links"][link][rate]) > allowed:
+                return False
+    for kind in ("velocity", "acceleration"):
+        allowed = _AGREEMENT * reference.scales["velocity" if kind == "velocity" else "acceleration"]
+        for label, entry in ref.get("points", {}).items():
+            if kind in entry and math.dist(entry[kind], data["points"][label][kind]) > allowed:
+                return False
+    return True
+
+
+def _construction_mistakes(reference: Reference) -> list[Recomputed]:
+    if not any("alpha" in entry for entry in reference.data.get("links", {}).values()):
+        return []  # no accelerations in this problem
+    right = student_solution(reference.scene, reference.data, RIGHT)
+    if right is None or not _agrees(reference, right):
+        return []  # never diagnose from equations that do not reproduce the right answer
+    out = []
+    for code, text, how in _CONSTRUCTIONS:
+        data = student_solution(reference.scene, reference.data, how)
+        if data is not None:
+            positions = {label: {**entry, "position": reference.data["points"][label]["position"]}
+                         for label, entry in data["points"].items()}
+            out.append(Recomputed(code, text, {**data, "points": positions}))
+    return out
+
+
+def _resolved(scene: Scene, reference: Reference, code: str, text: str, changed: LinkInput) -> list[Recomputed]:
+    """The scene solved again at a mistaken input (nothing when it does not assemble there)."""
+    keys = asked_keys(reference.data)
+    try:
+        data = solve_for(dataclasses.replace(scene, input=changed), keys, everything=False)
+    except KinepolyError:
+        return []
+    return [Recomputed(code, text, data)]
+
+
+def _input_mistakes(reference: Reference, written: Mapping[str, object] | None) -> list[Recomputed]:
+    scene = reference.scene
+    inp = scene.input
+    if not isinstance(inp, LinkInput):
+        return []
+    out: list[Recomputed] = []
+    if scene.units.angle == "deg":
+        degrees = math.degrees(inp.angle_rad)
+        out += _resolved(scene, reference, "degrees-for-radians",
+                         f"the input angle {degrees:g} deg used as {degrees:g} rad (a calculator in radian mode)",
+                         dataclasses.replace(inp, angle_rad=degrees))
+    else:
+        out += _resolved(scene, reference, "degrees-for-radians",
+                         f"the input angle {inp.angle_rad:g} rad used as {inp.angle_rad:g} deg",
+                         dataclasses.replace(inp, angle_rad=math.radians(inp.angle_rad)))
+    for name, unit in (("omega", "deg/s"), ("omega", "rpm"), ("alpha", "deg/s^2")):
+        number = _number_in(written, name, unit)
+        if number is not None:
+            mistake = "degrees-for-radians" if unit.startswith("deg") else "rpm-for-rad/s"
+            si = "rad/s" if name == "omega" else "rad/s^2"
+            changed = dataclasses.replace(inp, omega=number) if name == "omega" else dataclasses.replace(
+                inp, alpha=number)
+            out += _resolved(scene, reference, mistake, f"the input {name} {number:g} {unit} used as {number:g} {si}",
+                             changed)
+    return out
+
+
+def _number_in(written: Mapping[str, object] | None, name: str, unit: str) -> float | None:
+    """The number of ``[input] name = "NUMBER UNIT"`` when it is written with ``unit`` (``deg/s`` covers ^2)."""
+    text = (written or {}).get(name)
+    if not isinstance(text, str):
+        return None
+    parts = text.split()
+    if len(parts) != 2 or not parts[1].startswith(unit):
+        return None
+    try:
+        return float(parts[0])
+    except ValueError:
+        return None
+
+
+def recompute(reference: Reference, written_input: Mapping[str, object] | None = None) -> tuple[Recomputed, ...]:
+    """Every whole-problem mistake, solved: the construction ones and the input ones.
+
+    ``written_input`` is the scene's ``[input]`` table as written (for omega given as "300 rpm").
+    """
+    return (*_construction_mistakes(reference), *_input_mistakes(reference, written_input))
+
+
+# --------------------------------------------------------------------------------------------
+# What each mistake makes of one answer
+
+
+def _negated(value: Value) -> Value | None:
+    if isinstance(value, tuple):
+        return (-value[0], -value[1])
+    if isinstance(value, Direction):
+        return None
+    return -value
+
+
+def _scaled(value: Value, factor: float) -> Value:
+    if isinstance(value, tuple):
+        return (value[0] * factor, value[1] * factor)
+    assert isinstance(value, float)
+    return value * factor
+
+
+def _owner(scene: Scene, label: str) -> str:
+    point, _, on = label.partition("@")
+    return on or next(link.name for link in scene.links if point in link.point_names)
+
+
+def _reading_mistakes(reference: Reference, key: AnswerKey, expected: Value) -> list[Candidate]:
+    out: list[Candidate] = []
+    kind, noun = key.kind, _NOUNS[key.kind]
+    negated = _negated(expected)
+    if negated is not None and kind != "center":
+        what = ("the sense reversed (cw for ccw)" if kind in ("omega", "alpha") else
+                "the direction reversed (the polygon's vector read from its tip to its tail)" if key.is_vector
+                else "the sign reversed")
+        out.append(Candidate("sign-reversed", what, negated))
+    unit = reference.scene.units.length
+    if kind in _VELOCITY_LEVEL and reference.kv is not None:
+        out.append(Candidate("kv-not-divided", f"the {noun} read off the velocity polygon in mm and not divided by "
+                                               f"kv = {reference.kv:g} mm per {unit}/s", _scaled(expected, reference.kv)))
+    if kind in _ACCELERATION_LEVEL and reference.ka is not None:
+        out.append(Candidate("ka-not-divided", f"the {noun} read off the acceleration polygon in mm and not divided "
+                                               f"by ka = {reference.ka:g} mm per {unit}/s^2",
+                             _scaled(expected, reference.ka)))
+    if kind in ("omega", "alpha"):
+        per = "s" if kind == "omega" else "s^2"
+        out.append(Candidate("degrees-for-radians", f"the {noun} written in deg/{per} instead of rad/{per}",
+                             _scaled(expected, 180.0 / math.pi)))
+    if kind == "theta":
+        assert isinstance(expected, float)
+        if reference.scene.units.angle == "deg":
+            out.append(Candidate("degrees-for-radians", "the angle written in radians where degrees are asked",
+                                 math.radians(expected)))
+        else:
+            out.append(Candidate("degrees-for-radians", "the angle written in degrees where radians are asked",
+                                 math.degrees(expected)))
+    return out
+
+
+def _others(reference: Reference, key: AnswerKey) -> list[Candidate]:
+    """The right values of every other point (link, slider, center) for the same question."""
+    scene, data, units = reference.scene, reference.data, reference.scene.units
+    kind, noun = key.kind, _NOUNS[key.kind]
+    fixed = set(fixed_angles(scene))
+    if kind in ("velocity", "acceleration"):
+        labels = [label for label, entry in data.get("points", {}).items()
+                  if kind in entry and _owner(scene, label) not in (scene.ground, *fixed)]
+        code, name = "other-point", "point"
+    elif kind in ("omega", "alpha", "theta"):
+        labels = [link for link in data.get("links", {}) if link not in fixed]
+        code, name = "other-link", "link"
+    elif kind == "center":
+        labels = list(data.get("instant_centers", {}))
+        code, name = "other-link", "instant center"
+    else:
+        labels = list(data.get("sliders", {}))
+        code, name = "other-link", "slider"
+    out = []
+    for label in labels:
+        other = AnswerKey(kind, label)
+        value = value_of(data, other, units)
+        if value is not None and other.question != key.question:
+            if kind == "center":
+                text = f"the right value of another instant center: {other.text}, of links " + " and ".join(
+                    sorted(other.question[1]))
+            else:
+                text = f"the right value of another {name}: {other.text}, the {noun} of {name} {label}"
+            out.append(Candidate(code, text, value))
+    return out
+
+
+def candidates(reference: Reference, recomputed: tuple[Recomputed, ...], key: AnswerKey) -> list[Candidate]:
+    """What the answer to ``key`` would be with each mistake, in the order ties are broken."""
+    expected = reference.expected(key)
+    if expected is None:
+        return []
+    out = _reading_mistakes(reference, key, expected)
+    for mistake in recomputed:
+        value = value_of(mistake.data, key, reference.scene.units)
+        if value is not None:
+            out.append(Candidate(mistake.code, mistake.text, value))
+    return out + _others(reference, key)
+
+
+def diagnose(reference: Reference, recomputed: tuple[Recomputed, ...], key: AnswerKey, given: Value,
+             tolerance: Tolerance) -> Diagnosis:
+    """The mistake whose recomputed answer is nearest ``given`` (within the tolerance), or ``unrecognised``."""
+    expected = reference.expected(key)
+    floor = reference.floor(key)
+    tried: list[str] = []
+    matches: list[tuple[float, int, Candidate]] = []
+    for candidate in candidates(reference, recomputed, key):
+        if expected is not None and compare(key.kind, expected, candidate.value, tolerance, floor).is_correct:
+            continue  # this mistake changes nothing visible here
+        tried.append(candidate.code)
+        match = compare(key.kind, candidate.value, given, tolerance, floor)
+        if match.is_correct:
+            matches.append((match.closeness, len(matches), candidate))
+    if not matches:
+        names = ", ".join(dict.fromkeys(tried)) or "none applies"
+        return Diagnosis("unrecognised", f"no common mistake gives this answer (tried: {names})")
+    matches.sort(key=lambda item: (item[0], item[1]))
+    best = matches[0][2]
+    others = tuple(dict.fromkeys(c.code for _, _, c in matches[1:] if c.code != best.code))
+    return Diagnosis(best.code, best.text, best.value, others)

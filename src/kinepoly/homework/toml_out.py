@@ -1,0 +1,116 @@
+"""Canonical TOML text of a scene and of an answer key, as ``kinepoly variants`` writes them.
+
+Numbers are written as the shortest text that reads back to the same float (answers: six
+significant digits), whole numbers without a point; keys bare where TOML allows it; every vector
+as ``[x, y]``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from collections.abc import Iterable, Sequence
+
+from kinepoly.homework.answers import AnswerKey, Direction, Value
+from kinepoly.scene.spec import LinkInput, Scene, SliderInput, Units
+
+__all__ = ["answers_toml", "scene_toml", "toml_key", "toml_number"]
+
+_BARE = re.compile(r"[A-Za-z0-9_-]+")
+
+
+def toml_key(name: str) -> str:
+    return name if _BARE.fullmatch(name) else json.dumps(name, ensure_ascii=False)
+
+
+def toml_number(x: float, digits: int | None = None) -> str:
+    """``x`` exactly (the shortest text that reads back to it) or to ``digits`` significant digits;
+    whole numbers without a point; never -0."""
+    if not math.isfinite(x):
+        raise ValueError(f"{x!r} has no TOML form here; expected a finite number")
+    x = float(format(x, f".{digits}g")) if digits is not None else float(x)
+    if x == 0.0:
+        return "0"
+    if x.is_integer() and abs(x) < 1e15:
+        return str(int(x))
+    return repr(x)
+
+
+def _pair(v: Sequence[float], digits: int | None = None) -> str:
+    return f"[{toml_number(v[0], digits)}, {toml_number(v[1], digits)}]"
+
+
+def _strings(names: Iterable[str]) -> str:
+    return "[" + ", ".join(json.dumps(name, ensure_ascii=False) for name in names) + "]"
+
+
+def _angle(scene: Scene, radians: float) -> str:
+    return toml_number(math.degrees(radians) if scene.units.angle == "deg" else radians)
+
+
+def scene_toml(scene: Scene, header: str = "") -> str:
+    """The scene as TOML (a link or slider input); ``header`` becomes comment lines at the top."""
+    out = [f"# {line}" for line in header.splitlines()]
+    out += [f"title = {json.dumps(scene.title, ensure_ascii=False)}",
+            f'units = {{ length = "{scene.units.length}", angle = "{scene.units.angle}" }}']
+    if scene.ground is not None and scene.ground != "1":
+        out.append(f"ground = {json.dumps(scene.ground)}")
+    out += ["", "[links]"]
+    for link in scene.links:
+        points = ", ".join(f"{toml_key(p.name)} = {_pair(p.local)}" for p in link.points)
+        out.append(f"{toml_key(link.name)} = {{ points = {{ {points} }} }}")
+    for slider in scene.sliders:
+        out += ["", "[[sliders]]", f"block = {json.dumps(slider.block)}", f"guide = {json.dumps(slider.guide)}",
+                f"point = {json.dumps(slider.point)}",
+                f"line = {{ through = {_pair(slider.through)}, angle = {_angle(scene, slider.angle_rad)} }}"]
+        default = slider.guide + slider.block if len(slider.guide) == 1 and len(slider.block) == 1 else (
+            f"{slider.guide}-{slider.block}")
+        if slider.name != default:
+            out.append(f"name = {json.dumps(slider.name)}")
+    inp = scene.input
+    out += ["", "[input]"]
+    if isinstance(inp, LinkInput):
+        out += [f"link = {json.dumps(inp.link)}", f"angle = {_angle(scene, inp.angle_rad)}",
+                f"omega = {toml_number(inp.omega)}", f"alpha = {toml_number(inp.alpha)}"]
+    else:
+        assert isinstance(inp, SliderInput), "a [given] scene is not written here"
+        out += [f"slider = {json.dumps(inp.slider)}", f"s = {toml_number(inp.s)}", f"s_dot = {toml_number(inp.s_dot)}",
+                f"s_ddot = {toml_number(inp.s_ddot)}"]
+    if scene.guess:
+        out += ["", "[guess]"] + [f"{toml_key(name)} = {_pair(spot)}" for name, spot in scene.guess]
+    find = scene.find
+    if not find.is_default:
+        out += ["", "[find]"]
+        for key in ("velocity", "acceleration", "omega", "alpha", "sliders"):
+            names = getattr(find, key)
+            if names:
+                out.append(f"{key} = {_strings(names)}")
+        if find.instant_centers:
+            centers = find.instant_centers
+            out.append(f"instant_centers = {json.dumps(centers) if centers == 'all' else _strings(centers)}")
+    if scene.draw.kv is not None or scene.draw.ka is not None:
+        out += ["", "[draw]"]
+        out += [f"{key} = {toml_number(value)}" for key, value in (("kv", scene.draw.kv), ("ka", scene.draw.ka))
+                if value is not None]
+    return "\n".join(out) + "\n"
+
+
+def _answer(value: Value) -> str:
+    if isinstance(value, Direction):
+        return f"{{ direction = {_pair((value.x, value.y), 6)} }}"
+    if isinstance(value, tuple):
+        size = math.hypot(*value)
+        tidy = [0.0 if abs(c) <= 1e-9 * size else c for c in value]  # round-off beside a large component
+        return _pair(tidy, 6)
+    return toml_number(value, 6)
+
+
+def answers_toml(answers: Iterable[tuple[AnswerKey, Value]], units: Units, header: str = "") -> str:
+    """An answer key in the canonical forms, six significant digits (values as stored: theta in radians)."""
+    out = [f"# {line}" for line in header.splitlines()]
+    for key, value in answers:
+        if key.kind == "theta" and units.angle == "deg" and isinstance(value, float):
+            value = math.degrees(value)
+        out.append(f"{toml_key(key.text)} = {_answer(value)}")
+    return "\n".join(out) + "\n"

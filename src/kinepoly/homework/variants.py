@@ -1,0 +1,342 @@
+"""Randomised versions of a problem, each assemblable, well away from singular positions, with its key.
+
+A variant draws, from :class:`~kinepoly.homework.vary.Ranges`, a factor for each link's
+dimensions (the link's points and the slide lines it carries, scaled about its own origin) and
+the input values, all rounded to numbers a student can draw. It is kept only if
+
+* the mechanism assembles there in the *same assembly* as the original (the open four-bar stays
+  open): every velocity construction of a dyad crosses its two direction lines with the same
+  orientation as in the original; where a direct solve lands in the other assembly, the variant
+  is reached by moving every number step by step from the original, each step starting from
+  the last one's pose, and dropped if that path meets a dead point;
+* every dyad's transmission angle (the acute angle between the two direction lines that give
+  its middle joint: for a four-bar the angle between coupler and rocker, for a slider-crank
+  between the coupler's normal and the slide) is at least ``min_transmission_deg``;
+  a group without a two-line construction (a triad) has a velocity Jacobian whose condition
+  number is at most ten times the original's;
+* its solve carries no near-singular warning and its cross-check is clean.
+
+Each variant is written as TOML with a ``[guess]`` of every moving point, so it is pinned to
+that assembly, and read back and solved again: its answer key is taken from that solve, in the
+canonical forms, so ``kinepoly check`` of a variant against its own key passes. The same seed
+gives the same variants (Python's Mersenne Twister, one draw order).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import random
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from kinepoly.errors import AssemblyError, KinepolyError, SceneError
+from kinepoly.homework.answers import AnswerKey, Value
+from kinepoly.homework.reference import asked_keys, value_of
+from kinepoly.homework.toml_out import answers_toml, scene_toml
+from kinepoly.homework.vary import Range, Ranges
+from kinepoly.report import to_json
+from kinepoly.scene.loader import loads_scene
+from kinepoly.scene.spec import GivenInput, LinkInput, LinkSpec, PointSpec, Scene
+from kinepoly.solution import Solution, solve
+
+__all__ = ["DEFAULT_MIN_TRANSMISSION_DEG", "Variant", "make_variants"]
+
+DEFAULT_MIN_TRANSMISSION_DEG = 30.0
+_DRAWS_PER_VARIANT = 60
+_STEP_DEG = 15.0  # the largest turn of the input per step of a path
+_STEP_FACTOR = 0.05  # the largest relative change of a length per step
+_CONDITION_GROWTH = 10.0
+_TRACKED = 1e-6  # a read-back variant's points lie this close (relative to its size) to the tracked pose
+
+Vec = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One variant: its name, scene and answer-key texts, and what makes it a good problem."""
+
+    name: str
+    scene_text: str
+    answers_text: str
+    scene: Scene
+    answers: tuple[tuple[AnswerKey, Value], ...]
+    min_transmission_deg: float | None
+
+
+@dataclass(frozen=True)
+class _Numbers:
+    """What a variant changes: every link's point coordinates, every slide's ``through``, the input values."""
+
+    points: tuple[tuple[Vec, ...], ...]
+    through: tuple[Vec, ...]
+    inputs: tuple[tuple[str, float], ...]
+
+
+def _numbers(scene: Scene) -> _Numbers:
+    inp = scene.input
+    names = ("angle_rad", "omega", "alpha") if isinstance(inp, LinkInput) else ("s", "s_dot", "s_ddot")
+    return _Numbers(tuple(tuple(p.local for p in link.points) for link in scene.links),
+                    tuple(s.through for s in scene.sliders),
+                    tuple((name, float(getattr(inp, name))) for name in names))
+
+
+def _mix(a: Vec, b: Vec, t: float) -> Vec:
+    return (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
+
+
+def _between(start: _Numbers, end: _Numbers, t: float, turn: float) -> _Numbers:
+    """The numbers a fraction ``t`` of the way; the input angle turns by ``turn`` radians in all."""
+    if t >= 1.0:
+        return end
+    inputs = tuple((name, a + t * (turn if name == "angle_rad" else b - a))
+                   for (name, a), (_, b) in zip(start.inputs, end.inputs))
+    return _Numbers(tuple(tuple(_mix(p, q, t) for p, q in zip(ps, qs)) for ps, qs in zip(start.points, end.points)),
+                    tuple(_mix(p, q, t) for p, q in zip(start.through, end.through)), inputs)
+
+
+def _scene(base: Scene, numbers: _Numbers, guess: tuple[tuple[str, Vec], ...], title: str | None = None) -> Scene:
+    links = tuple(LinkSpec(link.name, tuple(PointSpec(p.name, xy, p.line) for p, xy in zip(link.points, coords)),
+                           link.line) for link, coords in zip(base.links, numbers.points))
+    sliders = tuple(dataclasses.replace(s, through=xy) for s, xy in zip(base.sliders, numbers.through))
+    return dataclasses.replace(base, links=links, sliders=sliders, guess=guess, title=title or base.title,
+                               input=dataclasses.replace(base.input, **dict(numbers.inputs)))  # type: ignore[arg-type]
+
+
+# --------------------------------------------------------------------------------------------
+# Drawing the numbers
+
+
+def _size(scene: Scene) -> float:
+    lengths = [math.hypot(*p.local) for link in scene.links for p in link.points]
+    lengths += [math.hypot(*s.through) for s in scene.sliders]
+    return max(lengths, default=0.0) or 1.0
+
+
+def _rounder(exponent: int) -> Callable[[float], float]:
+    """Round to a multiple of 10^exponent (by decimal places, so 0.3 stays 0.3)."""
+    return lambda x: round(x, -exponent) + 0.0 if exponent < 0 else float(round(x / 10**exponent) * 10**exponent)
+
+
+def _length_exponent(scene: Scene) -> int:
+    """Lengths are rounded to 10^e of the scene's unit: about 60 to 600 steps across the mechanism."""
+    return round(math.log10(_size(scene)) - 2.3)
+
+
+def _value_exponent(drawn: Range) -> int:
+    largest = max(abs(drawn.low), abs(drawn.high))
+    return math.floor(math.log10(largest)) - 1 if largest > 0 else 0
+
+
+def _draw(rng: random.Random, scene: Scene, ranges: Ranges) -> _Numbers:
+    length = _rounder(_length_exponent(scene))
+    factors = {link.name: rng.uniform(ranges.factors[link.name].low, ranges.factors[link.name].high)
+               for link in scene.links}
+    points = tuple(tuple((length(factors[link.name] * x), length(factors[link.name] * y)) for x, y in
+                         (p.local for p in link.points)) for link in scene.links)
+    through = tuple((length(factors[s.guide] * s.through[0]), length(factors[s.guide] * s.through[1]))
+                    for s in scene.sliders)
+    inputs = []
+    for name, value in _numbers(scene).inputs:
+        drawn = ranges.inputs.get(name, Range(value, value))
+        x = rng.uniform(drawn.low, drawn.high)
+        if name == "angle_rad":
+            x = math.radians(round(math.degrees(x))) if scene.units.angle == "deg" else round(x, 2)
+        elif name == "s":
+            x = length(x)
+        else:
+            x = _rounder(_value_exponent(drawn))(x)
+        inputs.append((name, x + 0.0))  # never -0.0
+    return _Numbers(points, through, tuple(inputs))
+
+
+# --------------------------------------------------------------------------------------------
+# Judging a solved variant
+
+
+@dataclass(frozen=True)
+class _Solved:
+    solution: Solution
+    data: dict[str, Any]
+
+    @property
+    def crossings(self) -> dict[str, float]:
+        """Each dyad's velocity intersection: the signed sine of the angle from its first line to its second."""
+        out = {}
+        for step in self.data["steps"]:
+            if step["polygon"] == "velocity" and step["kind"] == "intersection" and len(step["lines"]) == 2:
+                (a, b), (c, d) = step["lines"][0]["direction"], step["lines"][1]["direction"]
+                out[step["result"]] = a * d - b * c
+        return out
+
+    @property
+    def signature(self) -> tuple[tuple[str, bool], ...]:
+        return tuple(sorted((name, sine > 0) for name, sine in self.crossings.items()))
+
+    @property
+    def min_transmission_deg(self) -> float | None:
+        sines = [abs(s) for s in self.crossings.values()]
+        return math.degrees(math.asin(min(1.0, min(sines)))) if sines else None
+
+    @property
+    def has_linear_solve(self) -> bool:
+        return any(step["kind"] == "linear-solve" for step in self.data["steps"])
+
+    @property
+    def condition(self) -> float:
+        return float(self.data["check"].get("condition_number", 0.0))
+
+    def guess(self) -> tuple[tuple[str, Vec], ...]:
+        """Every point of a moving, solved link (but not of the frame), where it is."""
+        scene, pose = self.solution.scene, self.solution.pose
+        frame = set(scene.link(scene.ground).point_names) if scene.ground else set()
+        names = [p.name for link in scene.links if link.name != scene.ground and link.name in pose.links
+                 for p in link.points if p.name not in frame]
+        return tuple((name, self.solution.position(name)) for name in dict.fromkeys(names))
+
+
+def _solved(scene: Scene) -> _Solved | None:
+    try:
+        solution = solve(scene)
+    except KinepolyError:
+        return None
+    return _Solved(solution, to_json(solution))
+
+
+def _is_good(solved: _Solved, original: _Solved, min_transmission_deg: float) -> bool:
+    codes = {w["code"] for w in solved.data["warnings"]}
+    if codes & {"near-singular", "check-failed"} or solved.signature != original.signature:
+        return False
+    transmission = solved.min_transmission_deg
+    if transmission is not None and transmission < min_transmission_deg:
+        return False
+    return not solved.has_linear_solve or solved.condition <= _CONDITION_GROWTH * max(original.condition, 1.0)
+
+
+def _steps(start: _Numbers, end: _Numbers, turn: float) -> int:
+    worst = abs(math.degrees(turn)) / _STEP_DEG
+    for ps, qs in zip(start.points, end.points):
+        for p, q in zip(ps, qs):
+            size = max(math.hypot(*p), math.hypot(*q))
+            if size > 0:
+                worst = max(worst, math.dist(p, q) / size / _STEP_FACTOR)
+    for (name, a), (_, b) in zip(start.inputs, end.inputs):
+        if name != "angle_rad" and max(abs(a), abs(b)) > 0:
+            worst = max(worst, abs(b - a) / max(abs(a), abs(b)) / (2 * _STEP_FACTOR))
+    return max(2, math.ceil(worst))
+
+
+def _track(base: Scene, start: _Numbers, end: _Numbers, original: _Solved, turn: float) -> _Solved | None:
+    """Move every number from ``start`` to ``end`` in small steps, each solved from the last pose."""
+    count = _steps(start, end, turn)
+    solved = original
+    for k in range(1, count + 1):
+        step = _solved(_scene(base, _between(start, end, k / count, turn), solved.guess()))
+        if step is None or step.signature != original.signature:
+            return None
+        solved = step
+    return solved
+
+
+def _reach(base: Scene, start: _Numbers, end: _Numbers, original: _Solved) -> _Solved | None:
+    """The variant ``end`` in the original's assembly: directly if that lands there, else along a path."""
+    if not original.has_linear_solve:
+        direct = _solved(_scene(base, end, original.guess()))
+        if direct is None:
+            return None  # dyads in closed form: what does not close here closes on no path either
+        if direct.signature == original.signature:
+            return direct
+    turn = 0.0
+    angles = [value for name, value in zip((n for n, _ in start.inputs), (v for _, v in end.inputs))
+              if name == "angle_rad"]
+    if angles:
+        turn = math.remainder(angles[0] - dict(start.inputs)["angle_rad"], 2.0 * math.pi)
+    for way in (turn, turn - math.copysign(2.0 * math.pi, turn)) if turn else (turn,):
+        tracked = _track(base, start, end, original, way)
+        if tracked is not None:
+            return tracked
+    return None
+
+
+# --------------------------------------------------------------------------------------------
+# The variants
+
+
+def _key(solved: _Solved) -> tuple[tuple[AnswerKey, Value], ...]:
+    units = solved.solution.scene.units
+    pairs = []
+    for key in asked_keys(solved.data):
+        value = value_of(solved.data, key, units)
+        if value is not None:
+            pairs.append((key, value))
+    return tuple(pairs)
+
+
+def _same_pose(first: _Solved, second: _Solved, size: float) -> bool:
+    points = dict(first.guess())
+    return all(math.dist(points[name], spot) <= _TRACKED * size for name, spot in second.guess() if name in points)
+
+
+def _written(base: Scene, name: str, index: int, numbers: _Numbers, reached: _Solved,
+             header: str, original: _Solved, min_transmission_deg: float) -> Variant | None:
+    spot = _rounder(_length_exponent(base) - 1)
+    guess = tuple((point, (spot(x), spot(y))) for point, (x, y) in reached.guess())
+    title = f"{base.title} (variant {index})"
+    text = scene_toml(_scene(base, numbers, guess, title), header)
+    scene = loads_scene(text, f"{name}.toml")
+    again = _solved(scene)
+    if again is None or not _is_good(again, original, min_transmission_deg) or not _same_pose(
+            again, reached, _size(scene)):
+        return None
+    answers = _key(again)
+    key_header = f"Answer key of {name}.toml (canonical forms; check with: kinepoly check {name}.toml {name}.answers.toml)"
+    return Variant(name, text, answers_toml(answers, scene.units, key_header), scene, answers,
+                   again.min_transmission_deg)
+
+
+def make_variants(scene: Scene, ranges: Ranges, count: int, seed: int, *, stem: str | None = None,
+                  min_transmission_deg: float = DEFAULT_MIN_TRANSMISSION_DEG) -> list[Variant]:
+    """``count`` variants of ``scene`` drawn from ``ranges`` with ``seed``; the same arguments, the same variants.
+
+    Raises SceneError for a ``[given]`` scene, and AssemblyError (exit 3) when the ranges do not
+    give ``count`` good variants in ``60 * count`` draws (the message says how many were found).
+    """
+    if isinstance(scene.input, GivenInput):
+        problem = (f"{scene.source}: given: variants of a [given] scene are not made (its given velocities "
+                   "must stay those of a rigid body); expected a scene with an [input]")
+        raise SceneError([problem])
+    original = _solved(scene)
+    if original is None:
+        solve(scene)  # raises the error that says why
+        raise AssemblyError(f"{scene.source}: the scene itself cannot be solved")  # pragma: no cover
+    stem = stem or Path(scene.source).stem or "variant"
+    width = max(2, len(str(count)))
+    rng = random.Random(seed)
+    start = _numbers(scene)
+    seen: set[_Numbers] = set()
+    variants: list[Variant] = []
+    draws = 0
+    while len(variants) < count and draws < _DRAWS_PER_VARIANT * count:
+        draws += 1
+        numbers = _draw(rng, scene, ranges)
+        if numbers in seen:
+            continue
+        seen.add(numbers)
+        reached = _reach(scene, start, numbers, original)
+        if reached is None or not _is_good(reached, original, min_transmission_deg):
+            continue
+        index = len(variants) + 1
+        name = f"{stem}-{index:0{width}d}"
+        header = (f"Variant {index} of {Path(scene.source).name}, made by kinepoly variants (seed {seed}); "
+                  f"its answer key is {name}.answers.toml")
+        variant = _written(scene, name, index, numbers, reached, header, original, min_transmission_deg)
+        if variant is not None:
+            variants.append(variant)
+    if len(variants) < count:
+        raise AssemblyError(
+            f"{scene.source}: vary: only {len(variants)} of {count} variants in {draws} draws assemble in the "
+            f"original's assembly with every transmission angle at least {min_transmission_deg:g} deg; expected "
+            "narrower [vary] ranges (angle, lengths) around the scene's own values, or a lower --min-transmission")
+    return variants

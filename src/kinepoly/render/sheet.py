@@ -1,0 +1,207 @@
+"""Solution in, sheet out: layout, scales, arrows and labels decided once for every backend.
+
+``build_sheet`` lays out the page (title block at the foot, the mechanism and the polygons side
+by side above it), draws each part on its layer and then places every label clear of what is
+drawn. ``step_sheets`` gives one sheet per construction step on the same layout: everything up
+to that step, the step's new elements highlighted, the step's text in the title block.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from kinepoly.render import centers as centers_layer
+from kinepoly.render.labels import Request, place
+from kinepoly.render.layout import Content, Panel, arrange, paper_size
+from kinepoly.render.mechanism import mechanism_box, mechanism_items
+from kinepoly.render.polygons import Figure, figure_box, polygon_figure, polygon_items
+from kinepoly.render.primitives import LAYERS, Item, Layer, Path, Sheet, Stroke, Text
+from kinepoly.render.text import plain_runs
+from kinepoly.render.titleblock import (
+    Block,
+    block_items,
+    flow,
+    flow_height,
+    format_number,
+    heading_items,
+    legend_block,
+    space_scale_text,
+    step_block,
+    title_blocks,
+)
+from kinepoly.solution import Solution
+
+__all__ = ["Layout", "build_sheet", "layout_sheet", "step_sheets"]
+
+MARGIN_MM = 10.0
+_INNER_MM = 3.0
+_PADDING_MM = {"mechanism": 12.0, "velocity": 9.0, "acceleration": 9.0}
+_NAMES = {"mechanism": "Mechanism", "velocity": "Velocity polygon", "acceleration": "Acceleration polygon",
+          "centers": "Circle diagram"}
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Where everything goes, shared by a drawing and its step-by-step sheets."""
+
+    width: float
+    height: float
+    panels: tuple[Panel, ...]
+    figures: tuple[Figure, ...]
+    title_rect: tuple[float, float, float, float]
+    notes: tuple[str, ...]
+
+    def panel(self, name: str) -> Panel | None:
+        return next((p for p in self.panels if p.name == name), None)
+
+
+def _polygon_scales(solution: Solution) -> dict[str, float]:
+    from kinepoly.report import polygon_scales
+
+    return polygon_scales(solution)
+
+
+def _title_blocks(solution: Solution, figures: tuple[Figure, ...], notes: tuple[str, ...], width: float) -> list[Block]:
+    blocks = title_blocks(solution, notes, width)
+    kinds = _drawn_terms(figures)
+    if kinds:
+        blocks.append(legend_block(kinds))
+    return blocks
+
+
+def _drawn_terms(figures: tuple[Figure, ...]) -> list[str]:
+    order = ("absolute", "relative", "sliding", "normal", "tangential", "coriolis")
+    present = {v.term for f in figures for v in f.vectors}
+    return [k for k in order if k in present]
+
+
+def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4") -> Layout:
+    """Decide the page: the title block's height, the panels and their scales."""
+    width, height = paper_size(paper) if isinstance(paper, str) else paper
+    figures = tuple(polygon_figure(solution, kind) for kind in ("velocity", "acceleration")
+                    if (solution.velocity if kind == "velocity" else solution.acceleration) is not None)
+    inner = (MARGIN_MM + _INNER_MM, MARGIN_MM + _INNER_MM, width - MARGIN_MM - _INNER_MM, height - MARGIN_MM - _INNER_MM)
+    inner_w = inner[2] - inner[0]
+    # the notes depend on the scales, the scales on the title block's height: two passes settle it
+    notes: tuple[str, ...] = ()
+    panels: list[Panel] = []
+    title_h = 0.0
+    for _ in range(2):
+        title_h = flow_height(_title_blocks(solution, figures, notes, inner_w), inner_w)
+        area = (inner[0], inner[1] + title_h + _INNER_MM, inner[2], inner[3])
+        scales = _polygon_scales(solution)
+        contents = [Content("mechanism", _mechanism_box(solution), None, _PADDING_MM["mechanism"])]
+        diagram = centers_layer.centers_content(solution)
+        if diagram is not None:
+            contents.append(diagram)
+        contents += [Content(f.kind, figure_box(f), scales[f.kind], _PADDING_MM[f.kind]) for f in figures]
+        panels = arrange(contents, area)
+        notes = tuple(_scale_note(p) for p in panels if p.name in ("velocity", "acceleration") and p.wanted is not None
+                      and p.scale < p.wanted * (1 - 1e-12))
+    title_rect = (MARGIN_MM, MARGIN_MM, width - MARGIN_MM, MARGIN_MM + title_h)
+    return Layout(width, height, tuple(panels), figures, title_rect, notes)
+
+
+def _mechanism_box(solution: Solution) -> tuple[float, float, float, float]:
+    """The mechanism's box, grown to hold the instant centers near it."""
+    box = mechanism_box(solution)
+    points = centers_layer.near_centers(solution, box)
+    xs = [box[0], box[2], *(p[0] for p in points)]
+    ys = [box[1], box[3], *(p[1] for p in points)]
+    return (min(xs), min(ys), max(xs), max(ys))
+
+
+def _scale_note(panel: Panel) -> str:
+    symbol = "kv" if panel.name == "velocity" else "ka"
+    return (f"{symbol} reduced from {format_number(panel.wanted or 0.0)} to {format_number(panel.scale)} "
+            f"so that the {panel.name} polygon fits the page (a larger --paper keeps it)")
+
+
+def _frame_items(layout: Layout) -> list[Item]:
+    w, h, m = layout.width, layout.height, MARGIN_MM
+    border = Path(((m, m), (w - m, m), (w - m, h - m), (m, h - m)), Stroke("#000000", 0.5), closed=True,
+                  role="border")
+    x0, _, x1, y1 = layout.title_rect
+    rule = Path(((x0, y1), (x1, y1)), Stroke("#000000", 0.35), role="title rule")
+    return [border, rule]
+
+
+def _headings(solution: Solution, layout: Layout) -> tuple[list[Item], list[Item]]:
+    unit: str = solution.scene.units.length
+    title_items: list[Item] = []
+    scale_items: list[Item] = []
+    for panel in layout.panels:
+        if panel.name == "mechanism":
+            text, bar_unit = space_scale_text(panel.scale, unit), unit
+        elif panel.name == "velocity":
+            text, bar_unit = f"kv = {format_number(panel.scale)} mm per {unit}/s", f"{unit}/s"
+        elif panel.name == "acceleration":
+            text, bar_unit = f"ka = {format_number(panel.scale)} mm per {unit}/s²", f"{unit}/s²"
+        else:
+            title_items.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, plain_runs(_NAMES[panel.name], 2.8),
+                                    "#000000", f"heading {panel.name}", None, True))
+            continue
+        if panel.wanted is not None and panel.scale < panel.wanted * (1 - 1e-12):
+            text += " (reduced)"
+        t, s = heading_items(panel, _NAMES[panel.name], text, bar_unit)
+        title_items += t
+        scale_items += s
+    return title_items, scale_items
+
+
+def _title_items(solution: Solution, layout: Layout, step: int | None) -> list[Item]:
+    x0, _, x1, y1 = layout.title_rect
+    width = x1 - x0 - 2 * _INNER_MM
+    if step is None:
+        blocks = _title_blocks(solution, layout.figures, layout.notes, width)
+    else:
+        s = solution.steps[step - 1]
+        kinds = _drawn_terms(layout.figures)
+        head = title_blocks(solution, layout.notes, width)[0]
+        text_w = max(width - head.width - 40.0, 60.0)
+        blocks = [head, step_block(step, len(solution.steps), f"[{s.polygon}, {s.kind}] {s.equation}", s.text,
+                                   text_w)]
+        if kinds:
+            blocks.append(legend_block(kinds))
+    items: list[Item] = []
+    kinds = _drawn_terms(layout.figures)
+    for k, (block, (bx, by)) in enumerate(flow(blocks, width)):
+        legend = kinds if block.lines and block.lines[0][0][0].text == "vectors" else []
+        items += block_items(block, (x0 + _INNER_MM + bx, y1 - 2.5 + by), f"title block {k}", legend)
+    return items
+
+
+def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, step: int | None = None,
+                layout: Layout | None = None) -> Sheet:
+    """The drawing of ``solution``; with ``step``, the sheet of that construction step (1-based)."""
+    layout = layout if layout is not None else layout_sheet(solution, paper)
+    layers: dict[str, list[Item]] = {name: [] for name in LAYERS}
+    requests: list[Request] = []
+    mech_panel = layout.panel("mechanism")
+    assert mech_panel is not None
+    items, reqs = mechanism_items(solution, mech_panel)
+    layers["mechanism"] += items
+    requests += reqs
+    for figure in layout.figures:
+        panel = layout.panel(figure.kind)
+        assert panel is not None
+        items, reqs = polygon_items(figure, panel, step)
+        layers[f"{figure.kind}-polygon"] += items
+        requests += reqs
+    items, reqs = centers_layer.centers_items(solution, mech_panel, layout.panel("centers"))
+    layers[centers_layer.LAYER] += items
+    requests += reqs
+    headings, bars = _headings(solution, layout)
+    layers["title"] += _frame_items(layout) + headings + _title_items(solution, layout, step)
+    layers["scales"] += bars
+    drawn = [item for name in LAYERS for item in layers[name]]
+    for name, placed in place(requests, drawn).items():
+        layers[name] += placed
+    title = solution.scene.title if step is None else f"{solution.scene.title}: step {step}"
+    return Sheet(layout.width, layout.height, title, tuple(Layer(name, tuple(layers[name])) for name in LAYERS))
+
+
+def step_sheets(solution: Solution, paper: str | tuple[float, float] = "A4") -> list[Sheet]:
+    """One sheet per construction step, all on the layout of the whole drawing."""
+    layout = layout_sheet(solution, paper)
+    return [build_sheet(solution, paper, step=n, layout=layout) for n in range(1, len(solution.steps) + 1)]

@@ -1,0 +1,87 @@
+"""SVG through svgwrite: one ``<g id="LAYER">`` per layer, page in millimetres, y turned down.
+
+Deterministic: no automatic ids (the only ids are the layers'), every number printed by
+``number`` (at most three decimals, no trailing zeros), attributes in a fixed order, one
+element per line, so that a change of the drawing reads as a diff.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from kinepoly.render.primitives import Arrow, Circle, Path, Sheet, Stroke, Text
+
+__all__ = ["FONT_FAMILY", "number", "svg_text", "write_svg"]
+
+FONT_FAMILY = "DejaVu Sans, Verdana, Arial, sans-serif"
+
+
+def number(x: float) -> str:
+    """A coordinate or length in mm, to the micrometre, without trailing zeros (``-0`` is ``0``)."""
+    text = f"{x:.3f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def _points(points: Any, height: float) -> str:
+    return " ".join(f"{number(x)},{number(height - y)}" for x, y in points)
+
+
+def _stroke(stroke: Stroke | None) -> dict[str, str]:
+    if stroke is None:
+        return {"stroke": "none"}
+    out = {"stroke": stroke.color, "stroke-width": number(stroke.width)}
+    if stroke.dash:
+        out["stroke-dasharray"] = " ".join(number(d) for d in stroke.dash)
+    return out
+
+
+def _path_data(points: Any, height: float, closed: bool) -> str:
+    return "M" + " L".join(_points([p], height) for p in points) + (" Z" if closed else "")
+
+
+def _element(dwg: Any, item: Path | Circle | Arrow | Text, h: float) -> list[Any]:
+    role = {"data-role": item.role} if item.role else {}
+    if isinstance(item, Path):
+        fill = {"fill": item.fill, "fill-opacity": number(item.fill_opacity)} if item.fill else {"fill": "none"}
+        return [dwg.path(d=_path_data(item.points, h, item.closed), **fill, **_stroke(item.stroke), **role)]
+    if isinstance(item, Circle):
+        return [dwg.circle(center=(number(item.center[0]), number(h - item.center[1])), r=number(item.radius),
+                           fill=item.fill or "none", **_stroke(item.stroke), **role)]
+    if isinstance(item, Arrow):
+        shaft = dwg.line(start=(number(item.start[0]), number(h - item.start[1])),
+                         end=(number(item.shaft_end[0]), number(h - item.shaft_end[1])),
+                         **_stroke(Stroke(item.color, item.width)), **role)
+        head = dwg.path(d=_path_data(item.head, h, True), fill=item.color, stroke="none", **role)
+        return [shaft, head]
+    weight = {"font-weight": "bold"} if item.bold else {}
+    text = dwg.text("", fill=item.color, **weight, **role, **{"xml:space": "preserve"})  # keep " = " spaced
+    for run in item.runs:
+        text.add(dwg.tspan(run.text, x=[number(item.x + run.dx)], y=[number(h - item.y - run.dy)],
+                           **{"font-size": number(run.size)}))
+    return [text]
+
+
+def svg_text(sheet: Sheet) -> str:
+    """The sheet as an SVG document (text)."""
+    import svgwrite
+
+    w, h = sheet.width, sheet.height
+    dwg = svgwrite.Drawing(size=(f"{number(w)}mm", f"{number(h)}mm"), viewBox=f"0 0 {number(w)} {number(h)}",
+                           profile="full", debug=False)
+    dwg.set_desc(title=sheet.title)
+    dwg.add(dwg.rect(insert=(0, 0), size=(number(w), number(h)), fill="#ffffff"))
+    for layer in sheet.layers:
+        group = dwg.g(id=layer.name, **{"font-family": FONT_FAMILY, "stroke-linecap": "butt"})
+        for item in layer.items:
+            for element in _element(dwg, item, h):
+                group.add(element)
+        dwg.add(group)
+    # one element per line for readable diffs, but nothing between a text's runs (it would be drawn)
+    body = re.sub(r"><(?!tspan|/text)", ">\n<", dwg.tostring())
+    return '<?xml version="1.0" encoding="utf-8" ?>\n' + body + "\n"
+
+
+def write_svg(sheet: Sheet, target: Any) -> None:
+    """Write the SVG to a text file object."""
+    target.write(svg_text(sheet))

@@ -1,0 +1,9 @@
+"""Sweeps: the position plan and the construction executed over an array of inputs at once.
+
+``sweep(scene, steps=3600)`` returns a ``SweepResult``: one column per asked quantity over the
+input's turn (or range), each row with its status; ``csv_text`` and ``plot_png`` present it.
+"""
+
+from kinepoly.sweep.run import STATUS, Column, PreparedSweep, SweepResult, prepare_sweep, run_sweep, sweep
+
+__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]

@@ -1,0 +1,232 @@
+"""The inputs a sweep visits: the rows shown, the seed row (the scene's own input) and the range.
+
+Without ``--from``/``--to`` the range is a full turn of the input link, 0 to 360 degrees with
+the end left out (it repeats the start), when the mechanism closes all the way round; else it
+is the stretch of input around the scene's own input where it closes (a rocker's swing, a
+slider's stroke), its ends found to about 1e-10 of the step by repeated subdivision. A slider
+input that closes further than ten times the mechanism's size either way stops there.
+
+The scene's own input is always a row, for that is where the assembly is chosen: when it is not
+on the grid it is slipped in between two rows (and not shown); when it lies outside the range
+the rows from it to the range are added (and not shown), so that the assembly is followed to
+the range continuously.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinepoly.errors import AssemblyError, SceneError
+from kinepoly.model.mechanism import Mechanism
+from kinepoly.notice import Notice
+from kinepoly.scene.spec import LinkInput, SliderInput
+from kinepoly.solve.plan import NewtonGroup, PositionPlan
+from kinepoly.solve.pose import LinkPose
+from kinepoly.sweep.kernel import Bools, Reals
+from kinepoly.sweep.position import SweepPositions, sweep_positions
+
+__all__ = ["FULL_TURN_CHECK_ROWS", "MAX_STEPS", "InputGrid", "full_turn_grid", "input_grid", "input_name"]
+
+MAX_STEPS = 2_000_000
+"""The most rows a sweep takes (memory grows with rows times quantities)."""
+
+FULL_TURN_CHECK_ROWS = 3600
+"""Whether the input link turns fully is judged on this many rows (or on the sweep's own, if more)."""
+
+_BRIDGE_MAX = 100_000
+_ZOOM = 32
+_ZOOM_ROUNDS = 6
+
+
+@dataclass(frozen=True)
+class InputGrid:
+    """Every row the sweep computes: the input in the scene's unit (``values``) and in radians or
+    length (``internal``); ``shown`` marks the rows reported; ``seed_row`` is the scene's input."""
+
+    values: Reals
+    internal: Reals
+    shown: Bools
+    seed_row: int
+    periodic: bool
+    notices: tuple[Notice, ...] = ()
+
+
+def input_name(mechanism: Mechanism) -> str:
+    """``theta_2`` for link 2's angle, ``s_14`` for slider 14: the first column of the CSV."""
+    inp = mechanism.scene.input
+    if isinstance(inp, LinkInput):
+        return f"theta_{inp.link}"
+    assert isinstance(inp, SliderInput)
+    return f"s_{inp.slider}"
+
+
+def _seed_value(mechanism: Mechanism) -> float:
+    inp = mechanism.scene.input
+    if isinstance(inp, LinkInput):
+        return math.degrees(inp.angle_rad) if mechanism.scene.units.angle == "deg" else inp.angle_rad
+    assert isinstance(inp, SliderInput)
+    return inp.s
+
+
+def _full_turn(mechanism: Mechanism) -> float | None:
+    if not isinstance(mechanism.scene.input, LinkInput):
+        return None
+    return 360.0 if mechanism.scene.units.angle == "deg" else 2.0 * math.pi
+
+
+def _internal(mechanism: Mechanism, values: Reals) -> Reals:
+    if isinstance(mechanism.scene.input, LinkInput) and mechanism.scene.units.angle == "deg":
+        return np.radians(values)
+    return np.asarray(values, np.float64)
+
+
+def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) -> tuple[Reals, Bools, int]:
+    """Rows: ``shown`` with the seed slipped in (or bridged to), the mask of shown rows, the seed row."""
+    if full is not None and not periodic:  # the same link position may lie inside the range a turn away
+        low, high = float(min(shown[0], shown[-1])), float(max(shown[0], shown[-1]))
+        middle = 0.5 * (low + high)
+        seed = seed + full * round((middle - seed) / full)
+    if periodic and full is not None:
+        seed = seed % full
+    step = abs(float(shown[1] - shown[0])) if len(shown) > 1 else 1.0
+    close = np.flatnonzero(np.abs(shown - seed) <= 1e-9 * step)
+    if close.size:
+        return shown, np.ones(len(shown), np.bool_), int(close[0])
+    ascending = shown[-1] >= shown[0]
+    low, high = (shown[0], shown[-1]) if ascending else (shown[-1], shown[0])
+    if periodic or low < seed < high:
+        ordered = shown if ascending else shown[::-1]
+        at = int(np.searchsorted(ordered, seed))
+        at = at if ascending else len(shown) - at
+        values = np.insert(shown, at, seed)
+        mask = np.ones(len(values), np.bool_)
+        mask[at] = False
+        return values, mask, at
+    first_end = abs(seed - shown[0]) <= abs(seed - shown[-1])
+    end = float(shown[0] if first_end else shown[-1])
+    count = min(_BRIDGE_MAX, max(1, math.ceil(abs(end - seed) / step)))
+    bridge = np.linspace(seed, end, count + 1)[:-1]
+    if first_end:
+        return np.concatenate([bridge, shown]), np.concatenate([np.zeros(count, np.bool_),
+                                                                np.ones(len(shown), np.bool_)]), 0
+    values = np.concatenate([shown, bridge[::-1]])
+    return values, np.concatenate([np.ones(len(shown), np.bool_), np.zeros(count, np.bool_)]), len(values) - 1
+
+
+def _evaluate(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: int, seed: dict[str, LinkPose],
+              periodic: bool) -> SweepPositions:
+    return sweep_positions(mechanism, plan, _internal(mechanism, values), seed_row, seed, periodic)
+
+
+def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: float,
+          seed: dict[str, LinkPose]) -> tuple[float, dict[str, LinkPose]]:
+    """The last input from ``inside`` toward ``outside`` where the mechanism still closes."""
+    for _ in range(_ZOOM_ROUNDS):
+        values = np.linspace(inside, outside, _ZOOM + 1)
+        found = _evaluate(mechanism, plan, values, 0, seed, periodic=False)
+        ok = found.ok
+        last = int(np.argmin(ok)) - 1 if not ok.all() else len(values) - 1
+        if last < 0:
+            break
+        inside, seed = float(values[last]), found.scalar_poses(last)
+        if last == len(values) - 1:
+            return inside, seed
+        outside = float(values[last + 1])
+    return inside, seed
+
+
+def _run_around(ok: Bools, row: int, periodic: bool) -> tuple[int, int]:
+    """How many rows before and after ``row`` close without a gap (cyclically when periodic)."""
+    n = len(ok)
+    before = after = 0
+    while before < n - 1 and (periodic or row - before - 1 >= 0) and ok[(row - before - 1) % n]:
+        before += 1
+    while after < n - 1 - before and (periodic or row + after + 1 < n) and ok[(row + after + 1) % n]:
+        after += 1
+    return before, after
+
+
+def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPose], size: float) -> tuple[
+        float, float, bool, list[Notice]]:
+    """(start, stop, full turn?, notices) of the default sweep."""
+    seed_value = _seed_value(mechanism)
+    full = _full_turn(mechanism)
+    coarse = 360 if any(isinstance(g, NewtonGroup) for g in plan.groups) else FULL_TURN_CHECK_ROWS
+    if full is not None:
+        shown = np.linspace(0.0, full, coarse, endpoint=False)
+        values, _, seed_row = _with_seed(shown, seed_value, True, full)
+        found = _evaluate(mechanism, plan, values, seed_row, seed, periodic=True)
+        if found.ok.all():
+            return 0.0, full, True, []
+        seed_value = float(values[seed_row])
+    else:
+        reach = 10.0 * size
+        shown = np.linspace(seed_value - reach, seed_value + reach, 4001)
+        values, _, seed_row = _with_seed(shown, seed_value, False, None)
+        found = _evaluate(mechanism, plan, values, seed_row, seed, periodic=False)
+    if not found.ok[seed_row]:
+        raise AssemblyError(f"the scene's own input ({seed_value:.6g}) does not close in the sweep's arrays; "
+                            "give --from and --to")
+    periodic = full is not None
+    before, after = _run_around(found.ok, seed_row, periodic)
+    n = len(values)
+    notices: list[Notice] = []
+    ends = []
+    for sign, count in ((-1, before), (1, after)):
+        row = (seed_row + sign * count) % n
+        inside = float(values[row])
+        if periodic:  # unwrap the input to a continuous value on the seed's side
+            inside = seed_value + sign * ((sign * (inside - seed_value)) % full)  # type: ignore[operator]
+        next_row = row + sign
+        if not periodic and not 0 <= next_row < n:
+            notices.append(Notice("open-range", f"the mechanism still closes at {inside:.6g}, ten times its size "
+                                  f"({size:.6g}) from the scene's input; the sweep stops there (give --from and "
+                                  "--to to go further)"))
+            ends.append(inside)
+            continue
+        outside = inside + sign * abs(float(values[1] - values[0]))
+        edge, _ = _edge(mechanism, plan, inside, outside, found.scalar_poses(row))
+        ends.append(edge)
+    return ends[0], ends[1], False, notices
+
+
+def _size(mechanism: Mechanism, seed: dict[str, LinkPose]) -> float:
+    points = [complex(*pose.world(p.local)) for link, pose in seed.items() for p in mechanism.scene.link(link).points]
+    return max((abs(a - b) for a in points for b in points), default=1.0) or 1.0
+
+
+def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
+    """A full turn of the input link in ``steps`` rows (None for a slider input)."""
+    full = _full_turn(mechanism)
+    if full is None:
+        return None
+    _check_steps(steps)
+    values, mask, seed_row = _with_seed(np.linspace(0.0, full, steps, endpoint=False), _seed_value(mechanism), True,
+                                        full)
+    return InputGrid(values, _internal(mechanism, values), mask, seed_row, True)
+
+
+def _check_steps(steps: int) -> None:
+    if not 2 <= steps <= MAX_STEPS:
+        raise SceneError(f"--steps: expected a whole number of rows from 2 to {MAX_STEPS}, got {steps}")
+
+
+def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPose], steps: int,
+               start: float | None, stop: float | None) -> InputGrid:
+    """The rows of a sweep of ``steps`` shown rows, from ``start`` to ``stop`` (the scene's input unit)."""
+    _check_steps(steps)
+    full = _full_turn(mechanism)
+    notices: list[Notice] = []
+    if start is None or stop is None:
+        start, stop, periodic, notices = _default_range(mechanism, plan, seed, _size(mechanism, seed))
+    else:
+        periodic = False
+    if periodic:
+        shown = np.linspace(start, stop, steps, endpoint=False)
+    else:
+        shown = np.linspace(start, stop, steps)
+    values, mask, seed_row = _with_seed(shown, _seed_value(mechanism), periodic, full)
+    return InputGrid(values, _internal(mechanism, values), mask, seed_row, periodic, tuple(notices))

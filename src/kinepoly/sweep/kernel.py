@@ -1,0 +1,141 @@
+"""The 2D kernel of the sweep: the same constructions as ``kinepoly.geom``, over arrays of positions.
+
+A point or a vector of the plane is one complex number x + iy, so an array of N complex
+numbers is that point at N inputs; ``1j * v`` is v turned 90 degrees counter-clockwise (the
+``perp`` of ``geom.vec``) and multiplying by a unit complex number turns a vector. The
+formulas are those of ``geom.lines`` term by term: two lines cross in homogeneous coordinates
+relative to the first line's point, a circle meets a circle or a line in the same closed forms,
+and the same slack decides whether they meet.
+
+The sweep runs these under ``np.errstate(all="ignore")``: a row where two lines are parallel
+or a circle misses is flagged by its ``sin_angle`` or ``slack``, and whatever its values hold
+is masked before anything is reported (no NaN reaches an output).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = [
+    "Bools",
+    "Crossing",
+    "Points",
+    "PointsLike",
+    "Reals",
+    "circle_circle",
+    "circle_line",
+    "cross",
+    "cross_lines",
+    "dot",
+    "length",
+    "turn",
+]
+
+Points = npt.NDArray[np.complex128]
+"""N points (or vectors) of the plane, x + iy."""
+Reals = npt.NDArray[np.float64]
+Bools = npt.NDArray[np.bool_]
+PointsLike = Points | complex
+"""Points that may be one constant of the scene (a point of the frame, a line in a guide's frame)."""
+
+
+def cross(a: PointsLike, b: PointsLike) -> Reals:
+    """z-component of a x b, per row: positive when b lies counter-clockwise of a."""
+    return np.asarray((a.conjugate() * b).imag)
+
+
+def dot(a: PointsLike, b: PointsLike) -> Reals:
+    return np.asarray((a.conjugate() * b).real)
+
+
+def length(a: PointsLike) -> Reals:
+    return np.asarray(np.abs(a))
+
+
+def turn(angle_rad: float) -> complex:
+    """The unit complex number that turns a vector by ``angle_rad`` (a constant of the scene)."""
+    return complex(np.cos(angle_rad), np.sin(angle_rad))
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """Where two families of lines cross, row by row: through1 + along_first * direction1.
+
+    ``sin_angle`` is the sine of the angle between the lines: the caller flags
+    ``|sin_angle| <= PARALLEL_SIN`` as singular exactly as ``geom.lines.Intersection`` does, and
+    masks ``point`` there. ``along_first`` (and ``along_second()``) say how far along each line,
+    in units of its direction vector, the crossing lies: for a line perpendicular to a link
+    AB drawn with direction k x AB, that is the link's omega (or alpha) read off the polygon,
+    |v_B/A| / |AB| with its sense.
+    """
+
+    point: Points
+    sin_angle: Reals
+    along_first: Reals
+    offset: Points
+    direction1: PointsLike
+    w: Reals
+
+    def along_second(self) -> Reals:
+        """through2 + along_second * direction2 is the same point."""
+        return cross(self.offset, self.direction1) / self.w
+
+
+def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLike, direction2: PointsLike,
+                length1: float | None = None, length2: float | None = None) -> Crossing:
+    """Cross line 1 (through1, direction1) with line 2, in homogeneous coordinates relative to through1.
+
+    With the first line l1 = (-d1y, d1x, 0) through the local origin and the second
+    l2 = (-d2y, d2x, c2) through the offset o = through2 - through1, c2 = -(-d2y ox + d2x oy),
+    the crossing l1 x l2 is (d1x c2, d1y c2, w) with w = d1 x d2: the point through1 + d1 c2 / w.
+    ``length1``, ``length2``: the directions' lengths where the caller knows them (a link's
+    length, 1 for a slide), else they are measured.
+    """
+    offset = through2 - through1
+    c2 = cross(offset, direction2)
+    w = cross(direction1, direction2)
+    norm1 = length(direction1) if length1 is None else length1
+    norm2 = length(direction2) if length2 is None else length2
+    along = c2 / w
+    return Crossing(np.asarray(through1 + direction1 * along), w / (norm1 * norm2), along, np.asarray(offset),
+                    direction1, w)
+
+
+def circle_circle(c1: PointsLike, r1: float, c2: PointsLike, r2: float) -> tuple[Points, Points, Reals, Reals,
+                                                                                  Reals]:
+    """The two points where two circles meet, the one left of c1->c2 first; the slack h^2.
+
+    Returns (left, right, slack, d, h): slack < 0 where they do not meet (the points are then the
+    foot on c1c2), d = |c1 c2|, h the half chord. Coincident centres give a slack that is not
+    a number (``geom.circle_circle`` gives -1): either way the row does not close.
+    """
+    d_vec = c2 - c1
+    d = length(d_vec)
+    e = d_vec * (1.0 / d)
+    a = (d * d + (r1 - r2) * (r1 + r2)) / (2.0 * d)
+    slack = (r1 - a) * (r1 + a)
+    h = np.sqrt(np.maximum(slack, 0.0))
+    base = c1 + a * e
+    offset = (1j * e) * h
+    return np.asarray(base + offset), np.asarray(base - offset), slack, d, h
+
+
+def circle_line(center: PointsLike, radius: Reals | float, through: PointsLike,
+                direction: PointsLike) -> tuple[Points, Points, Reals, Reals]:
+    """The two points where a circle meets a line, the one further along the direction first.
+
+    Returns (ahead, behind, slack, half) with slack = r^2 - h^2, h the distance of the centre
+    from the line; slack < 0 where they do not meet; half the half chord.
+    """
+    u: PointsLike = direction / length(direction)  # type: ignore[assignment]
+    rel = center - through
+    along = dot(u, rel)
+    h = np.abs(cross(u, rel))
+    foot = through + along * u
+    slack = (radius - h) * (radius + h)
+    half = np.sqrt(np.maximum(slack, 0.0))
+    step = half * u
+    return np.asarray(foot + step), np.asarray(foot - step), np.asarray(slack), np.asarray(half)

@@ -1,0 +1,314 @@
+"""The sweep's plots as one PNG: transmission functions of order 0, 1 and 2, point paths,
+velocity and acceleration hodographs, transmission angles, and the centrodes of a chosen link.
+
+matplotlib is imported here only (``kinepoly solve`` never pays for it). Rows without a value
+leave gaps in the curves (masked, never NaN); inputs where the mechanism cannot be assembled
+are shaded grey, singular rows marked by thin red lines.
+"""
+
+from __future__ import annotations
+
+import io
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from kinepoly.sweep.run import Column, SweepResult
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = ["plot_figure", "plot_png"]
+
+_CANNOT, _SINGULAR = 3, 2
+_REACH = 3.0
+"""Centrodes run off to infinity where the link stops turning; the panel shows this many sizes around."""
+
+
+def _masked(col: Column, unwrap_period: float | None = None) -> np.ma.MaskedArray[Any, Any]:
+    """The column with its empty rows masked; angles unwrapped within each stretch of valid rows
+    (a stretch after a gap starts again in the principal range: no motion joins it to the last)."""
+    values = col.values.copy()
+    if unwrap_period is not None:
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], col.valid.astype(np.int8), [0]])))
+        for a, b in zip(edges[::2], edges[1::2]):
+            values[a:b] = np.unwrap(values[a:b], period=unwrap_period)
+    return np.ma.masked_array(values, mask=~col.valid)
+
+
+def _robust_limits(ax: Axes, values: list[np.ndarray], axis: str) -> bool:
+    """Near a dead point rates run off to infinity; keep the rest of the cycle readable.
+
+    When the extremes exceed five times the 95th percentile of |value|, the axis is limited to
+    the 1st..99th percentiles with a margin, and the label says so.
+    """
+    data = np.concatenate([v[np.isfinite(v)] for v in values if v.size]) if values else np.zeros(0)
+    if data.size < 20:
+        return False
+    typical = float(np.percentile(np.abs(data), 95))
+    if typical <= 0.0 or float(np.abs(data).max()) <= 5.0 * typical:
+        return False
+    low, high = (float(x) for x in np.percentile(data, [1, 99]))
+    margin = 0.15 * max(high - low, typical)
+    (ax.set_ylim if axis == "y" else ax.set_xlim)(low - margin, high + margin)
+    label = ax.get_ylabel() if axis == "y" else ax.get_xlabel()
+    (ax.set_ylabel if axis == "y" else ax.set_xlabel)(f"{label}, clipped")
+    return True
+
+
+def _mark_rows(ax: Axes, result: SweepResult) -> None:
+    x = result.input.values
+    step = float(np.median(np.abs(np.diff(x)))) if len(x) > 1 else 0.0
+    for level, colour, alpha in ((_CANNOT, "0.6", 0.35), (_SINGULAR, "tab:red", 0.25)):
+        rows = result.status == level
+        if not rows.any():
+            continue
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], rows.astype(np.int8), [0]])))
+        for a, b in zip(edges[::2], edges[1::2]):
+            ax.axvspan(x[a] - step / 2, x[b - 1] + step / 2, color=colour, alpha=alpha, lw=0)
+
+
+def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slider_kind: str, title: str,
+                    unit: str, slider_unit: str) -> None:
+    x = result.input.values
+    lines = 0
+    shown: list[np.ndarray] = []
+    for col in result.columns:
+        if col.kind in kinds:
+            wrap = 360.0 if col.kind == "angle" and result.scene.units.angle == "deg" else (
+                2 * np.pi if col.kind == "angle" else None)
+            ax.plot(x, _masked(col, wrap), lw=1.2, label=col.name)
+            shown.append(col.values[col.valid])
+            lines += 1
+    sliders = [c for c in result.columns if c.kind == slider_kind and c.name != result.input.name]
+    if sliders:
+        target = ax.twinx() if lines else ax
+        for col in sliders:
+            target.plot(x, _masked(col), lw=1.2, ls="--", label=col.name)
+        target.set_ylabel(slider_unit)
+        if lines:
+            target.legend(loc="lower right", fontsize=7)
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel(_input_label(result))
+    ax.set_ylabel(unit if lines else slider_unit)
+    _robust_limits(ax, shown, "y")
+    ax.grid(True, lw=0.3)
+    if lines or sliders:
+        ax.legend(loc="upper right", fontsize=7)
+    _mark_rows(ax, result)
+
+
+def _input_label(result: SweepResult) -> str:
+    units = result.scene.units
+    unit = units.angle if result.input.name.startswith("theta") else units.length
+    return f"{result.input.name} ({unit})"
+
+
+def _pairs(result: SweepResult, prefix: str) -> list[tuple[str, Column, Column]]:
+    out = []
+    for col in result.columns:
+        if col.name.startswith(prefix) and col.name.endswith("_x"):
+            name = col.name[len(prefix):-2]
+            out.append((name, col, result.column(col.name[:-2] + "_y")))
+    return out
+
+
+def _curve_panel(ax: Axes, pairs: list[tuple[str, Column, Column]], title: str, unit: str,
+                 pole: bool = False) -> None:
+    xs: list[np.ndarray] = []
+    ys: list[np.ndarray] = []
+    for name, cx, cy in pairs:
+        xs.append(cx.values[cx.valid & cy.valid])
+        ys.append(cy.values[cx.valid & cy.valid])
+        valid = cx.valid & cy.valid
+        line = ax.plot(np.ma.masked_array(cx.values, ~valid), np.ma.masked_array(cy.values, ~valid), lw=1.2,
+                       label=name)
+        if valid.any():
+            first = int(np.flatnonzero(valid)[0])
+            ax.plot([cx.values[first]], [cy.values[first]], "o", ms=3, color=line[0].get_color())
+    if pole:
+        ax.plot([0], [0], "k+", ms=8)
+        ax.annotate("o", (0, 0), textcoords="offset points", xytext=(4, 4), fontsize=8)
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel(f"x ({unit})")
+    ax.set_ylabel(f"y ({unit})")
+    clipped = pole and _hodograph_window(ax, xs, ys, unit)
+    ax.set_aspect("equal", adjustable="box" if clipped else "datalim")
+    ax.grid(True, lw=0.3)
+    if pairs:
+        ax.legend(loc="best", fontsize=7)
+
+
+def _hodograph_window(ax: Axes, xs: list[np.ndarray], ys: list[np.ndarray], unit: str) -> bool:
+    """A square window on the bulk of the hodographs when some run off to infinity (a dead point)."""
+    if not xs:
+        return False
+    points = np.concatenate(xs) + 1j * np.concatenate(ys)
+    points = points[np.isfinite(points)]
+    if points.size < 20:
+        return False
+    size = np.abs(points)
+    if float(size.max()) <= 5.0 * float(np.percentile(size, 95)):
+        return False
+    center = complex(float(np.median(points.real)), float(np.median(points.imag)))
+    reach = 1.15 * float(np.percentile(np.abs(points - center), 98))
+    ax.set_xlim(center.real - reach, center.real + reach)
+    ax.set_ylim(center.imag - reach, center.imag + reach)
+    ax.set_xlabel(f"x ({unit}), clipped")
+    ax.set_ylabel(f"y ({unit}), clipped")
+    return True
+
+
+def _draw_skeleton(ax: Axes, result: SweepResult, only: str | None = None) -> None:
+    ground = result.scene.ground
+    for link, points in result.skeleton:
+        if only is not None and link != only:
+            continue
+        if len(points) < 2 or link == ground:
+            for p in points:
+                ax.plot([p.real], [p.imag], "k^" if link == ground else "ks", ms=5, mfc="white")
+            continue
+        xs = [p.real for p in points] + ([points[0].real] if len(points) > 2 else [])
+        ys = [p.imag for p in points] + ([points[0].imag] if len(points) > 2 else [])
+        ax.plot(xs, ys, "-", color="0.25", lw=1.6, alpha=0.8)
+        ax.plot([p.real for p in points], [p.imag for p in points], "o", color="0.25", ms=3)
+
+
+def _paths_panel(ax: Axes, result: SweepResult) -> None:
+    paths = [p for p in _pairs(result, "r_") if "@" not in p[0]]  # A@4 runs where A runs
+    _curve_panel(ax, paths, "point paths (the mechanism at the scene's input)", result.scene.units.length)
+    _draw_skeleton(ax, result)
+
+
+def _transmission_panel(ax: Axes, result: SweepResult) -> None:
+    x = result.input.values
+    unit = result.scene.units.angle
+    for col in result.columns:
+        if col.kind == "transmission":
+            ax.plot(x, _masked(col), lw=1.2, label=col.name)
+    ax.set_title("transmission angles (0 dead point, 90 best)", fontsize=9)
+    ax.set_xlabel(_input_label(result))
+    ax.set_ylabel(unit)
+    ax.set_ylim(0, 90 if unit == "deg" else np.pi / 2)
+    ax.grid(True, lw=0.3)
+    ax.legend(loc="best", fontsize=7)
+    _mark_rows(ax, result)
+
+
+def _centrode_panel(ax: Axes, result: SweepResult) -> None:
+    fixed = [c for c in result.columns if c.kind == "centrode"]
+    local = [c for c in result.columns if c.kind == "centrode-local"]
+    name = fixed[0].name[:-2]
+    link = name.split("_", 1)[1]
+    link = link.split("-", 1)[1] if "-" in link else link[len(result.scene.ground or ""):]
+    fx, fy = fixed
+    lx, ly = local
+    center, reach = _window(result)
+    fixed_points = fx.values + 1j * fy.values
+    near = fx.valid & fy.valid & (np.abs(fixed_points - center) < reach)
+    ax.plot(np.ma.masked_array(fx.values, ~near), np.ma.masked_array(fy.values, ~near), lw=1.4,
+            label=f"fixed centrode of link {link}")
+    pose = _seed_pose(result, link)
+    if pose is not None:
+        origin, rotation = pose
+        moving = origin + rotation * (lx.values + 1j * ly.values)
+        shown = fx.valid & fy.valid & (np.abs(moving - center) < reach)
+        ax.plot(np.ma.masked_array(moving.real, ~shown), np.ma.masked_array(moving.imag, ~shown), lw=1.4, ls="--",
+                label=f"moving centrode (link {link} at the scene's input)")
+        _draw_skeleton(ax, result, only=link)
+    seed = _seed_row(result)
+    if seed is not None and fx.valid[seed]:
+        ax.plot([fx.values[seed]], [fy.values[seed]], "ko", ms=5, mfc="none",
+                label=f"{name} at the scene's input, where the centrodes touch")
+    ax.set_xlim(center.real - reach, center.real + reach)
+    ax.set_ylim(center.imag - reach, center.imag + reach)
+    ax.set_title(f"centrodes of link {link}: {name} (within {_REACH:g} x the mechanism's size)", fontsize=9)
+    unit = result.scene.units.length
+    ax.set_xlabel(f"x ({unit})")
+    ax.set_ylabel(f"y ({unit})")
+    ax.set_aspect("equal", adjustable="box")
+    ax.grid(True, lw=0.3)
+    ax.legend(loc="best", fontsize=7)
+
+
+def _seed_row(result: SweepResult) -> int | None:
+    rows = np.flatnonzero(result.input.values == result.seed_value)
+    return int(rows[0]) if rows.size else None
+
+
+def _window(result: SweepResult) -> tuple[complex, float]:
+    """The middle of the mechanism at the scene's input, and ``_REACH`` times its size."""
+    points = [p for _, pts in result.skeleton for p in pts]
+    if not points:
+        return 0j, 1.0
+    center = complex(np.mean([p.real for p in points]), np.mean([p.imag for p in points]))
+    size = max(max(abs(p - center) for p in points), 1e-9)
+    return center, _REACH * size
+
+
+def _seed_pose(result: SweepResult, link: str) -> tuple[complex, complex] | None:
+    """The link's pose at the scene's input, from two of its points (local and frame)."""
+    spec = result.scene.link(link)
+    points = dict(result.skeleton).get(link)
+    if points is None or not spec.points:
+        return None
+    local = [complex(*p.local) for p in spec.points]
+    if len(local) == 1:
+        return points[0] - local[0], 1.0 + 0j
+    rotation = (points[1] - points[0]) / (local[1] - local[0])
+    rotation /= abs(rotation)
+    return points[0] - rotation * local[0], rotation
+
+
+def plot_png(result: SweepResult, dpi: int = 110) -> bytes:
+    """All the sweep's plots on one sheet, as PNG bytes."""
+    import matplotlib.pyplot as plt
+
+    fig = plot_figure(result)
+    try:
+        buffer = io.BytesIO()
+        fig.savefig(buffer, format="png", dpi=dpi)
+        return buffer.getvalue()
+    finally:
+        plt.close(fig)
+
+
+def plot_figure(result: SweepResult) -> Figure:
+    """All the sweep's plots on one matplotlib figure (the caller closes it)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    units = result.scene.units
+    length = units.length
+    panels: list[Callable[[Axes], None]] = [
+        lambda ax: _function_panel(ax, result, ("angle",), "slider", "order 0: positions", units.angle, length),
+        lambda ax: _function_panel(ax, result, ("omega",), "slider-rate", "order 1: velocities", "rad/s",
+                                   f"{length}/s"),
+        lambda ax: _function_panel(ax, result, ("alpha",), "slider-acceleration", "order 2: accelerations",
+                                   "rad/s^2", f"{length}/s^2"),
+        lambda ax: _paths_panel(ax, result),
+    ]
+    if _pairs(result, "v_"):
+        panels.append(lambda ax: _curve_panel(ax, _pairs(result, "v_"), "velocity hodographs", f"{length}/s",
+                                              pole=True))
+    if _pairs(result, "a_"):
+        panels.append(lambda ax: _curve_panel(ax, _pairs(result, "a_"), "acceleration hodographs",
+                                              f"{length}/s^2", pole=True))
+    if any(c.kind == "transmission" for c in result.columns):
+        panels.append(lambda ax: _transmission_panel(ax, result))
+    if any(c.kind == "centrode" for c in result.columns):
+        panels.append(lambda ax: _centrode_panel(ax, result))
+    cols = 3
+    rows = (len(panels) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.3 * rows), squeeze=False)
+    for ax, panel in zip(axes.flat, panels):
+        panel(ax)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.set_visible(False)
+    fig.suptitle(f"{result.scene.title}: sweep of {result.input.name} over {result.rows} positions", fontsize=11)
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,81 @@
+"""Link poses over an array of inputs: world = origin + rotation * local, rotation a unit complex.
+
+The array counterpart of ``solve.pose.LinkPose``: ``origin`` is the link frame's origin in the
+frame (x + iy per row), ``rotation`` is e^(i theta) per row. theta itself is read off only when
+an angle is reported.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinepoly.sweep.kernel import Points, Reals, length
+
+__all__ = ["ArrayPose", "pose_from_point", "pose_from_two_points", "still_pose"]
+
+
+@dataclass(frozen=True)
+class ArrayPose:
+    """A link's place in the frame at every row."""
+
+    origin: Points
+    rotation: Points
+    still: bool = False
+    """The frame itself: world = local at every row."""
+
+    def world(self, local: tuple[float, float]) -> Points:
+        if self.still:
+            return np.full(len(self.origin), complex(local[0], local[1]))
+        if local[0] == 0.0 and local[1] == 0.0:
+            return self.origin
+        return self.origin + self.rotation * complex(local[0], local[1])
+
+    def to_local(self, world: Points) -> Points:
+        return (world - self.origin) * self.rotation.conjugate()
+
+    def theta(self, degrees: bool = False) -> Reals:
+        """theta in radians (or degrees), in (-pi, pi] like ``Solution.angle``."""
+        angle = np.angle(self.rotation, deg=degrees)
+        half = 180.0 if degrees else math.pi
+        low = angle == -half
+        if low.any():
+            angle[low] = half
+        return np.asarray(angle)
+
+    def row(self, k: int) -> tuple[float, float, float]:
+        """(x, y, theta) of row k, for the scalar solvers."""
+        z, u = complex(self.origin[k]), complex(self.rotation[k])
+        return (z.real, z.imag, math.atan2(u.imag, u.real))
+
+
+def still_pose(n: int) -> ArrayPose:
+    """The frame (or a link fixed to it): origin 0, not turned."""
+    return ArrayPose(np.zeros(n, np.complex128), np.ones(n, np.complex128), still=True)
+
+
+def pose_from_point(local: tuple[float, float], world: Points, rotation: Points) -> ArrayPose:
+    """The pose that puts ``local`` at ``world`` with the given rotation."""
+    if local[0] == 0.0 and local[1] == 0.0:
+        return ArrayPose(world, rotation)
+    return ArrayPose(world - rotation * complex(local[0], local[1]), rotation)
+
+
+def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, float], world_a: Points,
+                         world_b: Points, rigid: bool = False) -> ArrayPose:
+    """The pose that puts ``local_a`` at ``world_a`` and turns a->b along world_a->world_b.
+
+    The angle angle_of(world_b - world_a) - angle_of(local_b - local_a) of the scalar solver,
+    as a rotation: the unit vector of world_a->world_b times the conjugate unit of local a->b.
+    ``rigid``: the caller placed world_b at |local_b - local_a| from world_a (on a circle of
+    that radius), so the span need not be measured: the rotation is span / local.
+    """
+    span = world_b - world_a
+    local = complex(local_b[0] - local_a[0], local_b[1] - local_a[1])
+    if rigid:
+        rotation = span * (local.conjugate() / (abs(local) * abs(local)))
+    else:
+        rotation = span * (1.0 / length(span)) * (local / abs(local)).conjugate()
+    return pose_from_point(local_a, world_a, rotation)

@@ -1,0 +1,404 @@
+"""``sweep``: one scene over many inputs, the position plan and the construction executed on arrays.
+
+The plan is made once (backwards from ``[find]``, as ``kinepoly solve`` makes it); the assembly
+is taken at the scene's own input as ``solve`` takes it and followed from there; then the
+velocity and acceleration polygons are constructed for all rows at once. Each row gets a
+status:
+
+- ``ok``;
+- ``near-singular``: two direction lines meet at less than ``NEAR_SINGULAR_SIN`` (values kept,
+  with the warning ``solve`` would give);
+- ``singular``: two direction lines are parallel (a dead point or a change point): positions
+  are kept, velocities and accelerations are left empty;
+- ``cannot-assemble``: a group does not close there: everything but the input is left empty.
+
+No value of a row that is not valid is reported: columns carry a validity mask, and the CSV
+leaves those cells empty (never NaN).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from kinepoly.errors import SceneError
+from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
+from kinepoly.model.mechanism import Mechanism, build_mechanism
+from kinepoly.notice import Notice
+from kinepoly.scene.spec import LinkInput, Scene, SliderInput
+from kinepoly.solution import Asked, _needed_links, what_is_asked
+from kinepoly.solve.plan import NewtonGroup, PositionPlan, make_plan
+from kinepoly.solve.pose import LinkPose
+from kinepoly.sweep.acceleration import SweepAcceleration, sweep_acceleration
+from kinepoly.sweep.indexed import indexed
+from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
+from kinepoly.sweep.kernel import Bools, Points, Reals, dot
+from kinepoly.sweep.newton import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
+from kinepoly.sweep.polygon import JointSolve, LineCrossing
+from kinepoly.sweep.position import Progress, SweepPositions, seed_poses, sweep_positions
+from kinepoly.sweep.transmission import transmission_angles
+from kinepoly.sweep.velocity import SweepVelocity, slide_direction, sweep_velocity
+
+__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]
+
+STATUS = ("ok", "near-singular", "singular", "cannot-assemble")
+"""Row status by level: a row's level is the worst thing that happened to it."""
+
+_OK, _NEAR, _SINGULAR, _CANNOT = range(4)
+
+Kind = Literal["input", "angle", "omega", "alpha", "position", "velocity", "acceleration", "slider",
+               "slider-rate", "slider-acceleration", "coriolis", "centrode", "centrode-local", "transmission"]
+_ORDER = {"input": -1, "angle": 0, "position": 0, "slider": 0, "transmission": 0, "omega": 1, "velocity": 1,
+          "slider-rate": 1, "centrode": 1, "centrode-local": 1, "alpha": 2, "acceleration": 2,
+          "slider-acceleration": 2, "coriolis": 2}
+
+
+@dataclass(frozen=True)
+class Column:
+    """One reported quantity at every row; ``values`` hold 0.0 where ``valid`` is False."""
+
+    name: str
+    kind: Kind
+    values: Reals
+    valid: Bools
+
+    @property
+    def order(self) -> int:
+        """The order of the transmission function it belongs to: 0 position, 1 velocity, 2 acceleration."""
+        return _ORDER[self.kind]
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """A sweep: the input column, the asked columns, each row's status and warnings."""
+
+    scene: Scene
+    input: Column
+    columns: tuple[Column, ...]
+    status: npt.NDArray[np.int8]
+    warnings: dict[int, str]
+    notices: tuple[Notice, ...]
+    periodic: bool
+    seed_value: float
+    skeleton: tuple[tuple[str, tuple[complex, ...]], ...] = ()
+    """Each solved link's points at the scene's own input (frame coordinates), for drawings."""
+    timing: dict[str, float] = field(default_factory=dict)
+
+    def column(self, name: str) -> Column:
+        for col in (self.input, *self.columns):
+            if col.name == name:
+                return col
+        raise KeyError(name)
+
+    @property
+    def rows(self) -> int:
+        return len(self.input.values)
+
+    def status_name(self, row: int) -> str:
+        return STATUS[int(self.status[row])]
+
+
+@dataclass
+class _Flags:
+    """Each row's level and the reasons, gathered as the stages run."""
+
+    level: npt.NDArray[np.int8]
+    reasons: list[tuple[Bools, object]] = field(default_factory=list)
+
+    def raise_to(self, rows: Bools, level: int, reason: object) -> None:
+        """Rows that are not yet at ``level`` (or worse) go to it, with ``reason``."""
+        if rows.any():
+            np.maximum(self.level, np.where(rows, level, 0).astype(np.int8), out=self.level)
+            if (rows & (self.level == level)).any():
+                self.reasons.append((rows, reason))
+
+    def texts(self, shown: Bools) -> dict[int, str]:
+        """The warning text of each shown row that has one, keyed by its place among the shown rows."""
+        out: dict[int, list[str]] = {}
+        place = np.cumsum(shown) - 1
+        for rows, reason in self.reasons:
+            for row in np.flatnonzero(rows & shown):
+                text = reason(int(row)) if callable(reason) else str(reason)
+                entry = out.setdefault(int(place[row]), [])
+                if text not in entry:
+                    entry.append(text)
+        return {k: "; ".join(v) for k, v in out.items()}
+
+
+def _crossing_flags(flags: _Flags, ok: Bools, crossings: list[LineCrossing | JointSolve]) -> None:
+    """Singular and near-singular rows, as ``PolygonBuilder.cross_lines`` (and ``construct.group``) tell them."""
+    for crossing in crossings:
+        if isinstance(crossing, JointSolve):
+            where = f"group {crossing.group}"
+            singular = ok & ~(crossing.condition <= SINGULAR_CONDITION)
+            near = ok & ~singular & (crossing.condition > NEAR_SINGULAR_CONDITION)
+            flags.raise_to(singular, _SINGULAR, f"singular: the joint equations of {where} are singular, so its "
+                           "velocity and acceleration are not determined")
+            flags.raise_to(near, _NEAR, _condition_text(where, crossing.condition))
+            continue
+        sine = np.abs(crossing.sin_angle)
+        if bool(ok.all()) and float(sine.min()) >= NEAR_SINGULAR_SIN and np.isfinite(crossing.along.sum()):
+            continue
+        where = f"group {crossing.group} at {crossing.what}"
+        singular = ok & ~(sine > PARALLEL_SIN)
+        flags.raise_to(singular, _SINGULAR, f"singular: the direction lines of {where} are parallel, so its "
+                       "velocity and acceleration are not determined (a dead point or a change point)")
+        flags.raise_to(ok & ~singular & (sine < NEAR_SINGULAR_SIN), _NEAR, _near_text(where, sine))
+        flags.raise_to(ok & ~singular & ~np.isfinite(crossing.along), _SINGULAR,
+                       f"singular: the {crossing.kind} of {crossing.what} overflowed")
+
+
+def _near_text(where: str, sine: Reals) -> object:
+    def text(row: int) -> str:
+        s = float(sine[row])
+        return (f"near-singular: the direction lines of {where} meet at {math.degrees(math.asin(min(1.0, s))):.3g} "
+                f"deg; relative error about {4.0 * UNIT_ROUNDOFF / max(s, 1e-300):.1g}")
+    return text
+
+
+def _condition_text(where: str, condition: Reals) -> object:
+    def text(row: int) -> str:
+        c = float(condition[row])
+        return (f"near-singular: the joint equations of {where} have condition number {c:.2g}; relative error "
+                f"about {c * UNIT_ROUNDOFF:.1g}")
+    return text
+
+
+@dataclass
+class _Builder:
+    """Collects the columns of one sweep; their validity is settled once every row's level is known."""
+
+    mechanism: Mechanism
+    positions: SweepPositions
+    raw: list[tuple[str, Kind, Reals, Bools | None]] = field(default_factory=list)
+
+    def add(self, name: str, kind: Kind, values: Reals, extra: Bools | None = None) -> None:
+        self.raw.append((name, kind, values, extra))
+
+    def pair(self, name: str, kind: Kind, values: Points, extra: Bools | None = None) -> None:
+        self.add(f"{name}_x", kind, values.real, extra)
+        self.add(f"{name}_y", kind, values.imag, extra)
+
+    def columns(self, level: npt.NDArray[np.int8], shown: Bools) -> tuple[Column, ...]:
+        every = bool(shown.all())
+        masks = {}
+        for limit in (_SINGULAR, _NEAR):
+            valid = level <= limit
+            masks[limit] = (valid if every else valid[shown], bool(valid.all()))
+        out = []
+        for name, kind, values, extra in self.raw:
+            valid, clean = masks[_SINGULAR if _ORDER[kind] <= 0 else _NEAR]
+            values = values if every else values[shown]
+            if extra is not None:
+                valid = valid & (extra if every else extra[shown])
+                clean = bool(valid.all())
+            if not clean:
+                values = np.where(valid, values, 0.0)
+            out.append(Column(name, kind, np.asarray(values, np.float64), valid))
+        return tuple(out)
+
+
+def _rate(value: Reals | None) -> Reals:
+    assert value is not None, "every link of the plan has its rate"
+    return value
+
+
+def _angle_unit(scene: Scene, radians: Reals) -> Reals:
+    return np.degrees(radians) if scene.units.angle == "deg" else radians
+
+
+def _position(positions: SweepPositions, label: str) -> Points:
+    return positions.point(label.partition("@")[0])
+
+
+def _label(mechanism: Mechanism, link: str, point: str) -> str:
+    return point if mechanism.has_point(link, point) else f"{point}@{link}"
+
+
+def _columns(out: _Builder, asked: Asked, velocity: SweepVelocity | None, acceleration: SweepAcceleration | None,
+             input_column: str) -> None:
+    mech, positions = out.mechanism, out.positions
+    scene = mech.scene
+    for link in dict.fromkeys((*asked.omega, *asked.alpha)):
+        if f"theta_{link}" != input_column:
+            out.add(f"theta_{link}", "angle", positions.poses[link].theta(degrees=scene.units.angle == "deg"))
+        if link in asked.omega and velocity is not None:
+            out.add(f"omega_{link}", "omega", _rate(velocity.polygon.rate_of(link)))
+        if link in asked.alpha and acceleration is not None:
+            out.add(f"alpha_{link}", "alpha", _rate(acceleration.polygon.rate_of(link)))
+    for label in dict.fromkeys((*scene.find.velocity, *scene.find.acceleration)):
+        out.pair(f"r_{label}", "position", _position(positions, label))
+        if label in scene.find.velocity and velocity is not None:
+            out.pair(f"v_{label}", "velocity", velocity.tips[label])
+        if label in scene.find.acceleration and acceleration is not None:
+            out.pair(f"a_{label}", "acceleration", acceleration.tips[label])
+    for name in asked.sliders:
+        spec = mech.slider(name)
+        e = slide_direction(positions, spec)
+        if f"s_{name}" != input_column:
+            through = positions.poses[spec.guide].world(spec.through)
+            out.add(f"s_{name}", "slider", dot(e, _position(positions, spec.point) - through))
+        if velocity is not None:
+            out.add(f"s_dot_{name}", "slider-rate", dot(e, velocity.sliding[name]))
+        if acceleration is not None:
+            out.add(f"s_ddot_{name}", "slider-acceleration", dot(e, acceleration.sliding[name]))
+            out.pair(f"coriolis_{name}", "coriolis", acceleration.coriolis[name])
+
+
+def _centrode(out: _Builder, link: str, velocity: SweepVelocity, size: float,
+              level: npt.NDArray[np.int8]) -> list[Notice]:
+    """The instant center of ``link`` with the frame: the point of the link whose velocity image is the pole."""
+    mech, positions = out.mechanism, out.positions
+    point = mech.scene.link(link).points[0].name
+    v = velocity.polygon.tip(link, point)
+    omega = velocity.polygon.rate_of(link)
+    assert omega is not None
+    finite = np.abs(omega) * 1e9 * size > np.abs(v)
+    center = positions.point(point) + (1j * v) / np.where(finite, omega, 1.0)
+    name = f"I_{mech.ground}{link}" if len(link) == 1 and len(mech.ground or "") == 1 else f"I_{mech.ground}-{link}"
+    out.pair(name, "centrode", center, finite)
+    out.pair(f"{name}_local", "centrode-local", positions.poses[link].to_local(center), finite)
+    if not (finite | (level > _NEAR)).any():
+        return [Notice("centrode-at-infinity", f"link {link} does not turn, so its instant center with the "
+                       "frame is at infinity at every row: it has no centrodes")]
+    return []
+
+
+def _gap_notices(grid: InputGrid, ok: Bools, name: str, unit: str) -> list[Notice]:
+    if ok.all():
+        return []
+    shown = grid.values[grid.shown]
+    fails = ~ok[grid.shown]
+    if not fails.any():
+        return []
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], fails.astype(np.int8), [0]])))
+    ranges = [f"{shown[a]:.6g} to {shown[b - 1]:.6g}" for a, b in zip(edges[::2], edges[1::2])]
+    text = (f"the mechanism cannot be assembled for {name} from {', '.join(ranges)} {unit} "
+            f"({int(fails.sum())} of {len(shown)} rows; see each row's warning)")
+    if any(a > 0 and b < len(shown) for a, b in zip(edges[::2], edges[1::2])) or len(ranges) > 1:
+        text += ("; no motion of the input carries the mechanism across, so beyond such a range the sweep "
+                 "resumes on the assembly on the same side as before it")
+    return [Notice("cannot-assemble", text)]
+
+
+@dataclass(frozen=True)
+class PreparedSweep:
+    """What a sweep needs once per scene: the mechanism, what is asked, the plan, and the seed assembly."""
+
+    mechanism: Mechanism
+    asked: Asked
+    plan: PositionPlan
+    seed: dict[str, LinkPose]
+    centrode: str | None
+    prepare_s: float
+
+
+def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
+    """Build the mechanism, plan backwards from ``[find]`` and take the assembly at the scene's input."""
+    t0 = time.perf_counter()
+    mechanism = indexed(build_mechanism(scene))
+    if not isinstance(scene.input, (LinkInput, SliderInput)):
+        raise SceneError(f"{scene.source}: given: kinepoly sweep varies the input of [input]; a [given] scene "
+                         "has none to vary (give an [input] link or slider)")
+    if centrode is not None and (centrode not in mechanism.link_names or centrode == mechanism.ground):
+        links = ", ".join(n for n in mechanism.link_names if n != mechanism.ground)
+        raise SceneError(f"--centrode: expected a moving link of the scene ({links}), got {centrode!r}")
+    asked = what_is_asked(mechanism)
+    plan = make_plan(mechanism, _needed_links(mechanism, asked) | ({centrode} if centrode else set()))
+    seed = seed_poses(mechanism, plan)
+    return PreparedSweep(mechanism, asked, plan, seed, centrode, time.perf_counter() - t0)
+
+
+def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None, stop: float | None = None,
+              progress: Progress | None = None) -> SweepResult:
+    """Execute a prepared sweep over ``steps`` rows from ``start`` to ``stop`` (the input's unit)."""
+    if (start is None) != (stop is None):
+        raise SceneError("--from and --to: give both, or neither for the full turn (or the input's whole range)")
+    t0 = time.perf_counter()
+    mechanism, plan, seed = prepared.mechanism, prepared.plan, prepared.seed
+    with np.errstate(all="ignore"):
+        grid, positions = None, None
+        trial = full_turn_grid(mechanism, steps) if start is None and steps >= FULL_TURN_CHECK_ROWS else None
+        if trial is not None and not any(isinstance(g, NewtonGroup) for g in plan.groups):
+            positions = sweep_positions(mechanism, plan, trial.internal, trial.seed_row, seed, True, progress)
+            grid, positions = (trial, positions) if positions.ok.all() else (None, None)
+        if grid is None:
+            grid = input_grid(mechanism, plan, seed, steps, start, stop)
+        t1 = time.perf_counter()
+        result = _execute(mechanism, plan, prepared.asked, grid, seed, prepared.centrode, progress, positions)
+    t2 = time.perf_counter()
+    return replace(result, timing={"prepare_s": prepared.prepare_s, "range_s": t1 - t0, "execute_s": t2 - t1,
+                                   "total_s": prepared.prepare_s + t2 - t0})
+
+
+def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float | None = None,
+          centrode: str | None = None, progress: Progress | None = None) -> SweepResult:
+    """Sweep the scene's input over ``steps`` rows from ``start`` to ``stop`` (the input's unit).
+
+    Without ``start`` and ``stop``: a full turn, or the input's range where the mechanism closes.
+    ``centrode`` names a link whose instant center with the frame is reported (both centrodes).
+    """
+    return run_sweep(prepare_sweep(scene, centrode), steps=steps, start=start, stop=stop, progress=progress)
+
+
+def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: InputGrid, seed: dict[str, LinkPose],
+             centrode: str | None, progress: Progress | None, positions: SweepPositions | None) -> SweepResult:
+    scene = mechanism.scene
+    if positions is None:
+        positions = sweep_positions(mechanism, plan, grid.internal, grid.seed_row, seed, grid.periodic, progress)
+    flags = _Flags(np.zeros(len(grid.values), np.int8))
+    for failure in positions.failures:
+        flags.raise_to(failure.rows, _CANNOT, _failure_text(failure))
+    for rough in positions.near:
+        flags.raise_to(rough.rows & positions.ok, _NEAR, rough.why)
+    ok = positions.ok
+    velocity = acceleration = None
+    if asked.needs_velocity or centrode is not None:
+        velocity = sweep_velocity(mechanism, positions, plan, asked.velocity)
+        _crossing_flags(flags, ok, velocity.polygon.crossings)
+    if asked.needs_acceleration and velocity is not None:
+        acceleration = sweep_acceleration(mechanism, positions, plan, velocity, asked.acceleration)
+        _crossing_flags(flags, ok, acceleration.polygon.crossings)
+    name = input_name(mechanism)
+    out = _Builder(mechanism, positions)
+    _columns(out, asked, velocity, acceleration, name)
+    notices = list(grid.notices)
+    if centrode is not None and velocity is not None:
+        notices += _centrode(out, centrode, velocity, _size(positions, grid.seed_row), flags.level)
+    sines = velocity.line_sines if velocity is not None else None
+    for dyad_point, mu in transmission_angles(positions, plan, sines).items():
+        out.add(f"mu_{dyad_point}", "transmission", _angle_unit(scene, mu))
+    unit = scene.units.angle if isinstance(scene.input, LinkInput) else scene.units.length
+    notices += _gap_notices(grid, ok, name, unit)
+    shown = grid.shown
+    every = bool(shown.all())
+    input_column = Column(name, "input", grid.values if every else grid.values[shown],
+                          np.ones(int(shown.sum()), np.bool_))
+    skeleton = tuple((link, tuple(complex(*pose.world(p.local)) for p in scene.link(link).points))
+                     for link, pose in seed.items())
+    return SweepResult(scene, input_column, out.columns(flags.level, shown),
+                       flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
+                       tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), skeleton)
+
+
+def _failure_text(failure: object) -> object:
+    from kinepoly.sweep.position import Failure
+
+    assert isinstance(failure, Failure)
+    joint = f"joint {failure.joint} of " if failure.joint else ""
+
+    def text(row: int) -> str:
+        return f"cannot assemble {joint}group {failure.group}: {failure.why(row)}"
+    return text
+
+
+def _size(positions: SweepPositions, row: int) -> float:
+    poses = positions.scalar_poses(row)
+    mech = positions.mechanism
+    points = [complex(*pose.world(p.local)) for link, pose in poses.items() for p in mech.scene.link(link).points]
+    return max((abs(a - b) for a in points for b in points), default=1.0) or 1.0
