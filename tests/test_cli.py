@@ -9,10 +9,10 @@ import sys
 from pathlib import Path
 
 import pytest
+from tests.scenes import EXAMPLES, four_bar, slider_crank
 
 import kinepoly
 from kinepoly.cli import main
-from tests.scenes import EXAMPLES, four_bar, slider_crank
 
 FOUR_BAR = (EXAMPLES / "four-bar.toml").read_text()
 

@@ -11,10 +11,10 @@ import math
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from tests.scenes import four_bar, slider_crank, slotted_lever
 
 import kinepoly
 from kinepoly.errors import AssemblyError, SingularityError
-from tests.scenes import four_bar, slider_crank, slotted_lever
 
 lengths = st.floats(min_value=10.0, max_value=200.0)
 angles = st.floats(min_value=-180.0, max_value=180.0)

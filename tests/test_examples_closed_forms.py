@@ -6,14 +6,14 @@ import cmath
 import math
 
 import pytest
+from tests.scenes import EXAMPLES
 
 import kinepoly
-from tests.scenes import EXAMPLES
 
 REL = 1e-10
 
 
-def close(a: complex | float, b: complex | float, scale: float) -> bool:
+def close(a: complex, b: complex, scale: float) -> bool:
     return abs(a - b) <= REL * scale
 
 

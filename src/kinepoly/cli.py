@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 from collections.abc import Sequence
@@ -117,6 +118,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KinepolyError as error:
         print(f"kinepoly: error: {error}", file=sys.stderr)
         return error.exit_code
+    except BrokenPipeError:  # the reader (``| head``) left early: what it read is all it wanted
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
     except Exception as error:  # noqa: BLE001 - the promise is: never a traceback
         print(f"kinepoly: internal error: {type(error).__name__}: {error}; please report it with the scene",
               file=sys.stderr)

@@ -36,7 +36,7 @@ from kinepoly.solve.plan import PositionPlan, make_plan
 from kinepoly.solve.pose import Pose
 from kinepoly.solve.position import describe_input, solve_position
 
-__all__ = ["Asked", "Inside", "SliderValues", "Solution", "solve", "what_is_asked"]
+__all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "what_is_asked"]
 
 
 @dataclass(frozen=True)
@@ -142,7 +142,8 @@ def what_is_asked(mechanism: Mechanism) -> Asked:
     )
 
 
-def _needed_links(mechanism: Mechanism, asked: Asked) -> set[str]:
+def needed_links(mechanism: Mechanism, asked: Asked) -> set[str]:
+    """The links whose poses the asked quantities need: asked links, owners of asked points, sliders' links."""
     links: set[str] = set(asked.omega) | set(asked.alpha)
     for link, point in (*asked.velocity, *asked.acceleration):
         links.add(link)
@@ -161,7 +162,7 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     inner = mechanism if frame.is_identity else build_mechanism(frame.scene)
     asked = what_is_asked(inner)
     center_plan = plan_instant_centers(inner) if scene.find.instant_centers else None
-    plan = make_plan(inner, _needed_links(inner, asked) | set(center_plan.links_needed if center_plan else ()))
+    plan = make_plan(inner, needed_links(inner, asked) | set(center_plan.links_needed if center_plan else ()))
     position = solve_position(inner, plan, origin=frame.origin)
     t1 = time.perf_counter()
     unit = scene.units.length

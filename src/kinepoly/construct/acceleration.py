@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from kinepoly.construct.builder import Crossing, PolygonBuilder, sense
-from kinepoly.construct.steps import DrawnVector, Step
+from kinepoly.construct.steps import Direction, DrawnVector, Step
 from kinepoly.construct.velocity import VelocityPolygon, read_rate, slide_direction
 from kinepoly.errors import SceneError
 from kinepoly.geom import Line, intersect
@@ -92,7 +92,11 @@ class _Context:
                             f"|{label}| = 2 x {abs(w):.6g} x {norm(v_rel):.6g} = {norm(term):.6g} {b.unit}; its "
                             f"direction is the relative velocity turned 90 deg in the sense of omega ({sense(w)}), "
                             f"laid from the tip of a_{on_frame}.", label, ((label, "magnitude and direction"),),
-                            (vector,), value=term))
+                            (vector,), value=term, topic="coriolis",
+                            params=(("term", label), ("guide", slider.guide), ("ground", b.mechanism.ground or ""),
+                                    ("omega", abs(w)), ("relative", f"v_{on_moving}/{on_frame}"),
+                                    ("speed", norm(v_rel)), ("magnitude", norm(term)), ("sense", sense(w)),
+                                    ("start", on_frame))))
         return vector
 
     def slide_values(self, slider: SliderSpec, link: str, point: str) -> None:
@@ -119,11 +123,27 @@ def _other(joint: Revolute | SliderSpec, link: str) -> str:
 
 
 def _record(ctx: _Context, label: str, equation: str, first: Line, second: Line, value: Vec,
-            vectors: list[DrawnVector], known: tuple[tuple[str, str], ...]) -> None:
+            vectors: list[DrawnVector], known: tuple[tuple[str, str], ...],
+            directions: tuple[Direction, Direction]) -> None:
     text = (f"Lay the known terms end to end, then draw {first.label} and {second.label}; they cross at "
             f"{label.lower()}: o{label.lower()} is a_{label} = ({value[0]:.6g}, {value[1]:.6g}) {ctx.b.unit}.")
     ctx.b.steps.append(Step("acceleration", "intersection", equation, text, label.lower(), known,
-                            tuple(vectors), (first, second), value=value))
+                            tuple(vectors), (first, second), value=value, topic="intersection",
+                            params=(("point", label),), directions=directions))
+
+
+def _along_normal(ctx: _Context, term: str, known_link: str, known_point: str, point: str,
+                  normal: DrawnVector) -> Direction:
+    """What ``normal_line`` draws, as data: the tangential term, after the normal one."""
+    return Direction(term, "perpendicular", f"{known_point}{point}", ctx.b.label(known_link, known_point).lower(),
+                     after=normal.label)
+
+
+def _along_slide(ctx: _Context, term: str, slider: SliderSpec, other: str, point: str,
+                 laid: list[DrawnVector]) -> Direction:
+    """What ``slide_line`` draws, as data: the sliding term, after the Coriolis term when there is one."""
+    return Direction(term, "parallel", slider.name, ctx.b.label(other, point).lower(),
+                     after=laid[-1].label if laid else "")
 
 
 def _normals_step(ctx: _Context, vectors: list[DrawnVector]) -> None:
@@ -134,7 +154,8 @@ def _normals_step(ctx: _Context, vectors: list[DrawnVector]) -> None:
         ctx.b.steps.append(Step("acceleration", "known", " and ".join(v.label for v in normals),
                                 f"Lay the normal terms from the velocity polygon: {text}.",
                                 ", ".join(v.label for v in normals),
-                                tuple((v.label, "magnitude and direction") for v in normals), tuple(normals)))
+                                tuple((v.label, "magnitude and direction") for v in normals), tuple(normals),
+                                topic="normals"))
 
 
 def _tangential(ctx: _Context, link: str, first: str, second: str, line: Line, value: Vec) -> None:
@@ -148,10 +169,12 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point
         line1, n1 = ctx.normal_line(_other(dyad.first_joint, i), p1, p2, i)
+        direction1 = _along_normal(ctx, f"a^t_{p2}/{p1}", _other(dyad.first_joint, i), p1, p2, n1)
         vectors = [n1]
         if isinstance(dyad.second_joint, Revolute):
             p3 = dyad.second_joint.point
             line2, n2 = ctx.normal_line(_other(dyad.second_joint, j), p3, p2, j)
+            direction2 = _along_normal(ctx, f"a^t_{p2}/{p3}", _other(dyad.second_joint, j), p3, p2, n2)
             vectors.append(n2)
             equation = f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{p3} + a^n_{p2}/{p3} + a^t_{p2}/{p3}"
         else:
@@ -159,6 +182,7 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
             line2, cv = ctx.slide_line(dyad.second_joint, k2, j, p2)
             vectors += cv
             at2 = b.label(k2, p2)
+            direction2 = _along_slide(ctx, f"a_{p2}/{at2}", dyad.second_joint, k2, p2, cv)
             cor = f" + a^c_{p2}/{at2}" if cv else ""
             equation = f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{at2}{cor} + a_{p2}/{at2}"
         _normals_step(ctx, vectors)
@@ -166,7 +190,8 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         b.add_tip(i, p2, value)
         _record(ctx, p2, equation, line1, line2, value, vectors,
                 tuple((v.label, "magnitude and direction") for v in vectors) + ((line1.label, "direction"),
-                                                                                 (line2.label, "direction")))
+                                                                                 (line2.label, "direction")),
+                (direction1, direction2))
         _tangential(ctx, i, p1, p2, line1, value)
         if isinstance(dyad.second_joint, Revolute):
             _tangential(ctx, j, dyad.second_joint.point, p2, line2, value)
@@ -192,7 +217,9 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         cor = f" + a^c_{at}/{p}" if len(vectors) > 1 else ""
         _record(ctx, at, f"a_{at} = a_{q} + a^n_{at}/{q} + a^t_{at}/{q} = a_{p}{cor} + a_{at}/{p}", line1, line2,
                 value, vectors, tuple((v.label, "magnitude and direction") for v in vectors)
-                + ((line1.label, "direction"), (line2.label, "direction")))
+                + ((line1.label, "direction"), (line2.label, "direction")),
+                (_along_normal(ctx, f"a^t_{at}/{q}", _other(outer[guide], guide), q, p, n1),
+                 _along_slide(ctx, f"a_{at}/{p}", slider, _other(outer[block], block), p, vectors[1:])))
         _tangential(ctx, guide, q, p, line1, value)
         ctx.slide_values(slider, block, p)
     else:
@@ -210,8 +237,12 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         line2, v2 = ctx.slide_line(dyad.second_joint, side2, j, point)
         value = b.cross_lines(line1, line2, point, where)
         b.add_tip(moving, point, value)
-        _record(ctx, point, f"a_{point} = a_{b.label(side1, point)} + ... = a_{b.label(side2, point)} + ...",
-                line1, line2, value, v1 + v2, ((line1.label, "direction"), (line2.label, "direction")))
+        a1, a2 = b.label(side1, point), b.label(side2, point)
+        side_terms = ["".join(f" + {v.label}" for v in laid) for laid in (v1, v2)]
+        _record(ctx, point, f"a_{point} = a_{a1}{side_terms[0]} + a_{point}/{a1} = a_{a2}{side_terms[1]} + "
+                f"a_{point}/{a2}", line1, line2, value, v1 + v2, ((line1.label, "direction"), (line2.label, "direction")),
+                (_along_slide(ctx, f"a_{point}/{a1}", first_slider, side1, point, v1),
+                 _along_slide(ctx, f"a_{point}/{a2}", dyad.second_joint, side2, point, v2)))
         ctx.slide_values(first_slider, moving if dyad.kind == "RPP" else i, point)
         ctx.slide_values(dyad.second_joint, j, point)
 
@@ -225,7 +256,9 @@ def _drive(ctx: _Context) -> None:
         b.steps.append(Step("acceleration", "known", f"alpha{mech.ground}{inp.link} given",
                             f"The input link {inp.link} has alpha{mech.ground}{inp.link} = {inp.alpha:.6g} rad/s^2 "
                             f"({sense(inp.alpha)}); its pivot is at the pole o.", f"alpha{mech.ground}{inp.link}",
-                            value=(inp.alpha,)))
+                            value=(inp.alpha,), topic="input-rate",
+                            params=(("link", inp.link), ("ground", mech.ground or ""), ("rate", abs(inp.alpha)),
+                                    ("sense", sense(inp.alpha)))))
     elif isinstance(inp, SliderInput):
         slider = mech.slider(inp.slider)
         ctx.sliding[slider.name] = b.lay_driven_slider(slider, inp.s_ddot, slide_direction(b.pose, slider))
@@ -244,7 +277,8 @@ def _given(ctx: _Context, given: GivenInput) -> None:
                             f"o: |a_{g.name}| = {norm(g.acceleration):.6g} {b.unit}.", g.name.lower(),
                             ((f"a_{g.name}", "magnitude and direction"),),
                             (DrawnVector(f"a_{g.name}", (0.0, 0.0), g.acceleration, "absolute"),),
-                            value=g.acceleration))
+                            value=g.acceleration, topic="given-point",
+                            params=(("point", g.name), ("magnitude", norm(g.acceleration)))))
     first, second = given.points[0], given.points[1]
     assert first.acceleration is not None and second.acceleration is not None
     r = sub(b.world(second.name), b.world(first.name))
@@ -264,7 +298,9 @@ def _given(ctx: _Context, given: GivenInput) -> None:
                         f"a^n_{second.name}/{first.name}",
                         vectors=(DrawnVector(f"a^n_{second.name}/{first.name}", first.acceleration, mid, "normal"),
                                  DrawnVector(f"a^t_{second.name}/{first.name}", mid, second.acceleration,
-                                             "tangential"))))
+                                             "tangential")),
+                        topic="given-normal", params=(("point", second.name), ("reference", first.name),
+                                                      ("magnitude", norm(normal)))))
     read_rate(b, link, first.name, second.name, sub(second.acceleration, mid), r)
 
 

@@ -14,7 +14,7 @@ import math
 from collections.abc import Callable
 from typing import Literal
 
-from kinepoly.construct.steps import DrawnVector, Step
+from kinepoly.construct.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom import Intersection, Line, ParallelLinesError, intersect
 from kinepoly.geom.tolerances import COLLINEAR_SIN
@@ -136,6 +136,8 @@ class PolygonBuilder:
             vectors: tuple[DrawnVector, ...] = (DrawnVector(f"v_{name}", start, end, "relative"),)
             known: tuple[tuple[str, str], ...] = ((f"v_{ref_label}", "magnitude and direction"),
                                                   (f"v_{name}", "magnitude and direction"))
+            rates: tuple[tuple[str, str | float], ...] = (("magnitude", norm(rel)), ("rate", abs(w)),
+                                                          ("sense", sense(w)))
         else:
             w = self.omega_of(link)
             alpha = self.rate_of(link) or 0.0
@@ -150,9 +152,13 @@ class PolygonBuilder:
                        DrawnVector(f"a^t_{name}", mid, end, "tangential"))
             known = ((f"a_{ref_label}", "magnitude and direction"), (f"a^n_{name}", "magnitude and direction"),
                      (f"a^t_{name}", "magnitude and direction"))
+            rates = (("magnitude", norm(sub(end, start))), ("rate", abs(alpha)), ("sense", sense(alpha)),
+                     ("omega", abs(w)), ("normal", norm(normal)), ("tangential", norm(tangential)))
         self.steps.append(Step(self.kind, "known", f"{self.symbol}_{label} = {self.symbol}_{ref_label} + "
                                f"{self.symbol}_{name}", text, self.tip_name(label), known, vectors,
-                               value=end))
+                               value=end, topic="relative",
+                               params=(("point", label), ("reference", ref_label), ("link", link),
+                                       ("ground", self._ground()), ("length", norm(r)), *rates)))
         return end
 
     def omega_of(self, link: str) -> float:
@@ -184,7 +190,9 @@ class PolygonBuilder:
             value = a
             text = (f"The tips {la.lower()} and {lb.lower()} coincide: link {link} translates at this "
                     f"instant, so {label.lower()} coincides with them.")
-            self.steps.append(Step(self.kind, "image", equation, text, self.tip_name(label), value=value))
+            self.steps.append(Step(self.kind, "image", equation, text, self.tip_name(label), value=value,
+                                   topic="image-translating",
+                                   params=(("link", link), ("point", label), ("first", la), ("second", lb))))
             return value
         line_a = Line(a, rotate(polygon_side, angle_a), f"from {la.lower()} at angle {lb}{la}{label}")
         line_b = Line(b, rotate(scale(-1.0, polygon_side), angle_b), f"from {lb.lower()} at angle {la}{lb}{label}")
@@ -195,8 +203,16 @@ class PolygonBuilder:
                     f"{math.degrees(angle_a):.4g} deg to {la.lower()}{lb.lower()} and from {lb.lower()} one at "
                     f"{math.degrees(angle_b):.4g} deg to {lb.lower()}{la.lower()}, the angles of triangle "
                     f"{la}{lb}{label} at {la} and {lb}; they cross at {label.lower()}.")
+            first_deg = math.degrees(math.remainder(angle_a, 2.0 * math.pi))
+            second_deg = math.degrees(math.remainder(angle_b, 2.0 * math.pi))
             self.steps.append(Step(self.kind, "image", equation, text, self.tip_name(label),
-                                   lines=(line_a, line_b), value=value))
+                                   lines=(line_a, line_b), value=value, topic="image",
+                                   params=(("link", link), ("point", label), ("first", la), ("second", lb),
+                                           ("angle_first", first_deg), ("angle_second", second_deg)),
+                                   directions=(Direction("", "at-angle", f"{la}{lb}".lower(), la.lower(),
+                                                         angle_deg=first_deg),
+                                               Direction("", "at-angle", f"{lb}{la}".lower(), lb.lower(),
+                                                         angle_deg=second_deg))))
             return value
         ratio = ((at[0] - wa[0]) * side[0] + (at[1] - wa[1]) * side[1]) / (norm(side) ** 2)
         height = cross(side, sub(at, wa)) / (norm(side) ** 2)
@@ -206,7 +222,11 @@ class PolygonBuilder:
                 f"ratio {ratio:.6g} as {label}'s foot divides {la}{lb}, and step off {height:.6g} times "
                 f"|{la.lower()}{lb.lower()}| perpendicular to it, on the same side as {label}.")
         self.steps.append(Step(self.kind, "proportional", equation, text, self.tip_name(label),
-                               lines=(Line(a, polygon_side, f"{la.lower()}{lb.lower()}"),), value=value))
+                               lines=(Line(a, polygon_side, f"{la.lower()}{lb.lower()}"),), value=value,
+                               topic="proportional",
+                               params=(("link", link), ("point", label), ("first", la), ("second", lb),
+                                       ("ratio", ratio), ("height", height)),
+                               directions=(Direction("", "along", f"{la}{lb}".lower(), la.lower()),)))
         return value
 
     def lay_driven_slider(self, slider: SliderSpec, amount: float, direction: Vec) -> Vec:
@@ -223,7 +243,9 @@ class PolygonBuilder:
                                f"Lay {self.symbol}_{label}: |{name}{slider.name}| = {abs(amount):.6g} {self.unit} "
                                f"along slider {slider.name}'s line, from the pole o.", label.lower(),
                                ((f"{self.symbol}_{label}", "magnitude and direction"),),
-                               (DrawnVector(f"{self.symbol}_{label}", (0.0, 0.0), value, "absolute"),), value=value))
+                               (DrawnVector(f"{self.symbol}_{label}", (0.0, 0.0), value, "absolute"),), value=value,
+                               topic="driven-slider", params=(("slider", slider.name), ("point", label),
+                                                              ("amount", amount))))
         return rel
 
     # -- the intersection of two direction lines ----------------------------------------------------

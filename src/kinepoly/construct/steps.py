@@ -7,11 +7,12 @@ from typing import Literal
 
 from kinepoly.geom.lines import Line
 
-__all__ = ["DrawnVector", "Step", "Term"]
+__all__ = ["Direction", "DrawnVector", "Step", "Term"]
 
 Vec = tuple[float, float]
 Term = Literal["absolute", "relative", "normal", "tangential", "coriolis", "sliding"]
 StepKind = Literal["known", "image", "proportional", "intersection", "coriolis", "read", "linear-solve"]
+Relation = Literal["perpendicular", "parallel", "at-angle", "along"]
 
 
 @dataclass(frozen=True)
@@ -25,12 +26,50 @@ class DrawnVector:
 
 
 @dataclass(frozen=True)
+class Direction:
+    """A direction line of a step as data, so that any language can say it (``Line.label`` is English).
+
+    The line carries the unknown ``term`` (``v_B/A``, ``a^t_B/A``, ``a_B/B@1``; empty for the lines
+    of an image). It is ``relation`` to ``reference``: perpendicular to a segment of the mechanism
+    (``AB``), parallel to the slide of a slider (``14``), at ``angle_deg`` to a side of the polygon
+    (``ab``) or along it. It is drawn through the polygon point ``through`` (``a``, ``b@4``), or,
+    when ``after`` names a term laid from there (``a^n_B/A``, ``a^c_B@4/B``), through that term's end.
+    """
+
+    term: str
+    relation: Relation
+    reference: str
+    through: str
+    after: str = ""
+    angle_deg: float = 0.0
+
+
+@dataclass(frozen=True)
 class Step:
     """One step of the construction.
 
     ``known`` says, for each term of the vector equation, what is known of it
     ("magnitude and direction" or "direction"); ``lines`` are the direction lines drawn
     (physical units, through a tip, along a direction); ``result`` names what the step yields.
+
+    ``text`` is the step in English. For texts in other languages the step says what it does as
+    data: ``topic`` names the move and ``params`` its language-neutral arguments (names of points,
+    links, sliders and tips; numbers), ``directions`` describe ``lines`` one for one:
+
+    - ``input-rate``: link, ground, rate, sense (omega12 in the velocity polygon, alpha12 in the other)
+    - ``driven-slider``: slider, point, amount (s_dot or s_ddot, along the slide from the pole)
+    - ``given-point``: point, magnitude
+    - ``relative``: point, reference, link, ground, length, magnitude, rate, sense; for an
+      acceleration also omega, normal, tangential (rate and sense are then alpha's)
+    - ``image``: link, point, first, second, angle_first, angle_second (degrees)
+    - ``image-translating``: link, point, first, second
+    - ``proportional``: link, point, first, second, ratio, height
+    - ``intersection``: point (the directions say the rest)
+    - ``read``: link, ground, term, first, second, magnitude, length, rate, sense
+    - ``coriolis``: term, guide, ground, omega, relative, speed, magnitude, sense, start
+    - ``normals``: none (the vectors are the normal terms)
+    - ``given-normal``: point, reference, magnitude
+    Steps of kind ``linear-solve`` have no topic: their ``result`` lists the tips found.
     """
 
     polygon: Literal["velocity", "acceleration"]
@@ -42,3 +81,13 @@ class Step:
     vectors: tuple[DrawnVector, ...] = ()
     lines: tuple[Line, ...] = ()
     value: tuple[float, ...] = ()
+    topic: str = ""
+    params: tuple[tuple[str, str | float], ...] = ()
+    directions: tuple[Direction, ...] = ()
+
+    def param(self, name: str) -> str | float:
+        """The named argument of the step's topic (KeyError when the topic has none of that name)."""
+        for key, value in self.params:
+            if key == name:
+                return value
+        raise KeyError(f"step {self.equation!r} ({self.topic or self.kind}) has no parameter {name!r}")

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from kinepoly.construct.builder import Crossing, PolygonBuilder, sense
-from kinepoly.construct.steps import DrawnVector, Step
+from kinepoly.construct.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SceneError
 from kinepoly.geom import Line, intersect
 from kinepoly.geom.vec import Vec, cross, dot, norm, perp, rotate, sub, unit
@@ -52,7 +52,10 @@ def read_rate(builder: PolygonBuilder, link: str, first: str, second: str, relat
             f"{abs(value):.6g} {'rad/s' if symbol == 'omega' else 'rad/s^2'}, {sense(value)} "
             f"(the sense in which {term} turns {second} about {first}).")
     builder.steps.append(Step(builder.kind, "read", f"{symbol}{ground}{link} = |{term}| / |{first}{second}|",
-                              text, f"{symbol}{ground}{link}", value=(value,)))
+                              text, f"{symbol}{ground}{link}", value=(value,), topic="read",
+                              params=(("link", link), ("ground", ground), ("term", term), ("first", first),
+                                      ("second", second), ("magnitude", norm(relative)), ("length", length),
+                                      ("rate", abs(value)), ("sense", sense(value)))))
     builder.set_rate(link, value)
     return value
 
@@ -69,7 +72,9 @@ def _drive(builder: PolygonBuilder, sliding: dict[str, Vec]) -> None:
         builder.steps.append(Step("velocity", "known", f"omega{mech.ground}{inp.link} given",
                                   f"The input link {inp.link} turns at omega{mech.ground}{inp.link} = "
                                   f"{inp.omega:.6g} rad/s ({sense(inp.omega)}); its pivot is at the pole o.",
-                                  f"omega{mech.ground}{inp.link}", value=(inp.omega,)))
+                                  f"omega{mech.ground}{inp.link}", value=(inp.omega,), topic="input-rate",
+                                  params=(("link", inp.link), ("ground", mech.ground or ""),
+                                          ("rate", abs(inp.omega)), ("sense", sense(inp.omega)))))
     elif isinstance(inp, SliderInput):
         slider = mech.slider(inp.slider)
         sliding[slider.name] = builder.lay_driven_slider(slider, inp.s_dot, slide_direction(pose, slider))
@@ -85,7 +90,8 @@ def _given(builder: PolygonBuilder, given: GivenInput) -> None:
                                   f"pole o: |v_{g.name}| = {norm(g.velocity):.6g} {builder.unit}.", g.name.lower(),
                                   ((f"v_{g.name}", "magnitude and direction"),),
                                   (DrawnVector(f"v_{g.name}", (0.0, 0.0), g.velocity, "absolute"),),
-                                  value=g.velocity))
+                                  value=g.velocity, topic="given-point",
+                                  params=(("point", g.name), ("magnitude", norm(g.velocity)))))
     first, second = given.points[0], given.points[1]
     at = sub(builder.world(second.name), builder.world(first.name))
     rel = sub(second.velocity, first.velocity)
@@ -103,6 +109,16 @@ def _revolute_line(builder: PolygonBuilder, known_link: str, known_point: str, p
     start = builder.tip(known_link, known_point)
     r = sub(builder.world(point), builder.world(known_point))
     return Line(start, perp(r), f"perpendicular to {known_point}{point} through {builder.label(known_link, known_point).lower()}")
+
+
+def _perpendicular(builder: PolygonBuilder, term: str, known_link: str, known_point: str, point: str) -> Direction:
+    """What ``_revolute_line`` draws, as data."""
+    return Direction(term, "perpendicular", f"{known_point}{point}", builder.label(known_link, known_point).lower())
+
+
+def _parallel(builder: PolygonBuilder, term: str, slider: SliderSpec, other: str, point: str) -> Direction:
+    """What ``_slide_line`` draws (and the RPR dyad's slide line), as data."""
+    return Direction(term, "parallel", slider.name, builder.label(other, point).lower())
 
 
 def _slide_line(builder: PolygonBuilder, slider: SliderSpec, other: str, point: str) -> Line:
@@ -124,12 +140,14 @@ def _other(joint: Revolute | SliderSpec, link: str) -> str:
 
 
 def _record_intersection(builder: PolygonBuilder, dyad: Dyad, label: str, equation: str,
-                         first: Line, second: Line, value: Vec, known: tuple[tuple[str, str], ...]) -> None:
+                         first: Line, second: Line, value: Vec, known: tuple[tuple[str, str], ...],
+                         directions: tuple[Direction, Direction]) -> None:
     text = (f"Through the known tips draw the two directions: {first.label}, and {second.label}. "
             f"They cross at {label.lower()}: o{label.lower()} is v_{label} = ({value[0]:.6g}, {value[1]:.6g}) "
             f"{builder.unit}.")
     builder.steps.append(Step("velocity", "intersection", equation, text, label.lower(), known,
-                              lines=(first, second), value=value))
+                              lines=(first, second), value=value, topic="intersection", params=(("point", label),),
+                              directions=directions))
 
 
 def _slide_rel(builder: PolygonBuilder, slider: SliderSpec, link: str, point: str, sliding: dict[str, Vec]) -> None:
@@ -148,9 +166,11 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point
         line1 = _revolute_line(builder, _other(dyad.first_joint, i), p1, p2)
+        direction1 = _perpendicular(builder, f"v_{p2}/{p1}", _other(dyad.first_joint, i), p1, p2)
         if isinstance(dyad.second_joint, Revolute):
             p3 = dyad.second_joint.point
             line2 = _revolute_line(builder, _other(dyad.second_joint, j), p3, p2)
+            direction2 = _perpendicular(builder, f"v_{p2}/{p3}", _other(dyad.second_joint, j), p3, p2)
             equation = f"v_{p2} = v_{p1} + v_{p2}/{p1} = v_{p3} + v_{p2}/{p3}"
             known = ((f"v_{p1}", "magnitude and direction"), (f"v_{p2}/{p1}", "direction"),
                      (f"v_{p3}", "magnitude and direction"), (f"v_{p2}/{p3}", "direction"))
@@ -158,12 +178,13 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
             k2 = _other(dyad.second_joint, j)
             line2 = _slide_line(builder, dyad.second_joint, k2, p2)
             at2 = builder.label(k2, p2)
+            direction2 = _parallel(builder, f"v_{p2}/{at2}", dyad.second_joint, k2, p2)
             equation = f"v_{p2} = v_{p1} + v_{p2}/{p1} = v_{at2} + v_{p2}/{at2}"
             known = ((f"v_{p1}", "magnitude and direction"), (f"v_{p2}/{p1}", "direction"),
                      (f"v_{at2}", "magnitude and direction"), (f"v_{p2}/{at2}", "direction"))
         value = builder.cross_lines(line1, line2, p2, where)
         builder.add_tip(i, p2, value)
-        _record_intersection(builder, dyad, p2, equation, line1, line2, value, known)
+        _record_intersection(builder, dyad, p2, equation, line1, line2, value, known, (direction1, direction2))
         read_rate(builder, i, p1, p2, sub(value, line1.through), sub(builder.world(p2), builder.world(p1)))
         if isinstance(dyad.second_joint, Revolute):
             p3 = dyad.second_joint.point
@@ -185,7 +206,9 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
         builder.add_tip(guide, p, value)
         _record_intersection(builder, dyad, at, f"v_{at} = v_{q} + v_{at}/{q} = v_{p} + v_{at}/{p}", line1, line2,
                              value, ((f"v_{q}", "magnitude and direction"), (f"v_{at}/{q}", "direction"),
-                                     (f"v_{p}", "magnitude and direction"), (f"v_{at}/{p}", "direction")))
+                                     (f"v_{p}", "magnitude and direction"), (f"v_{at}/{p}", "direction")),
+                             (_perpendicular(builder, f"v_{at}/{q}", _other(outer[guide], guide), q, p),
+                              _parallel(builder, f"v_{at}/{p}", slider, _other(outer[block], block), p)))
         read_rate(builder, guide, q, at, sub(value, line1.through), sub(builder.world(p), builder.world(q)))
         sliding[slider.name] = sub(start, value)
     else:  # PRP and RPP: both links' omegas are known from their guides, two slide lines cross
@@ -208,7 +231,9 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
                              line1, line2, value, ((f"v_{a1}", "magnitude and direction"),
                                                    (f"v_{point}/{a1}", "direction"),
                                                    (f"v_{a2}", "magnitude and direction"),
-                                                   (f"v_{point}/{a2}", "direction")))
+                                                   (f"v_{point}/{a2}", "direction")),
+                             (_parallel(builder, f"v_{point}/{a1}", first_slider, side1, point),
+                              _parallel(builder, f"v_{point}/{a2}", dyad.second_joint, side2, point)))
         _slide_rel(builder, first_slider, moving if dyad.kind == "RPP" else i, point, sliding)
         _slide_rel(builder, dyad.second_joint, j, point, sliding)
 

@@ -6,6 +6,7 @@ page in millimetres.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from kinepoly.render.primitives import Arrow, Circle, Path, Sheet, Stroke, Text
@@ -14,7 +15,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["DEFAULT_DPI", "figure_of", "write_pdf", "write_png"]
+__all__ = ["DEFAULT_DPI", "figure_of", "write_pdf", "write_pdf_pages", "write_png"]
 
 DEFAULT_DPI = 150
 _PT_PER_MM = 72.0 / 25.4
@@ -80,11 +81,15 @@ def figure_of(sheet: Sheet) -> Figure:
     return fig
 
 
+_RC: dict[Any, Any] = {"lines.scale_dashes": False, "pdf.fonttype": 42, "svg.hashsalt": "kinepoly", "text.antialiased": True,
+       "font.family": "DejaVu Sans"}
+"""matplotlib settings of every file: dashes in mm as given, TrueType fonts embedded whole, fixed ids."""
+
+
 def _save(sheet: Sheet, target: Any, fmt: str, dpi: int) -> None:
     import matplotlib
 
-    with matplotlib.rc_context({"lines.scale_dashes": False, "pdf.fonttype": 42, "svg.hashsalt": "kinepoly",
-                                "text.antialiased": True, "font.family": "DejaVu Sans"}):
+    with matplotlib.rc_context(_RC):
         fig = figure_of(sheet)
         if fmt == "png":
             fig.savefig(target, format="png", dpi=dpi, metadata={"Software": None})
@@ -101,3 +106,14 @@ def write_png(sheet: Sheet, target: Any, dpi: int = DEFAULT_DPI) -> None:
 def write_pdf(sheet: Sheet, target: Any) -> None:
     """Write the sheet as a one-page PDF (fonts embedded) to a path or a binary file object."""
     _save(sheet, target, "pdf", DEFAULT_DPI)
+
+
+def write_pdf_pages(sheets: Sequence[Sheet], target: Any, title: str) -> None:
+    """Write the sheets as one PDF, a page each (fonts embedded), to a path or a binary file object."""
+    import matplotlib
+    from matplotlib.backends.backend_pdf import PdfPages
+
+    metadata = {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "kinepoly", "Title": title}
+    with matplotlib.rc_context(_RC), PdfPages(target, metadata=metadata) as pages:
+        for sheet in sheets:
+            pages.savefig(figure_of(sheet))

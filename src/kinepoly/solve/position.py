@@ -330,15 +330,24 @@ def _solve_groups(mechanism: Mechanism, groups: tuple[Dyad | NewtonGroup, ...], 
         point, chosen_at, other_at = _telling_point(mechanism, candidates)
         if pick == 1:
             chosen_at, other_at = other_at, chosen_at
+        guess_x, guess_y = _coordinate(other_at[0], origin[0]), _coordinate(other_at[1], origin[1])
         chosen_at, other_at = add(chosen_at, origin), add(other_at, origin)
         notices.append(Notice(
             "default-assembly",
             f"group {group.name}: no [guess] tells its assemblies apart, so the default was taken: "
             f"{candidates[pick].label}, which puts {point} at ({chosen_at[0]:.6g}, {chosen_at[1]:.6g}); "
             f"the other assembly puts {point} at ({other_at[0]:.6g}, {other_at[1]:.6g}) "
-            f"(give [guess] {point} = [{other_at[0]:.4g}, {other_at[1]:.4g}] to take it)"))
+            f"(give [guess] {point} = [{guess_x}, {guess_y}] to take it)"))
         return {**poses, **outcomes[pick][1]}, notices + outcomes[pick][2]
     return poses, notices
+
+
+def _coordinate(local: float, origin: float) -> str:
+    """A coordinate to 4 significant digits of the mechanism's own size, wherever the mechanism is."""
+    if origin == 0.0:
+        return f"{local:.4g}"
+    decimals = max(0, 3 - math.floor(math.log10(abs(local)))) if local != 0.0 else 2
+    return f"{local + origin:.{decimals}f}"
 
 
 def solve_position(mechanism: Mechanism, plan: PositionPlan, origin: Vec = (0.0, 0.0)) -> PositionResult:

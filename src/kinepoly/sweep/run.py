@@ -31,7 +31,7 @@ from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUND
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
-from kinepoly.solution import Asked, _needed_links, what_is_asked
+from kinepoly.solution import Asked, needed_links, what_is_asked
 from kinepoly.solve.plan import NewtonGroup, PositionPlan, make_plan
 from kinepoly.solve.pose import LinkPose
 from kinepoly.sweep.acceleration import SweepAcceleration, sweep_acceleration
@@ -309,7 +309,7 @@ def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
         links = ", ".join(n for n in mechanism.link_names if n != mechanism.ground)
         raise SceneError(f"--centrode: expected a moving link of the scene ({links}), got {centrode!r}")
     asked = what_is_asked(mechanism)
-    plan = make_plan(mechanism, _needed_links(mechanism, asked) | ({centrode} if centrode else set()))
+    plan = make_plan(mechanism, needed_links(mechanism, asked) | ({centrode} if centrode else set()))
     seed = seed_poses(mechanism, plan)
     return PreparedSweep(mechanism, asked, plan, seed, centrode, time.perf_counter() - t0)
 

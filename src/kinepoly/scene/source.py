@@ -1,0 +1,79 @@
+"""A scene file from bytes to TOML data: read, decoded as UTF-8 and parsed, or one clear problem.
+
+Each failure raises a :class:`~kinepoly.errors.SceneError` naming the file (and the line,
+where there is one): a missing file, binary data, text that is not UTF-8, a TOML syntax
+error placed at the key path written on its line.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from collections.abc import Mapping
+from pathlib import Path
+from typing import NoReturn
+
+from kinepoly.errors import SceneError
+from kinepoly.scene.lines import LineMap, dotted
+
+__all__ = ["Table", "decode_text", "fail", "parse_toml", "read_bytes"]
+
+Table = Mapping[str, object]
+
+
+def fail(source: str, line: int | None, message: str, path: str = "(file)") -> NoReturn:
+    where = source if line is None else f"{source}:{line}"
+    raise SceneError([f"{where}: {path}: {message}"])
+
+
+def read_bytes(source: str) -> bytes:
+    try:
+        return Path(source).read_bytes()
+    except FileNotFoundError:
+        fail(source, None, "no such file; expected the path of a scene .toml file")
+    except IsADirectoryError:
+        fail(source, None, "is a directory; expected the path of a scene .toml file")
+    except OSError as exc:
+        fail(source, None, f"cannot be read ({exc.strerror}); expected a readable scene .toml file")
+
+
+def decode_text(source: str, data: bytes) -> str:
+    nul = data.find(b"\x00")
+    if nul >= 0:
+        line = data.count(b"\n", 0, nul) + 1
+        fail(source, line, "binary data (a NUL byte); expected a UTF-8 text TOML scene")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        bad = data[exc.start]
+        fail(
+            source,
+            line,
+            f"not UTF-8 text (byte 0x{bad:02x} at offset {exc.start}); expected a UTF-8 TOML scene",
+        )
+
+
+_TOML_WHERE = re.compile(r"\s*\((?:at line (\d+), column (\d+)|at end of document)\)\s*$")
+
+
+def parse_toml(text: str, source: str, lines: LineMap) -> Table:
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError([_syntax_problem(str(exc), text, source, lines)]) from None
+    except ValueError as exc:  # integers longer than Python converts
+        raise SceneError([f"{source}: (file): {exc}; expected numbers of ordinary size"]) from None
+    except RecursionError:
+        raise SceneError([f"{source}: (file): arrays or tables nested too deeply; expected a flat scene"]) from None
+
+
+def _syntax_problem(message: str, text: str, source: str, lines: LineMap) -> str:
+    match = _TOML_WHERE.search(message)
+    what = message[: match.start()] if match else message
+    if match and match.group(1):
+        line, where = int(match.group(1)), f" at column {match.group(2)}"
+    else:
+        line, where = text.rstrip().count("\n") + 1, " at the end of the file"
+    path = dotted(lines.owner.get(line, ()))
+    return f"{source}:{line}: {path}: TOML syntax error{where}: {what}; expected valid TOML"
