@@ -136,3 +136,41 @@ def test_every_example_solves_and_agrees_with_the_analytic_check(name: str) -> N
     out = solved(name)
     assert out["check"]["max_rel_error"] <= 1e-12
     assert out["timing"]["total_s"] > 0
+
+
+def test_scotch_yoke_rpp_group() -> None:
+    # x_Y = a2 cos(th) - 60 on the frame's x-axis; the block rides the vertical slot: y_A = a2 sin(th)
+    a2, th, w, al = 40.0, math.radians(50), 12.0, 3.0
+    x_dot = -a2 * w * math.sin(th)
+    x_ddot = -a2 * (al * math.sin(th) + w * w * math.cos(th))
+    y_dot = a2 * w * math.cos(th)
+    y_ddot = a2 * (al * math.cos(th) - w * w * math.sin(th))
+    out = solved("scotch-yoke.toml")
+    assert close(vec(out["points"]["Y"]["velocity"]), x_dot, a2 * w)
+    assert close(vec(out["points"]["Y"]["acceleration"]), x_ddot, a2 * w * w)
+    assert close(vec(out["points"]["A@4"]["acceleration"]), x_ddot, a2 * w * w)
+    assert close(out["sliders"]["43"]["s_dot"], y_dot, a2 * w)
+    assert close(out["sliders"]["43"]["s_ddot"], y_ddot, a2 * w * w)
+    assert out["sliders"]["43"]["coriolis"] == [0.0, 0.0]  # the yoke translates: no Coriolis step
+    assert not any(step["kind"] == "coriolis" for step in out["steps"])
+    assert "group 3-4 (RPP)" in out["plan"]
+
+
+def test_slotted_crank_driving_a_slider_prp_group() -> None:
+    # P = (h cot(th), h) on y = h; along the slot r = h / sin(th)
+    h, th, w, al = 30.0, math.radians(60), 4.0, 10.0
+    s, c = math.sin(th), math.cos(th)
+    x_dot = -h * w / s**2
+    x_ddot = -h * (al / s**2 - 2 * w * w * c / s**3)
+    r_dot = -h * c * w / s**2
+    r_ddot = -h * ((al * c - w * w * s) / s**2 - 2 * c * c * w * w / s**3)
+    e = complex(c, s)
+    coriolis = 2 * w * 1j * (r_dot * e)  # 2 omega12 x v_rel, v_rel along the slot
+    out = solved("slotted-crank-slider.toml")
+    assert close(vec(out["points"]["P"]["velocity"]), x_dot, abs(x_dot))
+    assert close(vec(out["points"]["P"]["acceleration"]), x_ddot, abs(x_ddot))
+    assert close(out["sliders"]["23"]["s_dot"], r_dot, abs(r_dot))
+    assert close(out["sliders"]["23"]["s_ddot"], r_ddot, abs(r_ddot) + abs(coriolis))
+    assert close(vec(out["sliders"]["23"]["coriolis"]), coriolis, abs(coriolis))
+    assert sum(step["kind"] == "coriolis" for step in out["steps"]) == 1
+    assert "group 3-4 (PRP)" in out["plan"]

@@ -230,7 +230,7 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
             point, moving, side1 = dyad.inner.point, i, _other(dyad.first_joint, i)
         else:
             assert isinstance(dyad.first_joint, Revolute)
-            b.tip(i, dyad.first_joint.point)
+            b.tip(_other(dyad.first_joint, i), dyad.first_joint.point)
             point, moving, side1 = b.mechanism.scene.link(j).points[0].name, j, i
         side2 = _other(dyad.second_joint, j)
         line1, v1 = ctx.slide_line(first_slider, side1, moving, point)

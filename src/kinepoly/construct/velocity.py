@@ -219,7 +219,7 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
             point, moving, side1 = dyad.inner.point, i, _other(dyad.first_joint, i)
         else:
             assert isinstance(dyad.first_joint, Revolute)
-            builder.tip(i, dyad.first_joint.point)
+            builder.tip(_other(dyad.first_joint, i), dyad.first_joint.point)
             point, moving, side1 = mech.scene.link(j).points[0].name, j, i
         side2 = _other(dyad.second_joint, j)
         line1 = _slide_line(builder, first_slider, side1, point)

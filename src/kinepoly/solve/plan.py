@@ -18,7 +18,16 @@ from kinepoly.errors import MobilityError
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import SliderSpec
 
-__all__ = ["Dyad", "NewtonGroup", "PositionPlan", "make_plan"]
+__all__ = [
+    "Dyad",
+    "NewtonGroup",
+    "PositionPlan",
+    "SlideRoles",
+    "TwoSlideRoles",
+    "make_plan",
+    "slide_roles",
+    "two_slide_roles",
+]
 
 
 def joint_kind(joint: Joint) -> str:
@@ -48,6 +57,71 @@ class Dyad:
     @property
     def name(self) -> str:
         return f"{self.first}-{self.second} ({self.kind})"
+
+
+@dataclass(frozen=True)
+class SlideRoles:
+    """Who is who in an RPR dyad: the guide turns about its pin ``guide_pin`` on ``guide_known``;
+    the block is pinned at ``block_pin`` to ``block_known``; the unknown tip is block_pin@guide."""
+
+    slider: SliderSpec
+    guide: str
+    block: str
+    guide_pin: str
+    block_pin: str
+    guide_known: str
+    block_known: str
+
+
+@dataclass(frozen=True)
+class TwoSlideRoles:
+    """Who is who in a PRP or RPP dyad: ``point`` of ``moving`` is where the two slide lines cross.
+
+    The first line slides on ``side1`` along ``first_slider``, the second on ``side2`` along
+    ``second_slider``; ``first_relative`` is the link whose motion relative to ``side1`` the first
+    slider carries. In an RPP dyad the first link turns with the second's guide and is pinned at
+    ``pin`` to the known link ``pin_known``, so its tips come from that pin.
+    """
+
+    first_slider: SliderSpec
+    second_slider: SliderSpec
+    point: str
+    moving: str
+    side1: str
+    side2: str
+    first_relative: str
+    pin: str | None
+    pin_known: str | None
+
+
+def _far_side(joint: Joint, link: str) -> str:
+    return next(x for x in joint_links(joint) if x != link)
+
+
+def slide_roles(dyad: Dyad) -> SlideRoles:
+    """The roles of an RPR dyad's links and pins."""
+    slider = dyad.inner
+    assert isinstance(slider, SliderSpec) and dyad.kind == "RPR"
+    outer = {dyad.first: dyad.first_joint, dyad.second: dyad.second_joint}
+    guide_joint, block_joint = outer[slider.guide], outer[slider.block]
+    assert isinstance(guide_joint, Revolute) and isinstance(block_joint, Revolute), "RPR: the outer joints are pins"
+    return SlideRoles(slider, slider.guide, slider.block, guide_joint.point, block_joint.point,
+                      _far_side(guide_joint, slider.guide), _far_side(block_joint, slider.block))
+
+
+def two_slide_roles(dyad: Dyad, mechanism: Mechanism) -> TwoSlideRoles:
+    """The roles of a PRP or RPP dyad's links and points."""
+    i, j = dyad.first, dyad.second
+    second = dyad.second_joint
+    assert isinstance(second, SliderSpec) and dyad.kind in ("PRP", "RPP")
+    if dyad.kind == "PRP":
+        first, inner = dyad.first_joint, dyad.inner
+        assert isinstance(first, SliderSpec) and isinstance(inner, Revolute)
+        return TwoSlideRoles(first, second, inner.point, i, _far_side(first, i), _far_side(second, j), i, None, None)
+    pin, inner_slider = dyad.first_joint, dyad.inner
+    assert isinstance(pin, Revolute) and isinstance(inner_slider, SliderSpec)
+    point = mechanism.scene.link(j).points[0].name
+    return TwoSlideRoles(inner_slider, second, point, j, i, _far_side(second, j), j, pin.point, _far_side(pin, i))
 
 
 @dataclass(frozen=True)

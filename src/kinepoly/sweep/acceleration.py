@@ -14,7 +14,7 @@ import numpy as np
 
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan
+from kinepoly.solve.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.sweep.kernel import Points, Reals
 from kinepoly.sweep.polygon import ArrayPolygon, Line
 from kinepoly.sweep.position import SweepPositions
@@ -108,39 +108,28 @@ def _dyad(ctx: AccelerationContext, dyad: Dyad) -> None:
         if isinstance(dyad.second_joint, SliderSpec):
             ctx.slide_values(dyad.second_joint, j, p2)
     elif dyad.kind == "RPR":
-        slider = dyad.inner
-        assert isinstance(slider, SliderSpec)
-        outer = {i: dyad.first_joint, j: dyad.second_joint}
-        guide, block = slider.guide, slider.block
-        q, p = outer[guide].point, outer[block].point
-        line1 = ctx.normal_line(_other(outer[guide], guide), q, p, guide, rigid=False)
-        end = b.tip(_other(outer[block], block), p)
-        if b.mechanism.has_turning_guide(slider):
-            w = b.omega_of(guide)
-            v_rel = ctx.v_tip(guide, p) - ctx.v_tip(block, p)
+        r = slide_roles(dyad)
+        line1 = ctx.normal_line(r.guide_known, r.guide_pin, r.block_pin, r.guide, rigid=False)
+        end = b.tip(r.block_known, r.block_pin)
+        if b.mechanism.has_turning_guide(r.slider):
+            w = b.omega_of(r.guide)
+            v_rel = ctx.v_tip(r.guide, r.block_pin) - ctx.v_tip(r.block, r.block_pin)
             end = np.asarray(end + (2.0 * w) * (1j * v_rel))
-        crossing = b.cross_lines(line1, (end, slide_direction(b.positions, slider), 1.0), b.label(guide, p),
-                                 dyad.name)
-        b.add_tip(guide, p, crossing.point)
-        read_rates(b, crossing, guide, None)
-        ctx.slide_values(slider, block, p)
+        crossing = b.cross_lines(line1, (end, slide_direction(b.positions, r.slider), 1.0),
+                                 b.label(r.guide, r.block_pin), dyad.name)
+        b.add_tip(r.guide, r.block_pin, crossing.point)
+        read_rates(b, crossing, r.guide, None)
+        ctx.slide_values(r.slider, r.block, r.block_pin)
     else:
-        first_slider = dyad.first_joint if dyad.kind == "PRP" else dyad.inner
-        assert isinstance(first_slider, SliderSpec) and isinstance(dyad.second_joint, SliderSpec)
-        if dyad.kind == "PRP":
-            assert isinstance(dyad.inner, Revolute)
-            point, moving, side1 = dyad.inner.point, i, _other(dyad.first_joint, i)
-        else:
-            assert isinstance(dyad.first_joint, Revolute)
-            b.tip(i, dyad.first_joint.point)
-            point, moving, side1 = b.mechanism.scene.link(j).points[0].name, j, i
-        side2 = _other(dyad.second_joint, j)
-        line1 = ctx.slide_line(first_slider, side1, moving, point)
-        line2 = ctx.slide_line(dyad.second_joint, side2, j, point)
-        crossing = b.cross_lines(line1, line2, point, dyad.name)
-        b.add_tip(moving, point, crossing.point)
-        ctx.slide_values(first_slider, moving if dyad.kind == "RPP" else i, point)
-        ctx.slide_values(dyad.second_joint, j, point)
+        t = two_slide_roles(dyad, b.mechanism)
+        if t.pin is not None and t.pin_known is not None:
+            b.tip(t.pin_known, t.pin)
+        line1 = ctx.slide_line(t.first_slider, t.side1, t.moving, t.point)
+        line2 = ctx.slide_line(t.second_slider, t.side2, j, t.point)
+        crossing = b.cross_lines(line1, line2, t.point, dyad.name)
+        b.add_tip(t.moving, t.point, crossing.point)
+        ctx.slide_values(t.first_slider, t.first_relative, t.point)
+        ctx.slide_values(t.second_slider, j, t.point)
 
 
 def _drive(ctx: AccelerationContext) -> None:

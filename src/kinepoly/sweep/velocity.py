@@ -15,7 +15,7 @@ import numpy as np
 
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan
+from kinepoly.solve.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.sweep.kernel import Crossing, Points, Reals, turn
 from kinepoly.sweep.polygon import ArrayPolygon, Line
 from kinepoly.sweep.position import SweepPositions
@@ -118,35 +118,24 @@ def _dyad(polygon: ArrayPolygon, dyad: Dyad, sliding: dict[str, Points], sines: 
         if isinstance(dyad.second_joint, SliderSpec):
             _slide_rel(polygon, dyad.second_joint, j, p2, sliding)
     elif dyad.kind == "RPR":
-        slider = dyad.inner
-        assert isinstance(slider, SliderSpec)
-        outer = {i: dyad.first_joint, j: dyad.second_joint}
-        guide, block = slider.guide, slider.block
-        q, p = outer[guide].point, outer[block].point
-        line1 = _revolute_line(polygon, _other(outer[guide], guide), q, p, None)
-        start2 = polygon.tip(_other(outer[block], block), p)
-        crossing = polygon.cross_lines(line1, (start2, slide_direction(polygon.positions, slider), 1.0),
-                                       polygon.label(guide, p), dyad.name)
-        polygon.add_tip(guide, p, crossing.point)
-        read_rates(polygon, crossing, guide, None)
-        sliding[slider.name] = start2 - crossing.point
+        r = slide_roles(dyad)
+        line1 = _revolute_line(polygon, r.guide_known, r.guide_pin, r.block_pin, None)
+        start2 = polygon.tip(r.block_known, r.block_pin)
+        crossing = polygon.cross_lines(line1, (start2, slide_direction(polygon.positions, r.slider), 1.0),
+                                       polygon.label(r.guide, r.block_pin), dyad.name)
+        polygon.add_tip(r.guide, r.block_pin, crossing.point)
+        read_rates(polygon, crossing, r.guide, None)
+        sliding[r.slider.name] = start2 - crossing.point
     else:  # PRP and RPP: both links' omegas are known from their guides, two slide lines cross
-        first_slider = dyad.first_joint if dyad.kind == "PRP" else dyad.inner
-        assert isinstance(first_slider, SliderSpec) and isinstance(dyad.second_joint, SliderSpec)
-        if dyad.kind == "PRP":
-            assert isinstance(dyad.inner, Revolute)
-            point, moving, side1 = dyad.inner.point, i, _other(dyad.first_joint, i)
-        else:
-            assert isinstance(dyad.first_joint, Revolute)
-            polygon.tip(i, dyad.first_joint.point)
-            point, moving, side1 = mech.scene.link(j).points[0].name, j, i
-        side2 = _other(dyad.second_joint, j)
-        line1 = _slide_line(polygon, first_slider, side1, point)
-        line2 = _slide_line(polygon, dyad.second_joint, side2, point)
-        crossing = polygon.cross_lines(line1, line2, point, dyad.name)
-        polygon.add_tip(moving, point, crossing.point)
-        _slide_rel(polygon, first_slider, moving if dyad.kind == "RPP" else i, point, sliding)
-        _slide_rel(polygon, dyad.second_joint, j, point, sliding)
+        t = two_slide_roles(dyad, mech)
+        if t.pin is not None and t.pin_known is not None:
+            polygon.tip(t.pin_known, t.pin)
+        line1 = _slide_line(polygon, t.first_slider, t.side1, t.point)
+        line2 = _slide_line(polygon, t.second_slider, t.side2, t.point)
+        crossing = polygon.cross_lines(line1, line2, t.point, dyad.name)
+        polygon.add_tip(t.moving, t.point, crossing.point)
+        _slide_rel(polygon, t.first_slider, t.first_relative, t.point, sliding)
+        _slide_rel(polygon, t.second_slider, j, t.point, sliding)
     sines[dyad.name] = crossing.sin_angle
 
 
