@@ -19,7 +19,7 @@ from kinepoly.geom.vec import Vec, add, dot, norm, perp, scale, sub, unit
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan
+from kinepoly.solve.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.solve.pose import Pose
 from kinepoly.solve.position import describe_input
 
@@ -111,11 +111,6 @@ class _Context:
         self.sliding[slider.name] = sub(sub(a_block, a_guide), cor)
 
 
-def _pin(joint: Revolute | SliderSpec) -> Revolute:
-    assert isinstance(joint, Revolute), "an RPR dyad's outer joints are pins"
-    return joint
-
-
 def _other(joint: Revolute | SliderSpec, link: str) -> str:
     if isinstance(joint, Revolute):
         return joint.other(link)
@@ -198,53 +193,43 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         else:
             ctx.slide_values(dyad.second_joint, j, p2)
     elif dyad.kind == "RPR":
-        slider = dyad.inner
-        assert isinstance(slider, SliderSpec)
-        outer = {i: dyad.first_joint, j: dyad.second_joint}
-        guide, block = slider.guide, slider.block
-        q, p = _pin(outer[guide]).point, _pin(outer[block]).point
-        line1, n1 = ctx.normal_line(_other(outer[guide], guide), q, p, guide)
-        a_p = b.tip(_other(outer[block], block), p)
-        e = slide_direction(b.pose, slider)
-        at = b.label(guide, p)
-        coriolis = ctx.lay_coriolis(slider, a_p, guide, block, p)
+        r = slide_roles(dyad)
+        q, p = r.guide_pin, r.block_pin
+        line1, n1 = ctx.normal_line(r.guide_known, q, p, r.guide)
+        a_p = b.tip(r.block_known, p)
+        at = b.label(r.guide, p)
+        coriolis = ctx.lay_coriolis(r.slider, a_p, r.guide, r.block, p)
         vectors = [n1, coriolis] if coriolis else [n1]
         end = coriolis.end if coriolis else a_p
-        line2 = Line(end, e, f"sliding term along slider {slider.name}")
+        line2 = Line(end, slide_direction(b.pose, r.slider), f"sliding term along slider {r.slider.name}")
         _normals_step(ctx, vectors)
         value = b.cross_lines(line1, line2, at, where)
-        b.add_tip(guide, p, value)
+        b.add_tip(r.guide, p, value)
         cor = f" + a^c_{at}/{p}" if len(vectors) > 1 else ""
         _record(ctx, at, f"a_{at} = a_{q} + a^n_{at}/{q} + a^t_{at}/{q} = a_{p}{cor} + a_{at}/{p}", line1, line2,
                 value, vectors, tuple((v.label, "magnitude and direction") for v in vectors)
                 + ((line1.label, "direction"), (line2.label, "direction")),
-                (_along_normal(ctx, f"a^t_{at}/{q}", _other(outer[guide], guide), q, p, n1),
-                 _along_slide(ctx, f"a_{at}/{p}", slider, _other(outer[block], block), p, vectors[1:])))
-        _tangential(ctx, guide, q, p, line1, value)
-        ctx.slide_values(slider, block, p)
+                (_along_normal(ctx, f"a^t_{at}/{q}", r.guide_known, q, p, n1),
+                 _along_slide(ctx, f"a_{at}/{p}", r.slider, r.block_known, p, vectors[1:])))
+        _tangential(ctx, r.guide, q, p, line1, value)
+        ctx.slide_values(r.slider, r.block, p)
     else:
-        first_slider = dyad.first_joint if dyad.kind == "PRP" else dyad.inner
-        assert isinstance(first_slider, SliderSpec) and isinstance(dyad.second_joint, SliderSpec)
-        if dyad.kind == "PRP":
-            assert isinstance(dyad.inner, Revolute)
-            point, moving, side1 = dyad.inner.point, i, _other(dyad.first_joint, i)
-        else:
-            assert isinstance(dyad.first_joint, Revolute)
-            b.tip(_other(dyad.first_joint, i), dyad.first_joint.point)
-            point, moving, side1 = b.mechanism.scene.link(j).points[0].name, j, i
-        side2 = _other(dyad.second_joint, j)
-        line1, v1 = ctx.slide_line(first_slider, side1, moving, point)
-        line2, v2 = ctx.slide_line(dyad.second_joint, side2, j, point)
+        t = two_slide_roles(dyad, b.mechanism)
+        if t.pin is not None and t.pin_known is not None:
+            b.tip(t.pin_known, t.pin)
+        point = t.point
+        line1, v1 = ctx.slide_line(t.first_slider, t.side1, t.moving, point)
+        line2, v2 = ctx.slide_line(t.second_slider, t.side2, j, point)
         value = b.cross_lines(line1, line2, point, where)
-        b.add_tip(moving, point, value)
-        a1, a2 = b.label(side1, point), b.label(side2, point)
+        b.add_tip(t.moving, point, value)
+        a1, a2 = b.label(t.side1, point), b.label(t.side2, point)
         side_terms = ["".join(f" + {v.label}" for v in laid) for laid in (v1, v2)]
         _record(ctx, point, f"a_{point} = a_{a1}{side_terms[0]} + a_{point}/{a1} = a_{a2}{side_terms[1]} + "
                 f"a_{point}/{a2}", line1, line2, value, v1 + v2, ((line1.label, "direction"), (line2.label, "direction")),
-                (_along_slide(ctx, f"a_{point}/{a1}", first_slider, side1, point, v1),
-                 _along_slide(ctx, f"a_{point}/{a2}", dyad.second_joint, side2, point, v2)))
-        ctx.slide_values(first_slider, moving if dyad.kind == "RPP" else i, point)
-        ctx.slide_values(dyad.second_joint, j, point)
+                (_along_slide(ctx, f"a_{point}/{a1}", t.first_slider, t.side1, point, v1),
+                 _along_slide(ctx, f"a_{point}/{a2}", t.second_slider, t.side2, point, v2)))
+        ctx.slide_values(t.first_slider, t.first_relative, point)
+        ctx.slide_values(t.second_slider, j, point)
 
 
 def _drive(ctx: _Context) -> None:

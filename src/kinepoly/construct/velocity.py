@@ -18,7 +18,7 @@ from kinepoly.geom.vec import Vec, cross, dot, norm, perp, rotate, sub, unit
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan
+from kinepoly.solve.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.solve.pose import Pose
 from kinepoly.solve.position import describe_input
 
@@ -128,11 +128,6 @@ def _slide_line(builder: PolygonBuilder, slider: SliderSpec, other: str, point: 
     return Line(start, e, f"parallel to slider {slider.name} through {builder.label(other, point).lower()}")
 
 
-def _pin(joint: Revolute | SliderSpec) -> Revolute:
-    assert isinstance(joint, Revolute), "an RPR dyad's outer joints are pins"
-    return joint
-
-
 def _other(joint: Revolute | SliderSpec, link: str) -> str:
     if isinstance(joint, Revolute):
         return joint.other(link)
@@ -192,50 +187,41 @@ def _dyad(builder: PolygonBuilder, dyad: Dyad, sliding: dict[str, Vec]) -> None:
         else:
             _slide_rel(builder, dyad.second_joint, j, p2, sliding)
     elif dyad.kind == "RPR":
-        slider = dyad.inner
-        assert isinstance(slider, SliderSpec)
-        outer = {i: dyad.first_joint, j: dyad.second_joint}
-        guide, block = slider.guide, slider.block
-        q, p = _pin(outer[guide]).point, _pin(outer[block]).point
-        line1 = _revolute_line(builder, _other(outer[guide], guide), q, p)
-        start = builder.tip(_other(outer[block], block), p)
-        line2 = Line(start, slide_direction(builder.pose, slider),
-                     f"parallel to slider {slider.name} through {p.lower()}")
-        at = builder.label(guide, p)
+        r = slide_roles(dyad)
+        q, p = r.guide_pin, r.block_pin
+        line1 = _revolute_line(builder, r.guide_known, q, p)
+        start = builder.tip(r.block_known, p)
+        line2 = Line(start, slide_direction(builder.pose, r.slider),
+                     f"parallel to slider {r.slider.name} through {p.lower()}")
+        at = builder.label(r.guide, p)
         value = builder.cross_lines(line1, line2, at, where)
-        builder.add_tip(guide, p, value)
+        builder.add_tip(r.guide, p, value)
         _record_intersection(builder, dyad, at, f"v_{at} = v_{q} + v_{at}/{q} = v_{p} + v_{at}/{p}", line1, line2,
                              value, ((f"v_{q}", "magnitude and direction"), (f"v_{at}/{q}", "direction"),
                                      (f"v_{p}", "magnitude and direction"), (f"v_{at}/{p}", "direction")),
-                             (_perpendicular(builder, f"v_{at}/{q}", _other(outer[guide], guide), q, p),
-                              _parallel(builder, f"v_{at}/{p}", slider, _other(outer[block], block), p)))
-        read_rate(builder, guide, q, at, sub(value, line1.through), sub(builder.world(p), builder.world(q)))
-        sliding[slider.name] = sub(start, value)
+                             (_perpendicular(builder, f"v_{at}/{q}", r.guide_known, q, p),
+                              _parallel(builder, f"v_{at}/{p}", r.slider, r.block_known, p)))
+        read_rate(builder, r.guide, q, at, sub(value, line1.through), sub(builder.world(p), builder.world(q)))
+        sliding[r.slider.name] = sub(start, value)
     else:  # PRP and RPP: both links' omegas are known from their guides, two slide lines cross
-        first_slider = dyad.first_joint if dyad.kind == "PRP" else dyad.inner
-        assert isinstance(first_slider, SliderSpec) and isinstance(dyad.second_joint, SliderSpec)
-        if dyad.kind == "PRP":
-            assert isinstance(dyad.inner, Revolute)
-            point, moving, side1 = dyad.inner.point, i, _other(dyad.first_joint, i)
-        else:
-            assert isinstance(dyad.first_joint, Revolute)
-            builder.tip(_other(dyad.first_joint, i), dyad.first_joint.point)
-            point, moving, side1 = mech.scene.link(j).points[0].name, j, i
-        side2 = _other(dyad.second_joint, j)
-        line1 = _slide_line(builder, first_slider, side1, point)
-        line2 = _slide_line(builder, dyad.second_joint, side2, point)
+        t = two_slide_roles(dyad, mech)
+        if t.pin is not None and t.pin_known is not None:
+            builder.tip(t.pin_known, t.pin)
+        point = t.point
+        line1 = _slide_line(builder, t.first_slider, t.side1, point)
+        line2 = _slide_line(builder, t.second_slider, t.side2, point)
         value = builder.cross_lines(line1, line2, point, where)
-        builder.add_tip(moving, point, value)
-        a1, a2 = builder.label(side1, point), builder.label(side2, point)
+        builder.add_tip(t.moving, point, value)
+        a1, a2 = builder.label(t.side1, point), builder.label(t.side2, point)
         _record_intersection(builder, dyad, point, f"v_{point} = v_{a1} + v_{point}/{a1} = v_{a2} + v_{point}/{a2}",
                              line1, line2, value, ((f"v_{a1}", "magnitude and direction"),
                                                    (f"v_{point}/{a1}", "direction"),
                                                    (f"v_{a2}", "magnitude and direction"),
                                                    (f"v_{point}/{a2}", "direction")),
-                             (_parallel(builder, f"v_{point}/{a1}", first_slider, side1, point),
-                              _parallel(builder, f"v_{point}/{a2}", dyad.second_joint, side2, point)))
-        _slide_rel(builder, first_slider, moving if dyad.kind == "RPP" else i, point, sliding)
-        _slide_rel(builder, dyad.second_joint, j, point, sliding)
+                             (_parallel(builder, f"v_{point}/{a1}", t.first_slider, t.side1, point),
+                              _parallel(builder, f"v_{point}/{a2}", t.second_slider, t.side2, point)))
+        _slide_rel(builder, t.first_slider, t.first_relative, point, sliding)
+        _slide_rel(builder, t.second_slider, j, point, sliding)
 
 
 def construct_velocity(mechanism: Mechanism, pose: Pose, plan: PositionPlan,
