@@ -96,6 +96,9 @@ def compare_row(text: str, result: SweepResult, row: int) -> float:
     sines = [math.sin(math.radians(float(c.values[row])) if result.scene.units.angle == "deg" else float(c.values[row]))
              for c in result.columns if c.kind == "transmission" and c.valid[row]]
     loosen = max(1.0, (0.1 / max(min(sines, default=1.0), 1e-12)) ** 3)
+    # and never tighter than the solve's own error estimate allows (each side may be off by it)
+    if solution.accuracy is not None:
+        loosen = max(loosen, 2.0 * solution.accuracy.estimate.largest / 1e-10)
     for key, want in _reference(solution).items():
         if key == result.input.name:
             continue

@@ -56,6 +56,10 @@ def _parser() -> argparse.ArgumentParser:
 
     add_sweep_arguments(sub.add_parser("sweep", help="the input over a turn or a range: a CSV of the asked "
                                        "quantities, their plots, centrodes"))
+    from kinepoly.handout.command import add_arguments as add_handout_arguments
+
+    add_handout_arguments(sub.add_parser("handout", help="a teaching handout: the problem, the construction step "
+                                         "by step, the answers; PDF or one web page; en, tr, ro or your own"))
     return parser
 
 
@@ -106,6 +110,12 @@ def main(argv: Sequence[str] | None = None) -> int:
             return _draw(args)
         if args.command == "bench":
             return _bench(args)
+        if args.command == "handout":
+            from kinepoly.handout.command import run_handout
+
+            for line in run_handout(args):
+                print(line)
+            return 0
         if args.command == "sweep":
             from kinepoly.sweep.command import run_command
 

@@ -1,0 +1,71 @@
+"""What a handout says, page by page, before it is laid out: the same for the PDF and the HTML page.
+
+A page is a drawing (which state of the construction it shows) and columns of text: paragraphs
+and small tables whose cells may hold the course's notation (``kinepoly.handout.notation``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+__all__ = ["Column", "Drawing", "Handout", "Page", "Paragraph", "Part", "Table"]
+
+Style = Literal["title", "heading", "equation", "body", "result", "note"]
+
+
+@dataclass(frozen=True)
+class Paragraph:
+    text: str
+    style: Style = "body"
+
+
+@dataclass(frozen=True)
+class Table:
+    """A small table; the first column holds names (left-aligned), the others values."""
+
+    title: str
+    header: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+
+
+Part = Paragraph | Table
+
+
+@dataclass(frozen=True)
+class Column:
+    """A column of the text: ``fill`` takes the width the other columns leave."""
+
+    parts: tuple[Part, ...]
+    fill: bool = False
+    legend: bool = False
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """The state of the drawing a page shows.
+
+    ``problem``: the mechanism and the empty polygon panels; ``step``: construction step
+    ``number`` (1-based over ``Solution.steps``) highlighted on the growing polygons; ``kennedy``:
+    the complete polygons and the instant centers up to Kennedy step ``number``, that step
+    highlighted; ``answers``: everything.
+    """
+
+    kind: Literal["problem", "step", "kennedy", "answers"]
+    number: int = 0
+
+
+@dataclass(frozen=True)
+class Page:
+    kind: Literal["problem", "step", "answers"]
+    drawing: Drawing
+    columns: tuple[Column, ...]
+    equation: str = ""
+    heading: str = ""
+
+
+@dataclass(frozen=True)
+class Handout:
+    title: str
+    language: str
+    pages: tuple[Page, ...]

@@ -1,0 +1,190 @@
+"""The course's notation inside running text, typeset: for the sheets as runs, for the page as HTML.
+
+Text of the handout is written in words with the notation of the steps embedded, e.g.
+``Through a draw the direction of v_B/A, perpendicular to A0B.``. Words are separated by spaces;
+punctuation around a word stays as it is. A word is typeset when it is
+
+- a vector: ``v_B/A``, ``a^n_B/A``, ``a^c_A@4/A`` (the letter, the superscript over the subscript),
+- a name with digits: ``ω13``, ``I13``, ``A0``, ``A0B``, ``b0``, ``s14``, ``b′0`` (a tip of the
+  acceleration polygon, primed): the digits after a letter lowered.
+
+Everything else is drawn as written. Plain-text forms ``omega``, ``alpha``, ``theta``, ``^2`` and
+`` x `` (a cross product) become ω, α, θ, ² and ×.
+"""
+
+from __future__ import annotations
+
+import functools
+import html
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from kinepoly.render.text import Run
+
+__all__ = ["Piece", "html_of", "pieces", "plain_of", "runs_of", "text_width", "typographic", "wrap"]
+
+_SUB = 0.70
+_LETTER = r"[A-Za-zωαθ][\u0300-\u036f]*"
+_VECTOR = re.compile(r"^([a-z])(?:\^([a-z]))?_([A-Za-z0-9@/]+)$")
+_NAMED = re.compile(rf"^(?:{_LETTER}′?\d*)+(?:@\d+)?$")
+_GROUP = re.compile(rf"({_LETTER}′?)(\d*)")
+_LEAD = "(|[«„\""
+_TRAIL = ")|].,;:!?»\"²"
+
+
+@functools.cache
+def _font(bold: bool) -> Any:
+    from matplotlib import font_manager
+    from matplotlib.ft2font import FT2Font
+
+    weight = "bold" if bold else "normal"
+    font = FT2Font(font_manager.findfont(font_manager.FontProperties(family="DejaVu Sans", weight=weight)))
+    font.set_size(72, 72)  # 72 pixels per em: an advance in pixels / 72 is in ems
+    return font
+
+
+@functools.cache
+def _advance_em(ch: str, bold: bool) -> float:
+    from matplotlib import ft2font
+
+    loaded: Any = vars(ft2font)
+    flags = loaded["LoadFlags"].NO_HINTING if "LoadFlags" in loaded else loaded["LOAD_NO_HINTING"]  # before 3.10
+    glyph = _font(bold).load_char(ord(ch), flags=flags)
+    return float(glyph.linearHoriAdvance) / 65536.0 / 72.0
+
+
+def text_width(text: str, size: float, bold: bool = False) -> float:
+    """Advance width of ``text`` in DejaVu Sans (Bold) at em size ``size`` (mm), any character.
+
+    Read from the font matplotlib draws with, so that Turkish, Romanian or any other letters
+    and the symbols of the handout (⊥, ∥, →, △) are measured as drawn.
+    """
+    return size * sum(_advance_em(ch, bold) for ch in text)
+
+
+def wrap(text: str, size: float, width: float, bold: bool = False) -> list[str]:
+    """Break ``text`` at spaces into lines no wider than ``width`` as typeset (a longer word stands alone)."""
+    lines: list[str] = []
+    current = ""
+    for word in text.split():
+        trial = f"{current} {word}" if current else word
+        if current and _typeset_width(trial, size, bold) > width:
+            lines.append(current)
+            current = word
+        else:
+            current = trial
+    if current:
+        lines.append(current)
+    return lines
+
+
+def _typeset_width(text: str, size: float, bold: bool) -> float:
+    runs = runs_of(text, size, bold)
+    return max(r.dx + text_width(r.text, r.size, bold) for r in runs)
+
+
+@dataclass(frozen=True)
+class Piece:
+    """A piece of typeset text: ``base`` at full size, then ``sup`` over ``sub`` (both smaller)."""
+
+    base: str
+    sup: str = ""
+    sub: str = ""
+
+
+def typographic(text: str) -> str:
+    """Plain-text notation made typographic: omega -> ω, alpha -> α, theta -> θ, ^2 -> ², x -> ×."""
+    for plain, nice in (("omega", "ω"), ("alpha", "α"), ("theta", "θ"), ("^2", "²"), (" x ", " × "),
+                        (" deg", "°")):
+        text = text.replace(plain, nice)
+    return text
+
+
+def _word(word: str) -> Iterator[Piece]:
+    start = 0
+    while start < len(word) and word[start] in _LEAD:
+        start += 1
+    end = len(word)
+    while end > start and word[end - 1] in _TRAIL:
+        end -= 1
+    lead, core, trail = word[:start], word[start:end], word[end:]
+    if lead:
+        yield Piece(lead)
+    vector = _VECTOR.match(core)
+    if vector:
+        yield Piece(vector.group(1), vector.group(2) or "", vector.group(3))
+    elif core and _NAMED.match(core) and any(ch.isdigit() for ch in core):
+        name, at, link = core.partition("@")
+        for m in _GROUP.finditer(name):
+            yield Piece(m.group(1), "", m.group(2))
+        if at:
+            yield Piece(at + link)
+    elif core:
+        yield Piece(core)
+    if trail:
+        yield Piece(trail)
+
+
+def pieces(text: str) -> list[Piece]:
+    """The text as pieces; a space is a piece of its own."""
+    out: list[Piece] = []
+    for k, word in enumerate(text.split(" ")):
+        if k:
+            out.append(Piece(" "))
+        out.extend(_word(word))
+    return _merged(out)
+
+
+def _merged(items: list[Piece]) -> list[Piece]:
+    """Neighbouring plain pieces joined into one (fewer runs, same text)."""
+    out: list[Piece] = []
+    for piece in items:
+        if out and not (piece.sup or piece.sub) and not (out[-1].sup or out[-1].sub):
+            out[-1] = Piece(out[-1].base + piece.base)
+        else:
+            out.append(piece)
+    return out
+
+
+def runs_of(text: str, size: float, bold: bool = False) -> tuple[Run, ...]:
+    """Runs of one line of text at em size ``size`` (mm), the notation typeset."""
+    runs: list[Run] = []
+    x = 0.0
+    small = _SUB * size
+    for piece in pieces(text):
+        if piece.base:
+            runs.append(Run(piece.base, x, 0.0, size))
+            x += text_width(piece.base, size, bold)
+        width = 0.0
+        if piece.sup:
+            runs.append(Run(piece.sup, x, 0.42 * size, small))
+            width = text_width(piece.sup, small, bold)
+        if piece.sub:
+            runs.append(Run(piece.sub, x, -0.22 * size, small))
+            width = max(width, text_width(piece.sub, small, bold))
+        x += width
+    return tuple(runs) or (Run(" ", 0.0, 0.0, size),)
+
+
+def plain_of(text: str) -> str:
+    """What the typeset text reads as, run after run (``v_B/A`` -> ``vB/A``): for comparisons."""
+    return "".join(p.base + p.sup + p.sub for p in pieces(text))
+
+
+def html_of(text: str) -> str:
+    """The text as HTML, the notation typeset with <sub> and <sup> (stacked where both)."""
+    out: list[str] = []
+    for piece in pieces(text):
+        base = html.escape(piece.base)
+        if piece.sup and piece.sub:
+            out.append(f'{base}<span class="ss"><sup>{html.escape(piece.sup)}</sup>'
+                       f'<sub>{html.escape(piece.sub)}</sub></span>')
+        elif piece.sup:
+            out.append(f"{base}<sup>{html.escape(piece.sup)}</sup>")
+        elif piece.sub:
+            out.append(f"{base}<sub>{html.escape(piece.sub)}</sub>")
+        else:
+            out.append(base)
+    return "".join(out)

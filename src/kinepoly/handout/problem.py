@@ -1,0 +1,143 @@
+"""The first page of a handout: the problem as a student gets it.
+
+What is given (the input, the frame's points, the slides, every link's dimensions), what is to
+be found (the scene's ``[find]``), and the scales to draw at; the drawing beside it shows the
+mechanism and the polygon panels empty but for their poles and scale bars.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from itertools import combinations
+
+from kinepoly.construct.circle_diagram import center_label, pair_name, split_pair
+from kinepoly.handout.catalogue import Catalogue
+from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
+from kinepoly.render.titleblock import space_scale_text
+from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
+from kinepoly.solution import Solution
+
+__all__ = ["problem_page"]
+
+
+def _angle(solution: Solution, say: Catalogue, radians: float) -> str:
+    if solution.scene.units.angle == "deg":
+        return f"{say.number(math.degrees(radians))}°"
+    return f"{say.number(radians)} rad"
+
+
+def _input(solution: Solution, say: Catalogue) -> list[Paragraph]:
+    inp, ground, unit = solution.scene.input, solution.mechanism.ground or "", solution.scene.units.length
+    if isinstance(inp, LinkInput):
+        return [Paragraph(say.say(
+            "problem.input_link", link=inp.link, angle_name=f"θ{ground}{inp.link}",
+            angle=_angle(solution, say, inp.angle_rad), omega_name=f"ω{ground}{inp.link}",
+            omega=say.number(abs(inp.omega)), omega_sense=say.say(f"sense.{_sense(inp.omega)}"),
+            alpha_name=f"α{ground}{inp.link}", alpha=say.number(abs(inp.alpha)),
+            alpha_sense=say.say(f"sense.{_sense(inp.alpha)}")))]
+    if isinstance(inp, SliderInput):
+        return [Paragraph(say.say("problem.input_slider", slider=inp.slider, s=say.number(inp.s),
+                                  s_dot=say.number(inp.s_dot), s_ddot=say.number(inp.s_ddot), unit=unit))]
+    assert isinstance(inp, GivenInput)
+    out = [Paragraph(say.say("problem.input_given", link=solution.mechanism.link_names[0]))]
+    for point in inp.points:
+        acceleration = (say.say("problem.given_acceleration", point=point.name,
+                                value=say.pair(*point.acceleration), unit=f"{unit}/s²")
+                        if point.acceleration is not None else "")
+        out.append(Paragraph(say.say("problem.given_point", point=point.name, value=say.pair(*point.velocity),
+                                     unit=f"{unit}/s", acceleration=acceleration).rstrip()))
+    return out
+
+
+def _sense(rate: float) -> str:
+    return "ccw" if rate > 0 else ("cw" if rate < 0 else "zero")
+
+
+def _frame(solution: Solution, say: Catalogue) -> list[Paragraph]:
+    ground = solution.mechanism.ground
+    if ground is None:
+        return []
+    points = [f"{p.name} {say.pair(*solution.position(p.name))}" for p in solution.scene.link(ground).points]
+    return [Paragraph(say.say("problem.frame", link=ground, points=", ".join(points), unit=solution.scene.units.length))]
+
+
+def _slides(solution: Solution, say: Catalogue) -> list[Table]:
+    """Each slider: its block, the link it slides on, its point and line (in that link's own frame)."""
+    if not solution.scene.sliders:
+        return []
+    rows = tuple((slider.name, slider.block, slider.guide, slider.point, say.pair(*slider.through),
+                  f"{say.number(math.degrees(slider.angle_rad))}°") for slider in solution.scene.sliders)
+    header = (say.say("problem.slider"), say.say("problem.block"), say.say("problem.guide"), say.say("problem.point"),
+              say.say("problem.through", unit=solution.scene.units.length), say.say("problem.angle"))
+    return [Table(say.say("problem.slides"), header, rows)]
+
+
+def _dimensions(solution: Solution, say: Catalogue) -> Table:
+    rows = []
+    for link in solution.scene.links:
+        if link.name == solution.mechanism.ground:
+            continue
+        points = link.points
+        pairs = list(combinations(points, 2)) if len(points) <= 4 else \
+            [(points[0], p) for p in points[1:]] + [(points[1], p) for p in points[2:]]
+        for first, second in pairs:
+            length = math.hypot(second.local[0] - first.local[0], second.local[1] - first.local[1])
+            rows.append((link.name, f"{first.name}{second.name}", say.number(length)))
+    header = (say.say("problem.link"), say.say("problem.segment"),
+              say.say("problem.length", unit=solution.scene.units.length))
+    return Table(say.say("problem.dimensions"), header, tuple(rows))
+
+
+def _find(solution: Solution, say: Catalogue) -> list[Paragraph]:
+    find, ground = solution.scene.find, solution.mechanism.ground or ""
+    out = []
+    if find.velocity:
+        out.append(say.say("problem.find_velocity", terms=", ".join(f"v_{p}" for p in find.velocity)))
+    if find.acceleration:
+        out.append(say.say("problem.find_acceleration", terms=", ".join(f"a_{p}" for p in find.acceleration)))
+    if find.omega:
+        out.append(say.say("problem.find_omega", terms=", ".join(f"ω{ground}{k}" for k in find.omega)))
+    if find.alpha:
+        out.append(say.say("problem.find_alpha", terms=", ".join(f"α{ground}{k}" for k in find.alpha)))
+    if solution.asked.sliders:
+        names = ", ".join(solution.asked.sliders)
+        key = "problem.find_sliders_acceleration" if solution.acceleration is not None else "problem.find_sliders"
+        out.append(say.say(key, sliders=names))
+    if solution.centers is not None and find.instant_centers:
+        links = solution.mechanism.link_names
+        keys = ([pair_name(e) for e in combinations(links, 2)] if find.instant_centers == "all"
+                else [pair_name(split_pair(k, links)) for k in find.instant_centers])
+        out.append(say.say("problem.find_centers", centers=", ".join(center_label(k) for k in keys)))
+    return [Paragraph("– " + line) for line in out]
+
+
+def _scales(solution: Solution, say: Catalogue, scales: Mapping[str, float]) -> list[Paragraph]:
+    unit = solution.scene.units.length
+    out = []
+    if "mechanism" in scales:
+        ratio = space_scale_text(scales["mechanism"], unit).partition(" ")[2]
+        out.append(say.say("problem.space_scale", ratio=ratio.replace(".", say.decimal)))
+    if "velocity" in scales:
+        out.append(say.say("problem.kv", scale=say.number(scales["velocity"]), unit=f"{unit}/s"))
+    if "acceleration" in scales:
+        out.append(say.say("problem.ka", scale=say.number(scales["acceleration"]), unit=f"{unit}/s²"))
+    paragraphs = [Paragraph("– " + line) for line in out]
+    if solution.velocity is not None:
+        paragraphs.append(Paragraph(say.say("problem.draw_velocity"), "note"))
+    if solution.acceleration is not None:
+        paragraphs.append(Paragraph(say.say("problem.draw_acceleration"), "note"))
+    if solution.centers is not None and solution.scene.find.instant_centers:
+        paragraphs.append(Paragraph(say.say("problem.draw_centers"), "note"))
+    return paragraphs
+
+
+def problem_page(solution: Solution, say: Catalogue, scales: Mapping[str, float]) -> Page:
+    """The problem: given, dimensions, find, scales; ``scales`` as drawn (``mechanism``, kv, ka)."""
+    first = (Paragraph(solution.scene.title, "title"), Paragraph(say.say("problem.title"), "heading"),
+             Paragraph(say.say("problem.given"), "heading"), *_input(solution, say), *_frame(solution, say))
+    second = (_dimensions(solution, say), *_slides(solution, say))
+    third = (Paragraph(say.say("problem.find"), "heading"), *_find(solution, say))
+    fourth = (Paragraph(say.say("problem.scales"), "heading"), *_scales(solution, say, scales))
+    columns = (Column(first, fill=True), Column(second), Column(third, fill=True), Column(fourth, fill=True))
+    return Page("problem", Drawing("problem"), columns, heading=say.say("problem.title"))

@@ -1,0 +1,91 @@
+"""The handout's web page in a real browser (Debian's chromium, headless): it steps through the construction.
+
+Driven over the DevTools protocol (``tests/browser.py``): the address's ``#page-N`` opens a page,
+the arrow keys, Home and End, the buttons (real mouse clicks) and the slider (focused, moved
+with a key) change it, and the page shown is always the one the address and the label name.
+Skipped where chromium is not installed, except on CI (CI set), where that is a failure.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from tests.browser import Browser, chromium
+from tests.scenes import EXAMPLES
+
+from kinepoly.cli import main
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Browser]:
+    executable = chromium()
+    if executable is None:
+        if os.environ.get("CI"):
+            pytest.fail("chromium is not installed; CI must install it (apt-get install chromium, see .ci/run)")
+        pytest.skip("chromium is not installed")
+    opened = Browser(executable)
+    yield opened
+    opened.close()
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    target = tmp_path_factory.mktemp("handout") / "four-bar.html"
+    assert main(["handout", str(EXAMPLES / "four-bar.toml"), "--html", str(target), "--lang", "tr"]) == 0
+    return target
+
+
+def _state(browser: Browser) -> tuple[int, str, str, str]:
+    """(page number shown, the address's hash, the id of the one section shown, the label)."""
+    shown = browser.evaluate("Array.from(document.querySelectorAll('section.page')).filter(s => !s.hidden)"
+                             ".map(s => s.id)")
+    assert len(shown) == 1
+    return (int(browser.evaluate("document.body.dataset.page")), browser.evaluate("location.hash"), shown[0],
+            browser.evaluate("document.getElementById('where').textContent"))
+
+
+def test_the_page_steps_through_the_construction(browser: Browser, page: Path, tmp_path: Path) -> None:
+    browser.go(page.as_uri() + "#page-3")
+    count = browser.evaluate("document.querySelectorAll('section.page').length")
+    assert count == 15
+    number, where, shown, label = _state(browser)
+    assert (number, where, shown) == (3, "#page-3", "page-3") and label.startswith("Adım 2 / 13")
+    browser.screenshot(tmp_path / "page-3.png")
+    browser.press("ArrowRight")
+    assert _state(browser)[:3] == (4, "#page-4", "page-4")
+    browser.click("#next")
+    assert _state(browser)[:3] == (5, "#page-5", "page-5")
+    browser.click("#previous")
+    browser.click("#previous")
+    assert _state(browser)[:3] == (3, "#page-3", "page-3")
+    browser.press("End")
+    assert _state(browser)[:3] == (15, "#page-15", "page-15")
+    assert browser.evaluate("document.getElementById('next').disabled") is True
+    browser.press("ArrowRight")  # past the end: stays
+    assert _state(browser)[0] == 15
+    browser.press("Home")
+    number, _, _, label = _state(browser)
+    assert number == 1 and label == "Soru" and browser.evaluate("document.getElementById('previous').disabled")
+    browser.evaluate("document.getElementById('slider').focus()")
+    browser.press("ArrowRight")  # the slider's own key: one page on, not two
+    assert _state(browser)[:3] == (2, "#page-2", "page-2")
+    assert browser.evaluate("document.getElementById('slider').value") == "2"
+    browser.screenshot(tmp_path / "page-2.png")
+    assert (tmp_path / "page-2.png").read_bytes().startswith(b"\x89PNG")
+    errors = [e for e in browser.events if e.get("method") == "Runtime.exceptionThrown"]
+    assert errors == []
+
+
+def test_each_section_shows_its_drawing_and_its_equation(browser: Browser, page: Path) -> None:
+    browser.go(page.as_uri() + "#page-11")
+    shown = browser.evaluate("(() => { const s = document.querySelector('section.page:not([hidden])');"
+                             " const r = s.querySelector('svg').getBoundingClientRect();"
+                             " return [s.dataset.equation, s.querySelector('.equation').textContent, r.width, r.height];"
+                             " })()")
+    equation, written, width, height = shown
+    assert equation.startswith("a_B = a_A + a^n_B/A") and written.replace(" ", "") == \
+        equation.replace("_", "").replace("^", "").replace(" ", "")
+    assert width > 400 and height > 200  # the drawing is laid out, not collapsed
