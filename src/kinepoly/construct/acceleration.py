@@ -122,6 +122,7 @@ def _record(ctx: _Context, label: str, equation: str, first: Line, second: Line,
             directions: tuple[Direction, Direction]) -> None:
     text = (f"Lay the known terms end to end, then draw {first.label} and {second.label}; they cross at "
             f"{label.lower()}: o{label.lower()} is a_{label} = ({value[0]:.6g}, {value[1]:.6g}) {ctx.b.unit}.")
+    known = known + tuple((d.term, "direction") for d in directions)  # the two unknown terms
     ctx.b.steps.append(Step("acceleration", "intersection", equation, text, label.lower(), known,
                             tuple(vectors), (first, second), value=value, topic="intersection",
                             params=(("point", label),), directions=directions))
@@ -184,9 +185,7 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         value = b.cross_lines(line1, line2, p2, where)
         b.add_tip(i, p2, value)
         _record(ctx, p2, equation, line1, line2, value, vectors,
-                tuple((v.label, "magnitude and direction") for v in vectors) + ((line1.label, "direction"),
-                                                                                 (line2.label, "direction")),
-                (direction1, direction2))
+                tuple((v.label, "magnitude and direction") for v in vectors), (direction1, direction2))
         _tangential(ctx, i, p1, p2, line1, value)
         if isinstance(dyad.second_joint, Revolute):
             _tangential(ctx, j, dyad.second_joint.point, p2, line2, value)
@@ -207,8 +206,7 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         b.add_tip(r.guide, p, value)
         cor = f" + a^c_{at}/{p}" if len(vectors) > 1 else ""
         _record(ctx, at, f"a_{at} = a_{q} + a^n_{at}/{q} + a^t_{at}/{q} = a_{p}{cor} + a_{at}/{p}", line1, line2,
-                value, vectors, tuple((v.label, "magnitude and direction") for v in vectors)
-                + ((line1.label, "direction"), (line2.label, "direction")),
+                value, vectors, tuple((v.label, "magnitude and direction") for v in vectors),
                 (_along_normal(ctx, f"a^t_{at}/{q}", r.guide_known, q, p, n1),
                  _along_slide(ctx, f"a_{at}/{p}", r.slider, r.block_known, p, vectors[1:])))
         _tangential(ctx, r.guide, q, p, line1, value)
@@ -225,7 +223,7 @@ def _dyad(ctx: _Context, dyad: Dyad, where: str) -> None:
         a1, a2 = b.label(t.side1, point), b.label(t.side2, point)
         side_terms = ["".join(f" + {v.label}" for v in laid) for laid in (v1, v2)]
         _record(ctx, point, f"a_{point} = a_{a1}{side_terms[0]} + a_{point}/{a1} = a_{a2}{side_terms[1]} + "
-                f"a_{point}/{a2}", line1, line2, value, v1 + v2, ((line1.label, "direction"), (line2.label, "direction")),
+                f"a_{point}/{a2}", line1, line2, value, v1 + v2, tuple((v.label, "magnitude and direction") for v in v1 + v2),
                 (_along_slide(ctx, f"a_{point}/{a1}", t.first_slider, t.side1, point, v1),
                  _along_slide(ctx, f"a_{point}/{a2}", t.second_slider, t.side2, point, v2)))
         ctx.slide_values(t.first_slider, t.first_relative, point)
