@@ -21,6 +21,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
+from kinepoly.render import text as render_text
 from kinepoly.render.text import Run
 
 __all__ = ["Piece", "html_of", "pieces", "plain_of", "runs_of", "text_width", "typographic", "wrap"]
@@ -66,18 +67,7 @@ def text_width(text: str, size: float, bold: bool = False) -> float:
 
 def wrap(text: str, size: float, width: float, bold: bool = False) -> list[str]:
     """Break ``text`` at spaces into lines no wider than ``width`` as typeset (a longer word stands alone)."""
-    lines: list[str] = []
-    current = ""
-    for word in text.split():
-        trial = f"{current} {word}" if current else word
-        if current and _typeset_width(trial, size, bold) > width:
-            lines.append(current)
-            current = word
-        else:
-            current = trial
-    if current:
-        lines.append(current)
-    return lines
+    return render_text.wrap(text, size, width, bold, measure=_typeset_width)
 
 
 def _typeset_width(text: str, size: float, bold: bool) -> float:

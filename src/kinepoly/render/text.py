@@ -9,6 +9,7 @@ and stacked. Sizes are the font's em size in millimetres.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 
 __all__ = [
@@ -133,13 +134,18 @@ def runs_box(runs: tuple[Run, ...], bold: bool = False) -> tuple[float, float, f
     return (x0, y0, x1, y1)
 
 
-def wrap(text: str, size: float, width: float, bold: bool = False) -> list[str]:
-    """Break ``text`` at spaces into lines no wider than ``width`` (a longer word stands alone)."""
+def wrap(text: str, size: float, width: float, bold: bool = False,
+         measure: Callable[[str, float, bool], float] | None = None) -> list[str]:
+    """Break ``text`` at spaces into lines no wider than ``width`` (a longer word stands alone).
+
+    ``measure(text, size, bold)`` gives a line's width; by default this module's ``text_width``.
+    """
+    width_of = measure or text_width
     lines: list[str] = []
     current = ""
     for word in text.split():
         trial = f"{current} {word}" if current else word
-        if current and text_width(trial, size, bold) > width:
+        if current and width_of(trial, size, bold) > width:
             lines.append(current)
             current = word
         else:
