@@ -172,3 +172,16 @@ def test_public_api_all_is_sorted_and_importable() -> None:
         assert getattr(kinepoly, name) is not None
     solution = kinepoly.solve(kinepoly.loads_scene(FOUR_BAR))
     assert kinepoly.to_json(solution)["links"]["3"]["omega"] == pytest.approx(-0.3955515802631714, rel=1e-12)
+
+
+@pytest.mark.parametrize("omega, alpha", [(1e-200, 0.0), (0.0, 1e-300), (1e-150, 1e-300)])
+def test_vanishing_speeds_solve_without_underflow(capsys: pytest.CaptureFixture[str], tmp_path: Path,
+                                                  omega: float, alpha: float) -> None:
+    code, out, err = run(capsys, "solve", write(tmp_path, four_bar(100, 40, 120, 80, 60, omega, alpha,
+                                                                    guess_b=(110, 80))), "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    # every result scales with the input speed: omega13 / omega12 is the four-bar's velocity ratio
+    if omega:
+        assert data["links"]["3"]["omega"] / omega == pytest.approx(-0.03955515802631714, rel=1e-9)
+    assert data["check"]["max_rel_error"] <= 1e-12

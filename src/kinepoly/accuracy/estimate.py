@@ -30,8 +30,9 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 from kinepoly.construct.steps import Step
+from kinepoly.geom.lines import intersect
 from kinepoly.geom.tolerances import UNIT_ROUNDOFF
-from kinepoly.geom.vec import cross, norm
+from kinepoly.geom.vec import norm
 
 __all__ = [
     "C_ACCELERATION",
@@ -84,11 +85,11 @@ def crossings(steps: Iterable[Step]) -> list[Crossing]:
     for step in steps:
         if step.kind not in ("intersection", "image") or len(step.lines) != 2:
             continue
-        d1, d2 = step.lines[0].direction, step.lines[1].direction
-        n1, n2 = norm(d1), norm(d2)
-        if n1 == 0.0 or n2 == 0.0:
+        first, second = step.lines
+        if norm(first.direction) == 0.0 or norm(second.direction) == 0.0:
             continue
-        out.append(Crossing(step.polygon, step.result, step.equation, cross(d1, d2) / (n1 * n2)))
+        sin_angle = intersect(first, second).sin_angle  # the kernel's sine: unit directions first, no underflow
+        out.append(Crossing(step.polygon, step.result, step.equation, sin_angle))
     return out
 
 

@@ -70,19 +70,11 @@ class PolygonBuilder:
 
     # -- rates (omega or alpha) ---------------------------------------------------------------
     def rate_of(self, link: str) -> float | None:
-        if link in self.rate:
-            return self.rate[link]
-        cls = self.mechanism.rotation_class
-        for other, value in self.rate.items():
-            if cls[other] == cls[link]:
-                return value
-        return None
+        return self.mechanism.class_rate(self.rate, link)
 
     def set_rate(self, link: str, value: float) -> None:
-        cls = self.mechanism.rotation_class
-        for other in self.mechanism.link_names:
-            if cls[other] == cls[link]:
-                self.rate[other] = value
+        for other in self.mechanism.turning_together(link):
+            self.rate[other] = value
 
     # -- tips ---------------------------------------------------------------------------------
     def _register(self, label: str, value: Vec, point: str, links: list[str]) -> None:
@@ -162,11 +154,8 @@ class PolygonBuilder:
         return end
 
     def omega_of(self, link: str) -> float:
-        cls = self.mechanism.rotation_class
-        for other, value in self.omega.items():
-            if cls[other] == cls[link]:
-                return value
-        return 0.0
+        omega = self.mechanism.class_rate(self.omega, link)
+        return 0.0 if omega is None else omega
 
     def _ground(self) -> str:
         return self.mechanism.ground or ""

@@ -8,8 +8,10 @@ Coriolis term; that is the test ``has_turning_guide``.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TypeVar
 
 from kinepoly.errors import MobilityError, SceneError
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput, SliderSpec
@@ -17,6 +19,7 @@ from kinepoly.scene.spec import LinkInput, Scene, SliderInput, SliderSpec
 __all__ = ["Joint", "Mechanism", "Revolute", "build_mechanism", "point_label"]
 
 Vec = tuple[float, float]
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -112,6 +115,18 @@ class Mechanism:
             if a != b:
                 parent[max(a, b)] = min(a, b)
         return {name: find(name) for name in self.link_names}
+
+    def turning_together(self, link: str) -> tuple[str, ...]:
+        """``link`` and every link that must turn with it (joined by sliders): one omega, one alpha."""
+        cls = self.rotation_class
+        return tuple(name for name in self.link_names if cls[name] == cls[link])
+
+    def class_rate(self, rates: Mapping[str, T], link: str) -> T | None:
+        """The rate (omega or alpha) of ``link`` from ``rates`` known for any link that turns with it."""
+        if link in rates:
+            return rates[link]
+        cls = self.rotation_class
+        return next((value for other, value in rates.items() if cls[other] == cls[link]), None)
 
     def turns_with_ground(self, link: str) -> bool:
         """True when ``link`` can never turn: it is the ground or slides on it (via sliders)."""

@@ -95,26 +95,15 @@ class ArrayPolygon:
 
     # -- rates ------------------------------------------------------------------------------------
     def rate_of(self, link: str) -> Reals | None:
-        if link in self.rate:
-            return self.rate[link]
-        cls = self.mechanism.rotation_class
-        for other, value in self.rate.items():
-            if cls[other] == cls[link]:
-                return value
-        return None
+        return self.mechanism.class_rate(self.rate, link)
 
     def set_rate(self, link: str, value: Reals) -> None:
-        cls = self.mechanism.rotation_class
-        for other in self.mechanism.link_names:
-            if cls[other] == cls[link]:
-                self.rate[other] = value
+        for other in self.mechanism.turning_together(link):
+            self.rate[other] = value
 
     def omega_of(self, link: str) -> Reals:
-        cls = self.mechanism.rotation_class
-        for other, value in self.omega.items():
-            if cls[other] == cls[link]:
-                return value
-        return np.zeros(self.n)
+        omega = self.mechanism.class_rate(self.omega, link)
+        return np.zeros(self.n) if omega is None else omega
 
     # -- tips -------------------------------------------------------------------------------------
     def _register(self, label: str, value: Points, point: str, links: list[str]) -> None:
