@@ -31,7 +31,7 @@ from kinepoly.scene.spec import (
     SliderSpec,
     Units,
 )
-from kinepoly.solve.pose import LinkPose
+from kinepoly.model.pose import LinkPose
 
 RAD = math.radians
 

@@ -21,8 +21,8 @@ from tests.scenes import EXAMPLES, four_bar, slider_crank, slotted_lever
 import kinepoly
 from kinepoly.analysis.analytic import AnalyticSolution, solve_analytic
 from kinepoly.cli import main
-from kinepoly.construct.centers import InstantCenter
-from kinepoly.construct.circle_diagram import edge, pair_name, plan_kennedy
+from kinepoly.engine.centers import InstantCenter
+from kinepoly.engine.circle_diagram import edge, pair_name, plan_kennedy
 from kinepoly.errors import AssemblyError, SingularityError
 from kinepoly.geom.homogeneous import LocalFrame, canonical_direction, wedge
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from kinepoly.construct.steps import Step
+from kinepoly.engine.steps import Step
 from kinepoly.geom.vec import Vec, norm, unit
 from kinepoly.report_centers import centers_json, centers_steps_text, centers_table, kennedy_steps_json
 from kinepoly.scene.spec import LinkInput, SliderInput

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from kinepoly.construct.centers import InstantCenter, InstantCenters, KennedyLine, KennedyStep
-from kinepoly.construct.circle_diagram import center_label
+from kinepoly.engine.centers import InstantCenter, InstantCenters, KennedyLine, KennedyStep
+from kinepoly.engine.circle_diagram import center_label
 from kinepoly.geom.vec import Vec
 
 __all__ = ["centers_json", "centers_steps_text", "centers_table", "kennedy_steps_json"]

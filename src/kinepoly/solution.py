@@ -23,8 +23,8 @@ from kinepoly.accuracy import (
 from kinepoly.analysis.analytic import AnalyticSolution, solve_analytic
 from kinepoly.analysis.check import CheckReport, Quantity, compare
 from kinepoly.construct.acceleration import AccelerationPolygon, construct_acceleration
-from kinepoly.construct.centers import InstantCenters, find_instant_centers, plan_instant_centers
-from kinepoly.construct.steps import Step
+from kinepoly.engine.centers import InstantCenters, find_instant_centers, plan_instant_centers
+from kinepoly.engine.steps import Step
 from kinepoly.construct.velocity import VelocityPolygon, construct_velocity
 from kinepoly.errors import SingularityError
 from kinepoly.geom.tolerances import LOUD_ERROR
@@ -32,8 +32,8 @@ from kinepoly.geom.vec import Vec, dot, rotate, sub
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import Scene
-from kinepoly.solve.plan import PositionPlan, make_plan
-from kinepoly.solve.pose import Pose
+from kinepoly.engine.plan import PositionPlan, make_plan
+from kinepoly.model.pose import Pose
 from kinepoly.solve.position import describe_input, solve_position
 
 __all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "what_is_asked"]

@@ -17,14 +17,14 @@ import math
 from dataclasses import dataclass
 
 from kinepoly.accuracy.estimate import ErrorEstimate, crossings
-from kinepoly.construct.steps import Step
+from kinepoly.engine.steps import Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.vec import Vec, angle_of, norm, rotate, sub
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan
-from kinepoly.solve.pose import Pose
+from kinepoly.engine.plan import Dyad, PositionPlan
+from kinepoly.model.pose import Pose
 
 __all__ = [
     "MIN_TRANSMISSION_DEG",

@@ -29,7 +29,7 @@ import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-from kinepoly.construct.steps import Step
+from kinepoly.engine.steps import Step
 from kinepoly.geom.lines import intersect
 from kinepoly.geom.tolerances import UNIT_ROUNDOFF
 from kinepoly.geom.vec import norm

@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 from kinepoly.geom.vec import Vec, rotate
 from kinepoly.scene.spec import LinkSpec, PointSpec, Scene, SliderSpec
-from kinepoly.solve.pose import LinkPose, Pose
+from kinepoly.model.pose import LinkPose, Pose
 
 __all__ = ["FAR_FACTOR", "LocalFrame", "localize"]
 

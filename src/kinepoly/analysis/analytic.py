@@ -40,7 +40,7 @@ from kinepoly.analysis.start import complete_start
 from kinepoly.errors import SceneError
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
-from kinepoly.solve.pose import LinkPose
+from kinepoly.model.pose import LinkPose
 
 __all__ = [
     "NEWTON_REL_TOL",

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from kinepoly.analysis.coordinates import Vec, as_array, rotation
 from kinepoly.model.mechanism import Mechanism
-from kinepoly.solve.pose import LinkPose
+from kinepoly.model.pose import LinkPose
 
 __all__ = ["complete_start"]
 

@@ -30,7 +30,7 @@ from kinepoly.bench.motion import LinkMotion
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.pose import Pose
+from kinepoly.model.pose import Pose
 
 __all__ = ["ClosedForm", "closed_form"]
 

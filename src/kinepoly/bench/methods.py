@@ -28,7 +28,7 @@ from kinepoly.geom.vec import cross, norm, sub
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import LinkInput, SliderInput
 from kinepoly.solution import Solution
-from kinepoly.solve.pose import Pose
+from kinepoly.model.pose import Pose
 from kinepoly.solve.position import solve_position
 
 __all__ = ["FD_STEPS", "Guess", "Method", "Setting", "construct_at", "construction_values", "geos_crossing",

@@ -26,7 +26,7 @@ from kinepoly.bench.motion import LinkMotion, Trig, evaluate
 from kinepoly.errors import SingularityError
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import LinkInput, SliderInput
-from kinepoly.solve.pose import Pose
+from kinepoly.model.pose import Pose
 
 __all__ = ["REFERENCE_DIGITS", "Reference", "input_rates", "reference_values"]
 

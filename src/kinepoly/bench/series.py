@@ -25,7 +25,7 @@ import numpy as np
 from kinepoly.bench.closed_forms import _slider_crank_links
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import LinkInput
-from kinepoly.solve.pose import Pose
+from kinepoly.model.pose import Pose
 
 __all__ = ["SliderSeries", "slider_crank_series"]
 

@@ -23,7 +23,7 @@ from kinepoly.errors import AssemblyError, KinepolyError, SingularityError
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import LinkInput, SliderInput
 from kinepoly.solution import Solution, solve
-from kinepoly.solve.pose import Pose
+from kinepoly.model.pose import Pose
 from kinepoly.solve.position import solve_position
 
 __all__ = ["SWEEP_FD_STEP", "Sweep", "SweepPoint", "run_sweep", "sweep_inputs"]

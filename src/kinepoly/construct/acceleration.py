@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from kinepoly.construct.builder import Crossing, PolygonBuilder, sense
-from kinepoly.construct.steps import Direction, DrawnVector, Step
+from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.construct.velocity import VelocityPolygon, read_rate, slide_direction
 from kinepoly.errors import SceneError
 from kinepoly.geom import Line, intersect
@@ -19,8 +19,8 @@ from kinepoly.geom.vec import Vec, add, dot, norm, perp, scale, sub, unit
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
-from kinepoly.solve.pose import Pose
+from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.model.pose import Pose
 from kinepoly.solve.position import describe_input
 
 __all__ = ["AccelerationPolygon", "construct_acceleration"]

@@ -14,7 +14,7 @@ import math
 from collections.abc import Callable
 from typing import Literal
 
-from kinepoly.construct.steps import Direction, DrawnVector, Step
+from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom import Intersection, Line, ParallelLinesError, intersect
 from kinepoly.geom.tolerances import COLLINEAR_SIN
@@ -22,7 +22,7 @@ from kinepoly.geom.vec import Vec, add, angle_of, cross, norm, perp, rotate, sca
 from kinepoly.model.mechanism import Mechanism, point_label
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import SliderSpec
-from kinepoly.solve.pose import Pose
+from kinepoly.model.pose import Pose
 
 __all__ = ["Crossing", "PolygonBuilder", "sense"]
 

@@ -16,11 +16,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from kinepoly.construct.builder import PolygonBuilder
-from kinepoly.construct.steps import Step
+from kinepoly.engine.steps import Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.vec import Vec, perp, rotate, sub
 from kinepoly.model.mechanism import Revolute
-from kinepoly.solve.plan import NewtonGroup
+from kinepoly.engine.plan import NewtonGroup
 
 if TYPE_CHECKING:
     from kinepoly.construct.acceleration import _Context

@@ -11,15 +11,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from kinepoly.construct.builder import Crossing, PolygonBuilder, sense
-from kinepoly.construct.steps import Direction, DrawnVector, Step
+from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SceneError
 from kinepoly.geom import Line, intersect
 from kinepoly.geom.vec import Vec, cross, dot, norm, perp, rotate, sub, unit
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
-from kinepoly.solve.pose import Pose
+from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.model.pose import Pose
 from kinepoly.solve.position import describe_input
 
 __all__ = ["VelocityPolygon", "construct_velocity", "read_rate", "slide_direction"]

@@ -12,7 +12,7 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from kinepoly.construct.circle_diagram import center_label
+from kinepoly.engine.circle_diagram import center_label
 from kinepoly.geom.tolerances import LOUD_ERROR
 from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Part, Table

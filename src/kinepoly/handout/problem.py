@@ -11,7 +11,7 @@ import math
 from collections.abc import Mapping
 from itertools import combinations
 
-from kinepoly.construct.circle_diagram import center_label, pair_name, split_pair
+from kinepoly.engine.circle_diagram import center_label, pair_name, split_pair
 from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
 from kinepoly.render.titleblock import space_scale_text

@@ -4,7 +4,7 @@ Each page says the step's vector equation, a table of what is known of each term
 direction, ``?`` where unknown), what to draw and why, and what the step yields. Nothing is
 translated from the English ``Step.text``: the words come from the catalogue, the names and
 numbers from ``Step.topic``, ``Step.params``, ``Step.directions``, ``Step.vectors`` and the polygon
-(``kinepoly.construct.steps`` lists each topic's parameters).
+(``kinepoly.engine.steps`` lists each topic's parameters).
 """
 
 from __future__ import annotations
@@ -13,16 +13,16 @@ import math
 import re
 from collections.abc import Mapping
 
-from kinepoly.construct.center_values import InstantCenters, KennedyStep
-from kinepoly.construct.circle_diagram import center_label
-from kinepoly.construct.steps import Direction, DrawnVector, Step
+from kinepoly.engine.center_values import InstantCenters, KennedyStep
+from kinepoly.engine.circle_diagram import center_label
+from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.geom.vec import Vec, norm, sub
 from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
 from kinepoly.handout.notation import typographic
 from kinepoly.model.mechanism import Revolute, joint_links
 from kinepoly.solution import Solution
-from kinepoly.solve.plan import NewtonGroup
+from kinepoly.engine.plan import NewtonGroup
 
 __all__ = ["construction_pages", "step_equation", "tip_name"]
 

@@ -22,7 +22,7 @@ from kinepoly.render.text import Run, plain_runs, text_width
 from kinepoly.solution import Solution
 
 if TYPE_CHECKING:
-    from kinepoly.construct.centers import InstantCenters
+    from kinepoly.engine.centers import InstantCenters
 
 __all__ = ["LAYER", "centers_content", "centers_items", "centers_of", "near_centers"]
 

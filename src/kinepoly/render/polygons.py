@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
-from kinepoly.construct.steps import Step, Term
+from kinepoly.engine.steps import Step, Term
 from kinepoly.geom.lines import Line
 from kinepoly.geom.vec import Vec, norm, sub
 from kinepoly.render.labels import Request

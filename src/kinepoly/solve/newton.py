@@ -14,8 +14,8 @@ import numpy as np
 
 from kinepoly.errors import AssemblyError
 from kinepoly.model.mechanism import Mechanism, Revolute
-from kinepoly.solve.plan import NewtonGroup
-from kinepoly.solve.pose import LinkPose
+from kinepoly.engine.plan import NewtonGroup
+from kinepoly.model.pose import LinkPose
 
 __all__ = ["group_residual", "solve_newton_group"]
 

@@ -22,8 +22,8 @@ from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
 from kinepoly.solve.newton import solve_newton_group
-from kinepoly.solve.plan import Dyad, NewtonGroup, PositionPlan
-from kinepoly.solve.pose import LinkPose, Pose
+from kinepoly.engine.plan import Dyad, NewtonGroup, PositionPlan
+from kinepoly.model.pose import LinkPose, Pose
 
 __all__ = ["PositionResult", "describe_input", "solve_position"]
 

@@ -14,8 +14,8 @@ import numpy as np
 
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
-from kinepoly.sweep.kernel import Points, Reals
+from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.geom.arrays import Points, Reals
 from kinepoly.sweep.polygon import ArrayPolygon, Line
 from kinepoly.sweep.position import SweepPositions
 from kinepoly.sweep.velocity import SweepVelocity, link_length, read_rates, slide_direction

@@ -23,9 +23,9 @@ from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, SliderInput
-from kinepoly.solve.plan import NewtonGroup, PositionPlan
-from kinepoly.solve.pose import LinkPose
-from kinepoly.sweep.kernel import Bools, Reals
+from kinepoly.engine.plan import NewtonGroup, PositionPlan
+from kinepoly.model.pose import LinkPose
+from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.sweep.position import SweepPositions, sweep_positions
 
 __all__ = ["FULL_TURN_CHECK_ROWS", "MAX_STEPS", "InputGrid", "full_turn_grid", "input_grid", "input_name"]

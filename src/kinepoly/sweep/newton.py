@@ -24,11 +24,11 @@ import numpy as np
 from kinepoly.errors import SingularityError
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import SliderSpec
-from kinepoly.solve.plan import NewtonGroup
-from kinepoly.solve.pose import LinkPose
-from kinepoly.sweep.kernel import Bools, Points, Reals, turn
+from kinepoly.engine.plan import NewtonGroup
+from kinepoly.model.pose import LinkPose
+from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.sweep.polygon import ArrayPolygon, JointSolve
-from kinepoly.sweep.poses import ArrayPose
+from kinepoly.model.array_pose import ArrayPose
 
 if TYPE_CHECKING:
     from kinepoly.sweep.acceleration import AccelerationContext

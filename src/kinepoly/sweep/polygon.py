@@ -24,7 +24,7 @@ from kinepoly.geom import Line as GeomLine
 from kinepoly.geom import intersect as geom_intersect
 from kinepoly.geom.tolerances import COLLINEAR_SIN
 from kinepoly.model.mechanism import Mechanism, point_label
-from kinepoly.sweep.kernel import Crossing, Points, PointsLike, Reals, cross, cross_lines
+from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross, cross_lines
 from kinepoly.sweep.position import SweepPositions
 
 __all__ = ["ArrayPolygon", "JointSolve", "Line", "LineCrossing"]

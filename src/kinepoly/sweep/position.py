@@ -20,10 +20,10 @@ from kinepoly.errors import AssemblyError, SingularityError
 from kinepoly.geom.tolerances import ASSEMBLY_REL_TOL, NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.scene.spec import LinkInput, SliderInput, SliderSpec
-from kinepoly.solve.plan import Dyad, NewtonGroup, PositionPlan
-from kinepoly.solve.pose import LinkPose
-from kinepoly.sweep.branches import follow_branch
-from kinepoly.sweep.kernel import (
+from kinepoly.engine.plan import Dyad, NewtonGroup, PositionPlan
+from kinepoly.model.pose import LinkPose
+from kinepoly.engine.branches import follow_branch
+from kinepoly.geom.arrays import (
     Bools,
     Points,
     Reals,
@@ -33,7 +33,7 @@ from kinepoly.sweep.kernel import (
     length,
     turn,
 )
-from kinepoly.sweep.poses import ArrayPose, pose_from_point, pose_from_two_points, still_pose
+from kinepoly.model.array_pose import ArrayPose, pose_from_point, pose_from_two_points, still_pose
 
 __all__ = ["Failure", "Names", "Progress", "SweepPositions", "seed_poses", "sweep_positions"]
 

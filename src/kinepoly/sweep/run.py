@@ -32,12 +32,12 @@ from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
-from kinepoly.solve.plan import NewtonGroup, PositionPlan, make_plan
-from kinepoly.solve.pose import LinkPose
+from kinepoly.engine.plan import NewtonGroup, PositionPlan, make_plan
+from kinepoly.model.pose import LinkPose
 from kinepoly.sweep.acceleration import SweepAcceleration, sweep_acceleration
 from kinepoly.sweep.indexed import indexed
 from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
-from kinepoly.sweep.kernel import Bools, Points, Reals, dot
+from kinepoly.geom.arrays import Bools, Points, Reals, dot
 from kinepoly.sweep.newton import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
 from kinepoly.sweep.polygon import JointSolve, LineCrossing
 from kinepoly.sweep.position import Progress, SweepPositions, seed_poses, sweep_positions

@@ -14,8 +14,8 @@ import numpy as np
 
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import SliderSpec
-from kinepoly.solve.plan import Dyad, PositionPlan
-from kinepoly.sweep.kernel import Points, Reals, cross, length, turn
+from kinepoly.engine.plan import Dyad, PositionPlan
+from kinepoly.geom.arrays import Points, Reals, cross, length, turn
 from kinepoly.sweep.position import SweepPositions
 
 __all__ = ["dyad_point", "transmission_angles"]

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinepoly.sweep.kernel import Points, Reals, length
+from kinepoly.geom.arrays import Points, Reals, length
 
 __all__ = ["ArrayPose", "pose_from_point", "pose_from_two_points", "still_pose"]
 

@@ -19,15 +19,15 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from kinepoly.construct.builder import sense
-from kinepoly.construct.circle_diagram import Edge, edge, pair_name
+from kinepoly.engine.circle_diagram import Edge, edge, pair_name
 from kinepoly.geom.tolerances import COINCIDENT_SIN
 from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, scale, sub, unit
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import LinkInput, SliderInput
-from kinepoly.solve.pose import Pose
+from kinepoly.model.pose import Pose
 
 if TYPE_CHECKING:
-    from kinepoly.construct.centers import InstantCenter
+    from kinepoly.engine.centers import InstantCenter
 
 __all__ = ["CenterOmega", "Motion", "omegas_from_centers"]
 

@@ -23,15 +23,15 @@ from __future__ import annotations
 
 from itertools import combinations
 
-from kinepoly.construct.center_values import CenterPlan, InstantCenter, InstantCenters, KennedyLine, KennedyStep
-from kinepoly.construct.center_velocity import omegas_from_centers
-from kinepoly.construct.circle_diagram import Edge, center_label, edge, pair_name, plan_kennedy, split_pair
-from kinepoly.construct.kennedy import derive_centers
+from kinepoly.engine.center_values import CenterPlan, InstantCenter, InstantCenters, KennedyLine, KennedyStep
+from kinepoly.engine.center_velocity import omegas_from_centers
+from kinepoly.engine.circle_diagram import Edge, center_label, edge, pair_name, plan_kennedy, split_pair
+from kinepoly.engine.kennedy import derive_centers
 from kinepoly.errors import SceneError
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Joint, Mechanism, joint_links
-from kinepoly.solve.plan import make_plan
-from kinepoly.solve.pose import Pose
+from kinepoly.engine.plan import make_plan
+from kinepoly.model.pose import Pose
 
 __all__ = [
     "CenterPlan",

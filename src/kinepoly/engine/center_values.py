@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from kinepoly.construct.center_velocity import CenterOmega
-from kinepoly.construct.circle_diagram import CircleDiagram, Edge, KennedyPlan, center_label, pair_name
+from kinepoly.engine.center_velocity import CenterOmega
+from kinepoly.engine.circle_diagram import CircleDiagram, Edge, KennedyPlan, center_label, pair_name
 from kinepoly.geom.homogeneous import Place, Triple
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Joint

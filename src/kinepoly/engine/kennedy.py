@@ -19,8 +19,8 @@ import math
 from dataclasses import dataclass, replace
 from itertools import combinations
 
-from kinepoly.construct.center_values import CenterPlan, InstantCenter, KennedyLine, KennedyStep
-from kinepoly.construct.circle_diagram import (
+from kinepoly.engine.center_values import CenterPlan, InstantCenter, KennedyLine, KennedyStep
+from kinepoly.engine.circle_diagram import (
     CircleDiagram,
     DiagramEdge,
     Edge,
@@ -37,7 +37,7 @@ from kinepoly.geom.tolerances import LOUD_ERROR, NEAR_SINGULAR_SIN
 from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, sub
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.notice import Notice
-from kinepoly.solve.pose import Pose
+from kinepoly.model.pose import Pose
 from kinepoly.solve.position import describe_input
 
 __all__ = ["KennedyResult", "derive_centers"]

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from kinepoly.sweep.kernel import Bools, Points, Reals
+from kinepoly.geom.arrays import Bools, Points, Reals
 
 __all__ = ["Labels", "follow_branch"]
 
