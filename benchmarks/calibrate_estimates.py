@@ -1,4 +1,4 @@
-"""Calibrate the constants of the error estimates (``kinepoly.accuracy.estimate``).
+"""Calibrate the constants of the error estimates (``kinepoly.check.estimate``).
 
 Draws random mechanisms of every standard kind (``kinepoly.bench.cases.random_case``: four-bars,
 slider-cranks driven by the crank or the piston, slotted levers; ordinary poses and inputs 1e-1 to
@@ -18,11 +18,11 @@ import random
 import time
 
 import kinepoly
-from kinepoly.accuracy.estimate import C_ACCELERATION, C_POSITION, C_VELOCITY
 from kinepoly.bench.cases import random_case
 from kinepoly.bench.methods import construction_values
 from kinepoly.bench.reference import reference_values
 from kinepoly.bench.run import kind_errors
+from kinepoly.check.estimate import C_ACCELERATION, C_POSITION, C_VELOCITY
 from kinepoly.errors import SingularityError
 from kinepoly.geom.tolerances import UNIT_ROUNDOFF as U
 

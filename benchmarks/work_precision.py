@@ -17,8 +17,8 @@ import time
 from pathlib import Path
 
 import kinepoly
-from kinepoly.bench.command import bench_text, sweep_text
 from kinepoly.bench.plot import plot_sweep, plot_work_precision
+from kinepoly.bench.report import bench_text, sweep_text
 from kinepoly.bench.run import run_bench
 from kinepoly.bench.sweep import run_sweep
 
@@ -44,9 +44,9 @@ def main() -> None:
         print(f"({time.perf_counter() - t0:.1f} s)\n")
         if args.docs and path in figures:  # the figures show the very run printed above
             name = figures[path]
-            plot_work_precision(result, ROOT / "docs" / f"accuracy-{name}.png")
+            (ROOT / "docs" / f"accuracy-{name}.png").write_bytes(plot_work_precision(result))
             sweep = run_sweep(solution, args.sweep)
-            plot_sweep(sweep, ROOT / "docs" / f"accuracy-{name}-sweep.png")
+            (ROOT / "docs" / f"accuracy-{name}-sweep.png").write_bytes(plot_sweep(sweep))
             print("\n".join(sweep_text(sweep)) + "\n")
             print(f"wrote docs/accuracy-{name}.png and docs/accuracy-{name}-sweep.png\n")
 

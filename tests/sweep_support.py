@@ -88,6 +88,8 @@ def compare_row(text: str, result: SweepResult, row: int) -> float:
         assert status in ("cannot-assemble", "singular"), (row, status)
         return 0.0
     assert status != "cannot-assemble", (row, result.warnings.get(row))
+    if any(n.code == "default-assembly" for n in solution.notices):
+        return 0.0  # no guessed point tells the assemblies apart (a slot through its pivot): no definite row
     if any(n.code == "near-singular" for n in solution.notices):
         assert status in ("near-singular", "singular"), (row, status)
     worst = 0.0

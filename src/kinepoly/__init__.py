@@ -8,16 +8,28 @@ A notebook needs four names::
     kinepoly.to_json(solution)["links"]["3"]["omega"]
 """
 
-from kinepoly.errors import AssemblyError, KinepolyError, MobilityError, SceneError, SingularityError
-from kinepoly.report import steps_text, table_text, to_json
+from kinepoly.errors import (
+    AssemblyError,
+    CatalogueError,
+    HandoutError,
+    KinepolyError,
+    MobilityError,
+    OutputError,
+    SceneError,
+    SingularityError,
+)
+from kinepoly.present.report import steps_text, table_text, to_json
 from kinepoly.scene.loader import load_scene, loads_scene
 from kinepoly.scene.spec import Scene
 from kinepoly.solution import Solution, solve
 
 __all__ = [
     "AssemblyError",
+    "CatalogueError",
+    "HandoutError",
     "KinepolyError",
     "MobilityError",
+    "OutputError",
     "Scene",
     "SceneError",
     "SingularityError",

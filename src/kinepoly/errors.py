@@ -3,13 +3,22 @@
 ::
 
     KinepolyError                 base; every error the CLI turns into a message and an exit code
-    ├── SceneError                the scene (or an answers file) is wrong: exit 2
+    ├── SceneError                the scene (or an answers file, or a command-line value) is wrong: exit 2
     │   └── MobilityError         the links and joints do not make a one-degree-of-freedom mechanism
+    ├── OutputError               an output path or option that cannot be written or used: exit 2
+    ├── CatalogueError            a message catalogue with missing, unknown or bad keys: exit 2
+    ├── HandoutError              a handout that cannot be laid out on the asked paper: exit 2
     ├── AssemblyError             the mechanism cannot close at the asked input: exit 3
     └── SingularityError          the position is singular: construction lines parallel, exit 3
 
+    ParallelLinesError            (geom.lines; an ArithmeticError, not a KinepolyError) the
+                                  geometry kernel's own: two lines that should cross are parallel.
+                                  The kernel knows nothing of mechanisms; the construction turns
+                                  it into a SingularityError that names the joint.
+
 Each error carries the full, user-facing message; ``SceneError`` carries a list of problems,
-each already formatted as ``FILE:LINE: key.path: what is wrong; what is expected``.
+each already formatted as ``FILE:LINE: key.path: what is wrong; what is expected``. An error
+not in this tree reaching the command line is an internal error (exit 70).
 """
 
 from __future__ import annotations
@@ -20,8 +29,11 @@ __all__ = [
     "EXIT_SCENE",
     "EXIT_WRONG_ANSWERS",
     "AssemblyError",
+    "CatalogueError",
+    "HandoutError",
     "KinepolyError",
     "MobilityError",
+    "OutputError",
     "SceneError",
     "SingularityError",
 ]
@@ -39,7 +51,9 @@ class KinepolyError(Exception):
 
 
 class SceneError(KinepolyError):
-    """The scene file is wrong; raised by the loader after it collected every problem."""
+    """Raised when the scene file is wrong (by the loader, after it collected every problem), and likewise for
+    an answers file, a ``[vary]`` table or a command-line value (``--from``, ``--n``, ``--sweep``, ...).
+    """
 
     exit_code = EXIT_SCENE
 
@@ -50,6 +64,30 @@ class SceneError(KinepolyError):
 
 class MobilityError(SceneError):
     """Raised when Gruebler's count does not give one degree of freedom."""
+
+
+class OutputError(KinepolyError):
+    """Raised by the command line for an output it cannot make: no such folder, no permission, an unknown
+    extension, nothing asked to write, a --dpi or --paper out of range (``kinepoly draw``, ``kinepoly handout``).
+    """
+
+    exit_code = EXIT_SCENE
+
+
+class CatalogueError(KinepolyError):
+    """Raised when a message catalogue cannot be used: an unknown language, a file that cannot be read or is
+    not TOML, a missing or unknown key, a placeholder English does not have, a brace out of place.
+    """
+
+    exit_code = EXIT_SCENE
+
+
+class HandoutError(KinepolyError):
+    """Raised when a handout cannot be made as asked: an unknown paper, its text does not fit the paper, or its
+    layout does not settle on it.
+    """
+
+    exit_code = EXIT_SCENE
 
 
 class AssemblyError(KinepolyError):

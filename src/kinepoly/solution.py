@@ -9,7 +9,9 @@ import math
 import time
 from dataclasses import dataclass, field
 
-from kinepoly.accuracy import (
+import numpy as np
+
+from kinepoly.check import (
     AccuracyReport,
     LocalFrame,
     assess,
@@ -20,21 +22,23 @@ from kinepoly.accuracy import (
     transmission_angles,
     transmission_notices,
 )
-from kinepoly.analysis.analytic import AnalyticSolution, solve_analytic
-from kinepoly.analysis.check import CheckReport, Quantity, compare
-from kinepoly.construct.acceleration import AccelerationPolygon, construct_acceleration
+from kinepoly.check.analytic import AnalyticSolution, solve_analytic
+from kinepoly.check.compare import CheckReport, Quantity, compare
+from kinepoly.engine.acceleration import construct_acceleration
+from kinepoly.engine.assembly import position_at_input
 from kinepoly.engine.centers import InstantCenters, find_instant_centers, plan_instant_centers
+from kinepoly.engine.plan import PositionPlan, make_plan
+from kinepoly.engine.position import describe_input
+from kinepoly.engine.row import AccelerationPolygon, VelocityPolygon, acceleration_row, pose_row, velocity_row
 from kinepoly.engine.steps import Step
-from kinepoly.construct.velocity import VelocityPolygon, construct_velocity
+from kinepoly.engine.velocity import construct_velocity
 from kinepoly.errors import SingularityError
 from kinepoly.geom.tolerances import LOUD_ERROR
 from kinepoly.geom.vec import Vec, dot, rotate, sub
 from kinepoly.model.mechanism import Mechanism, build_mechanism
+from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import Scene
-from kinepoly.engine.plan import PositionPlan, make_plan
-from kinepoly.model.pose import Pose
-from kinepoly.solve.position import describe_input, solve_position
 
 __all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "what_is_asked"]
 
@@ -68,7 +72,7 @@ class SliderValues:
 
 @dataclass(frozen=True)
 class Inside:
-    """The solve's own frames (``kinepoly.accuracy.frame``): the localized mechanism and its pose.
+    """The solve's own frames (``kinepoly.check.frame``): the localized mechanism and its pose.
 
     Differences of positions (slider values, the cross-check) are taken here, where every
     coordinate is of the mechanism's size; ``Solution.pose`` is the same pose in the user's frames.
@@ -163,22 +167,27 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     asked = what_is_asked(inner)
     center_plan = plan_instant_centers(inner) if scene.find.instant_centers else None
     plan = make_plan(inner, needed_links(inner, asked) | set(center_plan.links_needed if center_plan else ()))
-    position = solve_position(inner, plan, origin=frame.origin)
-    t1 = time.perf_counter()
-    unit = scene.units.length
-    velocity = acceleration = None
-    if asked.needs_velocity:
-        velocity = construct_velocity(inner, position.pose, plan, asked.velocity, unit)
-    if asked.needs_acceleration and velocity is not None:
-        acceleration = construct_acceleration(inner, position.pose, plan, velocity, asked.acceleration, unit)
-    centers = find_instant_centers(inner, position.pose, center_plan, frame.origin) if center_plan else None
+    with np.errstate(all="ignore"):  # a singular row raises by name; nothing non-finite passes (see _finite)
+        positions = position_at_input(inner, plan, frame.origin)
+        pose = pose_row(positions)
+        t1 = time.perf_counter()
+        unit = scene.units.length
+        velocity = acceleration = None
+        if asked.needs_velocity:
+            found = construct_velocity(positions, plan, asked.velocity, unit=unit, record=True, strict=True)
+            velocity = velocity_row(found)
+            if asked.needs_acceleration:
+                acceleration = acceleration_row(construct_acceleration(found, plan, asked.acceleration, unit=unit,
+                                                                       record=True, strict=True))
+    _finite(inner, velocity, acceleration)
+    centers = find_instant_centers(inner, pose, center_plan, frame.origin) if center_plan else None
     t2 = time.perf_counter()
     where = describe_input(inner)
-    transmissions = transmission_angles(inner, position.pose, plan)
-    draft = Solution(frame.scene, inner, asked, plan, position.pose, velocity, acceleration, compare([], 1.0), (),
+    transmissions = transmission_angles(inner, pose, plan)
+    draft = Solution(frame.scene, inner, asked, plan, pose, velocity, acceleration, compare([], 1.0), (),
                      centers=centers)
     try:
-        analytic = solve_analytic(inner, dict(position.pose.links), with_acceleration=asked.needs_acceleration)
+        analytic = solve_analytic(inner, dict(pose.links), with_acceleration=asked.needs_acceleration)
     except SingularityError as error:
         raise singular_position_error(where, transmissions, draft.steps, str(error)) from error
     check = compare(_quantities(draft, analytic), analytic.condition_number, _natural_scales(draft))
@@ -186,9 +195,7 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     estimate = estimate_errors(analytic.condition_number, draft.steps, check.relative, kennedy)
     accuracy = assess(check, estimate, frame)
     t3 = time.perf_counter()
-    notices = list(position.notices)
-    notices += velocity.notices if velocity else ()
-    notices += acceleration.notices if acceleration else ()
+    notices = list(positions.notices)
     notices += centers.notices if centers else ()
     notices += transmission_notices(transmissions, where)
     near = near_singular_notice(estimate, where)
@@ -200,8 +207,20 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
                               f"(the error estimate of {worst} is {estimate.of_kind(worst):.2g})"))
     timing = {"load_s": load_s, "position_s": t1 - t0, "construction_s": t2 - t1, "check_s": t3 - t2,
               "total_s": load_s + (t3 - t0)}
-    return Solution(scene, mechanism, asked, plan, frame.pose_to_user(position.pose), velocity, acceleration, check,
-                    tuple(notices), timing, Inside(frame, inner, position.pose), accuracy, centers)
+    return Solution(scene, mechanism, asked, plan, frame.pose_to_user(pose), velocity, acceleration, check,
+                    tuple(notices), timing, Inside(frame, inner, pose), accuracy, centers)
+
+
+def _finite(mechanism: Mechanism, velocity: VelocityPolygon | None, acceleration: AccelerationPolygon | None) -> None:
+    """Raise where a polygon's values overflowed (rates so large that their squares are not numbers)."""
+    for polygon, values in (("velocity", velocity), ("acceleration", acceleration)):
+        if values is None:
+            continue
+        numbers = [x for tip in values.tips.values() for x in tip]
+        numbers += list(values.omega.values() if isinstance(values, VelocityPolygon) else values.alpha.values())
+        if not all(math.isfinite(x) for x in numbers):
+            raise SingularityError(f"the {polygon} polygon at {describe_input(mechanism)} overflowed: its values are "
+                                   "beyond the range of double precision (reduce the input's rates)")
 
 
 def _label(mechanism: Mechanism, link: str, point: str) -> str:

@@ -1,10 +1,12 @@
 """Scenes of the standard mechanisms for the stability suite and the calibration of the estimates.
 
 Each builder writes a scene as a user would (TOML through the loader) and can put it far from
-the origin (``at``); ``scaled`` and ``translated`` change any scene's lengths, speeds and place. ``random_case`` draws one case of every
-kind the estimates were calibrated on: ordinary poses and inputs from 1e-1 to 1e-8 rad short of
-a dead point, for four-bars (crank driven, and driven at the limit of a rocking input),
-slider-cranks (crank and piston driven) and slotted levers (with the slide reversing).
+the origin (``at``); the texts of the four-bar, the slider-crank and the slotted lever
+(``*_text``) are the tests' random mechanisms too. ``scaled`` and ``translated`` change any
+scene's lengths, speeds and place. ``random_case`` draws one case of every kind the estimates
+were calibrated on: ordinary poses and inputs from 1e-1 to 1e-8 rad short of a dead point, for
+four-bars (crank driven, and driven at the limit of a rocking input), slider-cranks (crank and
+piston driven) and slotted levers (with the slide reversing).
 """
 
 from __future__ import annotations
@@ -16,8 +18,8 @@ from dataclasses import dataclass, replace
 from kinepoly.scene.loader import loads_scene
 from kinepoly.scene.spec import InputSpec, LinkInput, Scene, SliderInput
 
-__all__ = ["Case", "four_bar", "four_bar_limit", "piston", "random_case", "scaled", "slider_crank", "slotted_lever",
-           "slotted_lever_reversal", "translated"]
+__all__ = ["Case", "four_bar", "four_bar_limit", "four_bar_text", "piston", "random_case", "scaled", "slider_crank",
+           "slider_crank_text", "slotted_lever", "slotted_lever_reversal", "slotted_lever_text", "translated"]
 
 FIND_ALL = """[find]
 velocity = [{v}]
@@ -34,6 +36,8 @@ def _find(velocity: list[str], acceleration: list[str], links: list[str], extra:
 
 
 def _xy(x: float, y: float, at: tuple[float, float]) -> str:
+    if at == (0.0, 0.0):
+        return f"[{x!r}, {y!r}]"  # as given: [0, 0] stays [0, 0]
     return f"[{x + at[0]!r}, {y + at[1]!r}]"
 
 
@@ -46,6 +50,62 @@ class Case:
     distance: float | None = None
 
 
+# --------------------------------------------------------------------------------------------
+# The scene texts (the tests write their random mechanisms with these too)
+
+
+def _text(title: str, links: tuple[str, ...], middle: str, guess: str, find: str, units: str = "") -> str:
+    """A scene: links 1, 2, ... with these point tables, then ``middle`` (sliders, input), the guess, the find."""
+    tables = "".join(f"{n} = {{ points = {{ {points} }} }}\n" for n, points in enumerate(links, 1))
+    return f'\ntitle = "{title}"\n{units}[links]\n{tables}{middle}[guess]\n{guess}\n{find}\n'
+
+
+def _crank_input(angle: float, omega: float, alpha: float) -> str:
+    return f'[input]\nlink = "2"\nangle = {angle!r}\nomega = {omega!r}\nalpha = {alpha!r}\n'
+
+
+def _slider(block: str, guide: str, point: str, through: str, angle: int) -> str:
+    return (f'[[sliders]]\nblock = "{block}"\nguide = "{guide}"\npoint = "{point}"\n'
+            f"line = {{ through = {through}, angle = {angle} }}\n")
+
+
+def four_bar_text(a1: float, a2: float, a3: float, a4: float, angle: float, omega: float, alpha: float,
+                  guess_b: tuple[float, float], *, coupler: tuple[float, float] = (60.0, 30.0),
+                  title: str = "four-bar", angle_unit: str | None = None, at: tuple[float, float] = (0.0, 0.0),
+                  find: str = "") -> str:
+    """Frame A0 B0 = a1 on the x-axis, crank a2 at ``angle``, coupler a3 with C at ``coupler`` (polar), rocker a4."""
+    links = (f"A0 = {_xy(0, 0, at)}, B0 = {_xy(a1, 0, at)}", f"A0 = [0, 0], A = [{a2!r}, 0]",
+             f"A = [0, 0], B = [{a3!r}, 0], C = {{ polar = [{coupler[0]!r}, {coupler[1]!r}] }}",
+             f"B0 = [0, 0], B = [{a4!r}, 0]")
+    units = f'units = {{ angle = "{angle_unit}" }}\n' if angle_unit else ""
+    return _text(title, links, _crank_input(angle, omega, alpha), f"B = {_xy(*guess_b, at)}", find, units)
+
+
+def slider_crank_text(a2: float, a3: float, offset: float, theta_deg: float, omega: float, alpha: float,
+                      guess_b: tuple[float, float], *, title: str = "slider-crank",
+                      at: tuple[float, float] = (0.0, 0.0), find: str = "") -> str:
+    """Crank a2 about A0, rod a3 (with C) to the block B on the line y = offset."""
+    links = (f"A0 = {_xy(0, 0, at)}", f"A0 = [0, 0], A = [{a2!r}, 0]",
+             f"B = [0, 0], A = [{a3!r}, 0], C = {{ polar = [{0.4 * a3!r}, -30] }}", "B = [0, 0]")
+    middle = _slider("4", "1", "B", _xy(0, offset, at), 0) + _crank_input(theta_deg, omega, alpha)
+    return _text(title, links, middle, f"B = {_xy(*guess_b, at)}", find)
+
+
+def slotted_lever_text(a1: float, a2: float, offset: float, theta_deg: float, omega: float, alpha: float,
+                       guess_f: tuple[float, float], *, title: str = "slotted lever",
+                       at: tuple[float, float] = (0.0, 0.0), find: str = "") -> str:
+    """Crank a2 about A0 carries block A in the slot of lever 4 about B0 (A0 B0 = a1); ``find`` adds to its [find]."""
+    links = (f"A0 = {_xy(0, 0, at)}, B0 = {_xy(a1, 0, at)}", f"A0 = [0, 0], A = [{a2!r}, 0]", "A = [0, 0]",
+             f"B0 = [0, 0], F = [{offset!r}, 0]")
+    middle = _slider("3", "4", "A", f"[{offset!r}, 0]", 90) + _crank_input(theta_deg, omega, alpha)
+    asked = _find(["A", "A@4"], ["A", "A@4"], ["4"], 'sliders = ["43"]')
+    return _text(title, links, middle, f"F = {_xy(*guess_f, at)}", f"{asked}\n{find}")
+
+
+# --------------------------------------------------------------------------------------------
+# The scenes
+
+
 def four_bar(a1: float, a2: float, a3: float, a4: float, theta_deg: float, omega: float = 10.0, alpha: float = 5.0,
              *, upper: bool = True, at: tuple[float, float] = (0.0, 0.0), angle_unit: str = "deg",
              centers: str = "") -> Scene:
@@ -56,25 +116,11 @@ def four_bar(a1: float, a2: float, a3: float, a4: float, theta_deg: float, omega
     d = math.hypot(dx, dy)
     along = (d * d + a3 * a3 - a4 * a4) / (2 * d) if d > 0 else 0.0
     h = math.sqrt(max(a3 * a3 - along * along, 0.0)) * (1.0 if upper else -1.0)
-    gx, gy = ax + (along * dx - h * dy) / d, ay + (along * dy + h * dx) / d
-    angle = theta_deg if angle_unit == "deg" else t
+    guess = (ax + (along * dx - h * dy) / d, ay + (along * dy + h * dx) / d)
     extra = f"instant_centers = [{centers}]\n" if centers else ""
-    return loads_scene(f"""
-title = "four-bar"
-units = {{ angle = "{angle_unit}" }}
-[links]
-1 = {{ points = {{ A0 = {_xy(0, 0, at)}, B0 = {_xy(a1, 0, at)} }} }}
-2 = {{ points = {{ A0 = [0, 0], A = [{a2!r}, 0] }} }}
-3 = {{ points = {{ A = [0, 0], B = [{a3!r}, 0], C = {{ polar = [{0.5 * a3!r}, 30] }} }} }}
-4 = {{ points = {{ B0 = [0, 0], B = [{a4!r}, 0] }} }}
-[input]
-link = "2"
-angle = {angle!r}
-omega = {omega!r}
-alpha = {alpha!r}
-[guess]
-B = {_xy(gx, gy, at)}
-{_find(["A", "B", "C"], ["A", "B", "C"], ["3", "4"], extra)}""")
+    return loads_scene(four_bar_text(a1, a2, a3, a4, theta_deg if angle_unit == "deg" else t, omega, alpha, guess,
+                                     coupler=(0.5 * a3, 30.0), angle_unit=angle_unit, at=at,
+                                     find=_find(["A", "B", "C"], ["A", "B", "C"], ["3", "4"], extra)))
 
 
 def four_bar_limit(a1: float, a2: float, a3: float, a4: float, distance: float, **kw: object) -> Scene | None:
@@ -91,26 +137,8 @@ def slider_crank(a2: float, a3: float, offset: float, theta_deg: float, omega: f
     t = math.radians(theta_deg)
     ax, ay = a2 * math.cos(t), a2 * math.sin(t)
     run = math.sqrt(max(a3 * a3 - (offset - ay) ** 2, 0.0)) * (1.0 if ahead else -1.0)
-    return loads_scene(f"""
-title = "slider-crank"
-[links]
-1 = {{ points = {{ A0 = {_xy(0, 0, at)} }} }}
-2 = {{ points = {{ A0 = [0, 0], A = [{a2!r}, 0] }} }}
-3 = {{ points = {{ B = [0, 0], A = [{a3!r}, 0], C = {{ polar = [{0.4 * a3!r}, -30] }} }} }}
-4 = {{ points = {{ B = [0, 0] }} }}
-[[sliders]]
-block = "4"
-guide = "1"
-point = "B"
-line = {{ through = {_xy(0, offset, at)}, angle = 0 }}
-[input]
-link = "2"
-angle = {theta_deg!r}
-omega = {omega!r}
-alpha = {alpha!r}
-[guess]
-B = {_xy(ax + run, offset, at)}
-{_find(["A", "B", "C"], ["A", "B", "C"], ["3"], 'sliders = ["14"]')}""")
+    return loads_scene(slider_crank_text(a2, a3, offset, theta_deg, omega, alpha, (ax + run, offset), at=at,
+                                         find=_find(["A", "B", "C"], ["A", "B", "C"], ["3"], 'sliders = ["14"]')))
 
 
 def piston(a2: float, a3: float, distance: float, *, outer: bool = True, s_dot: float = -500.0,
@@ -119,26 +147,11 @@ def piston(a2: float, a3: float, distance: float, *, outer: bool = True, s_dot: 
     phi = distance if outer else math.pi - distance
     s = a2 * math.cos(phi) + math.sqrt(a3 * a3 - (a2 * math.sin(phi)) ** 2)
     ay = a2 * math.sin(phi) * (1.0 if upper else -1.0)
-    return loads_scene(f"""
-title = "piston-driven slider-crank"
-[links]
-1 = {{ points = {{ A0 = {_xy(0, 0, at)} }} }}
-2 = {{ points = {{ A0 = [0, 0], A = [{a2!r}, 0] }} }}
-3 = {{ points = {{ B = [0, 0], A = [{a3!r}, 0] }} }}
-4 = {{ points = {{ B = [0, 0] }} }}
-[[sliders]]
-block = "4"
-guide = "1"
-point = "B"
-line = {{ through = {_xy(0, 0, at)}, angle = 0 }}
-[input]
-slider = "14"
-s = {s!r}
-s_dot = {s_dot!r}
-s_ddot = {s_ddot!r}
-[guess]
-A = {_xy(a2 * math.cos(phi), ay, at)}
-{_find(["A", "B"], ["A"], ["2", "3"])}""")
+    links = (f"A0 = {_xy(0, 0, at)}", f"A0 = [0, 0], A = [{a2!r}, 0]", f"B = [0, 0], A = [{a3!r}, 0]", "B = [0, 0]")
+    middle = _slider("4", "1", "B", _xy(0, 0, at), 0) + f'[input]\nslider = "14"\ns = {s!r}\ns_dot = {s_dot!r}\n' \
+        f"s_ddot = {s_ddot!r}\n"
+    return loads_scene(_text("piston-driven slider-crank", links, middle, f"A = {_xy(a2 * math.cos(phi), ay, at)}",
+                             _find(["A", "B"], ["A"], ["2", "3"])))
 
 
 def slotted_lever(a1: float, a2: float, offset: float, theta_deg: float, omega: float = 10.0, alpha: float = 0.0,
@@ -149,27 +162,8 @@ def slotted_lever(a1: float, a2: float, offset: float, theta_deg: float, omega: 
     rx, ry = ax - a1, ay
     rho = math.hypot(rx, ry)
     beta = math.atan2(ry, rx) + math.asin(max(-1.0, min(1.0, offset / rho)))  # the slot's direction, at A
-    fx, fy = a1 + offset * math.cos(beta - math.pi / 2), offset * math.sin(beta - math.pi / 2)
-    return loads_scene(f"""
-title = "slotted lever"
-[links]
-1 = {{ points = {{ A0 = {_xy(0, 0, at)}, B0 = {_xy(a1, 0, at)} }} }}
-2 = {{ points = {{ A0 = [0, 0], A = [{a2!r}, 0] }} }}
-3 = {{ points = {{ A = [0, 0] }} }}
-4 = {{ points = {{ B0 = [0, 0], F = [{offset!r}, 0] }} }}
-[[sliders]]
-block = "3"
-guide = "4"
-point = "A"
-line = {{ through = [{offset!r}, 0], angle = 90 }}
-[input]
-link = "2"
-angle = {theta_deg!r}
-omega = {omega!r}
-alpha = {alpha!r}
-[guess]
-F = {_xy(fx, fy, at)}
-{_find(["A", "A@4"], ["A", "A@4"], ["4"], 'sliders = ["43"]')}""")
+    guess = (a1 + offset * math.cos(beta - math.pi / 2), offset * math.sin(beta - math.pi / 2))
+    return loads_scene(slotted_lever_text(a1, a2, offset, theta_deg, omega, alpha, guess, at=at))
 
 
 def slotted_lever_reversal(a1: float, a2: float, distance: float, **kw: object) -> Scene:

@@ -29,8 +29,8 @@ import numpy as np
 from kinepoly.bench.motion import LinkMotion
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Mechanism, Revolute
-from kinepoly.scene.spec import LinkInput, SliderInput, SliderSpec
 from kinepoly.model.pose import Pose
+from kinepoly.scene.spec import LinkInput, SliderInput, SliderSpec
 
 __all__ = ["ClosedForm", "closed_form"]
 

@@ -1,6 +1,6 @@
 """The methods the bench compares, each able to give the scene's quantities at an array of inputs.
 
-Every method runs in the solve's own frame (``kinepoly.accuracy.frame``) and reports positions in
+Every method runs in the solve's own frame (``kinepoly.check.frame``) and reports positions in
 the user's frame. Methods that work one position at a time (the construction, the analytic
 solve, finite differences, the construction with GEOS crossings) are timed per call; the closed
 forms and the series run over a whole batch of inputs in one numpy call.
@@ -15,21 +15,21 @@ from typing import Any
 
 import numpy as np
 
-from kinepoly.analysis.analytic import solve_analytic
-from kinepoly.analysis.check import compare
 from kinepoly.bench.closed_forms import closed_form
 from kinepoly.bench.motion import LinkMotion, Trig, evaluate
 from kinepoly.bench.series import slider_crank_series
-from kinepoly.construct.acceleration import construct_acceleration
-from kinepoly.construct.builder import Crossing
-from kinepoly.construct.velocity import construct_velocity
-from kinepoly.geom import Intersection, Line, ParallelLinesError, intersect
-from kinepoly.geom.vec import cross, norm, sub
+from kinepoly.check.analytic import solve_analytic
+from kinepoly.check.compare import compare
+from kinepoly.engine.acceleration import construct_acceleration
+from kinepoly.engine.assembly import position_at_input
+from kinepoly.engine.polygon import CrossLines
+from kinepoly.engine.row import acceleration_row, pose_row, velocity_row
+from kinepoly.engine.velocity import construct_velocity
+from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross_lines
 from kinepoly.model.mechanism import Mechanism
+from kinepoly.model.pose import Pose
 from kinepoly.scene.spec import LinkInput, SliderInput
 from kinepoly.solution import Solution
-from kinepoly.model.pose import Pose
-from kinepoly.solve.position import solve_position
 
 __all__ = ["FD_STEPS", "Guess", "Method", "Setting", "construct_at", "construction_values", "geos_crossing",
            "methods_for", "with_input"]
@@ -137,45 +137,50 @@ def construction_values(draft: Solution, keys: tuple[str, ...], origin: tuple[fl
     return out
 
 
-def construct_at(setting: Setting, mechanism: Mechanism, crossing: Crossing = intersect) -> Solution:
+def construct_at(setting: Setting, mechanism: Mechanism, crossing: CrossLines = cross_lines) -> Solution:
     """Position and polygons at ``mechanism``'s input: the construction without the check."""
     sol = setting.solution
     unit = mechanism.scene.units.length
-    position = solve_position(mechanism, sol.plan)
-    velocity = construct_velocity(mechanism, position.pose, sol.plan, sol.asked.velocity, unit, crossing=crossing)
-    acceleration = None
-    if sol.asked.needs_acceleration:
-        acceleration = construct_acceleration(mechanism, position.pose, sol.plan, velocity, sol.asked.acceleration,
-                                              unit, crossing=crossing)
-    return Solution(mechanism.scene, mechanism, sol.asked, sol.plan, position.pose, velocity, acceleration,
-                    compare([], 1.0), ())
+    with np.errstate(all="ignore"):
+        positions = position_at_input(mechanism, sol.plan)
+        found = construct_velocity(positions, sol.plan, sol.asked.velocity, unit=unit, strict=True, crossing=crossing)
+        acceleration = None
+        if sol.asked.needs_acceleration:
+            acceleration = acceleration_row(construct_acceleration(found, sol.plan, sol.asked.acceleration, unit=unit,
+                                                                   strict=True, crossing=crossing))
+    return Solution(mechanism.scene, mechanism, sol.asked, sol.plan, pose_row(positions), velocity_row(found),
+                    acceleration, compare([], 1.0), ())
 
 
-def geos_crossing(first: Line, second: Line) -> Intersection:
-    """Two direction lines crossed by GEOS (shapely): each drawn as a segment long enough to meet the other.
+def geos_crossing(through1: PointsLike, direction1: PointsLike, through2: PointsLike, direction2: PointsLike,
+                  length1: float | None = None, length2: float | None = None) -> Crossing:
+    """Two families of direction lines crossed by GEOS (shapely): each drawn as a segment long enough
+    to meet the other, all rows at once.
 
-    The segments reach 2 |p2 - p1| / |sin eps| + |p2 - p1| either side of their points, past
-    the crossing; GEOS intersects them in doubles. Parallel lines raise ParallelLinesError.
+    The segments reach 2 |p2 - p1| / |sin eps| + |p2 - p1| either side of their points, past the
+    crossing; GEOS intersects them in doubles. Where they do not meet (parallel lines) the sine is 0.
     """
     import shapely
 
-    d1, d2 = first.direction, second.direction
-    n1, n2 = norm(d1), norm(d2)
-    sin_angle = cross(d1, d2) / (n1 * n2)
-    gap = norm(sub(second.through, first.through))
-    if abs(sin_angle) < 1e-300:
-        raise ParallelLinesError("the lines are parallel")
-    reach = 2.0 * gap / abs(sin_angle) + gap + 1e-300
+    t1, d1, t2, d2 = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, np.complex128))
+                                           for x in (through1, direction1, through2, direction2)))
+    n1, n2 = np.abs(d1), np.abs(d2)
+    w = (d1.conjugate() * d2).imag
+    sin_angle = w / (n1 * n2)
+    gap = np.abs(t2 - t1)
+    reach = 2.0 * gap / np.abs(sin_angle) + gap + 1e-300
 
-    def segment(line: Line, n: float) -> Any:
-        ux, uy = line.direction[0] / n, line.direction[1] / n
-        x, y = line.through
-        return shapely.LineString([(x - reach * ux, y - reach * uy), (x + reach * ux, y + reach * uy)])
+    def segments(through: Points, direction: Points, size: Reals) -> Any:
+        u = direction / size
+        ends = np.stack([through - reach * u, through + reach * u], axis=1)
+        return shapely.linestrings(np.stack([ends.real, ends.imag], axis=2))
 
-    found = shapely.intersection(segment(first, n1), segment(second, n2))
-    if found.is_empty or found.geom_type != "Point":
-        return Intersection((0.0, 0.0), (1.0, 0.0, 0.0), 0.0)
-    return Intersection((0.0, 0.0), (float(found.x), float(found.y), 1.0), sin_angle)
+    found = shapely.intersection(segments(t1, d1, n1), segments(t2, d2, n2))
+    is_point = shapely.get_type_id(found) == 0
+    point = np.where(is_point, shapely.get_x(found) + 1j * shapely.get_y(found), 0.0)
+    sin_angle = np.where(is_point, sin_angle, 0.0)
+    along = ((point - t1) * d1.conjugate()).real / (n1 * n1)
+    return Crossing(np.asarray(point), np.asarray(sin_angle), np.asarray(along), np.asarray(t2 - t1), d1, w)
 
 
 def _per_position(setting: Setting, run: Callable[[Mechanism], Values]
@@ -190,7 +195,7 @@ def _list_values(raw: Any, i: int) -> Values:
     return dict(raw[i])
 
 
-def _construction(setting: Setting, name: str, family: str, crossing: Crossing) -> Method:
+def _construction(setting: Setting, name: str, family: str, crossing: CrossLines) -> Method:
     def run(mechanism: Mechanism) -> Values:
         return construction_values(construct_at(setting, mechanism, crossing), setting.keys, setting.origin)
     return Method(name, family, False, _per_position(setting, run), _list_values)
@@ -200,7 +205,7 @@ def _analytic(setting: Setting) -> Method:
     sol = setting.solution
 
     def run(mechanism: Mechanism) -> Values:
-        start = solve_position(mechanism, sol.plan).pose
+        start = pose_row(position_at_input(mechanism, sol.plan))
         analytic = solve_analytic(mechanism, dict(start.links), with_acceleration=sol.asked.needs_acceleration)
         motion = {k: LinkMotion(p.x, p.y, p.theta, *analytic.linear_velocity[k], analytic.omega[k],
                                 *(analytic.linear_acceleration or {}).get(k, (0.0, 0.0)),
@@ -222,7 +227,7 @@ def _finite_differences(setting: Setting, step: float) -> Method:
     def run(mechanism: Mechanism) -> Values:
         t = mechanism.scene.input.angle_rad if isinstance(mechanism.scene.input, LinkInput) \
             else mechanism.scene.input.s  # type: ignore[union-attr]
-        poses = [solve_position(with_input(mechanism, t + d), sol.plan).pose for d in (-h, 0.0, h)]
+        poses = [pose_row(position_at_input(with_input(mechanism, t + d), sol.plan)) for d in (-h, 0.0, h)]
         motion = {}
         for link, mid in poses[1].links.items():
             lo, hi = poses[0].links[link], poses[2].links[link]
@@ -245,7 +250,7 @@ def _batched_values(raw: Any, i: int) -> Values:
 
 def methods_for(setting: Setting, steps: tuple[float, ...] = FD_STEPS) -> list[Method]:
     """Every method that applies to the scene: the construction first."""
-    out = [_construction(setting, "construction (polygons, homogeneous crossings)", "construction", intersect),
+    out = [_construction(setting, "construction (polygons, homogeneous crossings)", "construction", cross_lines),
            _analytic(setting)]
     form = closed_form(setting.mechanism, setting.pose)
     if form is not None:

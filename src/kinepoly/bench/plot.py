@@ -2,19 +2,17 @@
 
 * the work-precision diagram: log error against log time per position, a point per method
   and the finite differences as a curve over their step (each point labelled with h);
-* the sweep: log error against the input over a full turn, one line per method, the
-  construction's error estimate dashed, singular positions as vertical lines and inputs
-  that cannot be assembled shaded.
+* the sweep: log error against the input over its range (``kinepoly.sweep``'s), one line per
+  method, the construction's error estimate dashed, singular positions as vertical lines, inputs
+  that cannot be assembled shaded and near-singular ones shaded lightly.
 
-Files are written whole or not at all: to a temporary name in the same folder, then renamed.
+Each returns the image's bytes (PNG, or the format asked); the command line writes the file.
 """
 
 from __future__ import annotations
 
+import io
 import math
-import os
-import tempfile
-from pathlib import Path
 from typing import Any
 
 from kinepoly.bench.run import BenchResult
@@ -38,16 +36,10 @@ def _family(name: str) -> str:
     return "other"
 
 
-def _save(figure: Any, path: str | Path) -> None:
-    target = Path(path)
-    handle, temporary = tempfile.mkstemp(suffix=target.suffix, prefix=f".{target.stem}-", dir=target.parent or ".")
-    os.close(handle)
-    try:
-        figure.savefig(temporary, dpi=130)
-        os.replace(temporary, target)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+def _image(figure: Any, fmt: str) -> bytes:
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format=fmt, dpi=130)
+    return buffer.getvalue()
 
 
 def _figure(width: float = 8.0, panels: int = 1) -> tuple[Any, list[Any]]:
@@ -63,7 +55,7 @@ def _figure(width: float = 8.0, panels: int = 1) -> tuple[Any, list[Any]]:
     return figure, [figure.add_subplot(grid[0, 0]), figure.add_subplot(grid[0, 1])]
 
 
-def plot_work_precision(result: BenchResult, path: str | Path) -> None:
+def plot_work_precision(result: BenchResult, fmt: str = "png") -> bytes:
     """Error against time per position (both logarithmic); beside it the finite differences against their step."""
     answered = [m for m in result.methods if not m.failure]
     fd = [m for m in answered if m.family == "finite differences"]
@@ -116,10 +108,10 @@ def plot_work_precision(result: BenchResult, path: str | Path) -> None:
             side.text(0.97, 0.97, f"no answer for h = {max(steps):g} .. {min(steps):g}:\nthe step reaches an\n"
                       "input that cannot\nbe assembled", transform=side.transAxes, fontsize=7, color="C3",
                       va="top", ha="right")
-    _save(figure, path)
+    return _image(figure, fmt)
 
 
-def plot_sweep(sweep: Sweep, path: str | Path) -> None:
+def plot_sweep(sweep: Sweep, fmt: str = "png") -> bytes:
     """Each method's error over the input; singular positions and unassembled inputs marked."""
     figure, axes = _figure(10.0)
     ax = axes[0]
@@ -127,18 +119,19 @@ def plot_sweep(sweep: Sweep, path: str | Path) -> None:
     for name in sweep.methods:
         family = _family(name)
         _, color = _STYLE.get(family, ("*", "k"))
-        ys = [max(p.errors[name], _FLOOR) if p.status == "ok" and name in p.errors and math.isfinite(p.errors[name])
+        ys = [max(p.errors[name], _FLOOR) if p.measured and name in p.errors and math.isfinite(p.errors[name])
               else math.nan for p in sweep.points]
         ax.plot(xs, ys, "-", color=color, linewidth=1.0 if family != "construction" else 1.6, label=name)
-    estimate = [p.estimate if p.status == "ok" and p.estimate else math.nan for p in sweep.points]
+    estimate = [p.estimate if p.measured and p.estimate else math.nan for p in sweep.points]
     ax.plot(xs, estimate, "--", color="C0", linewidth=1.0, label="the construction's error estimate")
     step = (xs[1] - xs[0]) if len(xs) > 1 else 1.0
-    labelled = False
+    labelled: set[str] = set()
     for p, x in zip(sweep.points, xs, strict=True):
-        if p.status == "cannot-assemble":
-            ax.axvspan(x - step / 2, x + step / 2, color="0.85", linewidth=0,
-                       label=None if labelled else "cannot be assembled")
-            labelled = True
+        if p.status in ("cannot-assemble", "near-singular"):
+            label = "cannot be assembled" if p.status == "cannot-assemble" else "near-singular"
+            ax.axvspan(x - step / 2, x + step / 2, color="0.85" if p.status == "cannot-assemble" else "0.94",
+                       linewidth=0, label=None if label in labelled else label)
+            labelled.add(label)
     for n, t in enumerate(sweep.singular):
         ax.axvline(sweep.shown(t), color="C3", linestyle="--", linewidth=0.9,
                    label="singular position (dead centre)" if n == 0 else None)
@@ -154,4 +147,4 @@ def plot_sweep(sweep: Sweep, path: str | Path) -> None:
     ax.set_title(f"{sweep.title}: error over the input", fontsize=10)
     ax.grid(True, which="major", linewidth=0.4, alpha=0.5)
     figure.legend(*ax.get_legend_handles_labels(), fontsize=7, loc="outside lower left", ncols=3)
-    _save(figure, path)
+    return _image(figure, fmt)

@@ -19,14 +19,15 @@ roundoff of doubles is still seen.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
 from kinepoly.bench.motion import LinkMotion, Trig, evaluate
 from kinepoly.errors import SingularityError
 from kinepoly.model.mechanism import Mechanism
-from kinepoly.scene.spec import LinkInput, SliderInput
 from kinepoly.model.pose import Pose
+from kinepoly.scene.spec import LinkInput, SliderInput
 
 __all__ = ["REFERENCE_DIGITS", "Reference", "input_rates", "reference_values"]
 
@@ -43,8 +44,6 @@ class Reference:
 
     t: Any
     values: dict[str, Any]
-    determinant: Any
-    """det Phi_q (mpmath): its sign changes across a singular position."""
 
 
 def input_rates(mechanism: Mechanism) -> tuple[float, float, float]:
@@ -162,6 +161,15 @@ def reference_values(mechanism: Mechanism, start: Pose, keys: list[str], *, t: f
                                "to 80 digits)") from None
 
 
+def _on_turn_of(mechanism: Mechanism, start: Pose, t: float) -> float:
+    """An input angle ``t`` moved by whole turns to the turn of the input link in ``start`` (the same position;
+    Newton would otherwise have to turn the link round), any other input as it is."""
+    inp = mechanism.scene.input
+    if not isinstance(inp, LinkInput) or inp.link not in start.links:
+        return t
+    return t + 2.0 * math.pi * round((start.links[inp.link].theta - t) / (2.0 * math.pi))
+
+
 def _reference(mechanism: Mechanism, start: Pose, keys: list[str], t: float | None,
                origin: tuple[float, float]) -> Reference:
     import mpmath  # type: ignore[import-untyped]
@@ -170,11 +178,10 @@ def _reference(mechanism: Mechanism, start: Pose, keys: list[str], t: float | No
     t0, t_dot, t_ddot = input_rates(mechanism)
     with mp.workdps(_WORK_DIGITS):
         eq = _Equations(mechanism, mp)
-        tt = mp.mpf(t0 if t is None else t)
+        tt = mp.mpf(_on_turn_of(mechanism, start, t0 if t is None else t))
         q = [mp.mpf(v) for k in eq.moving for v in (start.links[k].x, start.links[k].y, start.links[k].theta)]
         size = max([mp.mpf(1)] + [abs(v) for v in q])
         q, jac = _newton(eq, q, tt, size)
-        determinant = mp.det(jac)
         zero = [mp.mpf(0)] * len(q)
         q1 = list(mp.lu_solve(jac, mp.matrix([-v for v in _complex_step(eq, q, tt, zero, mp.mpf(1))])))
         delta = mp.mpf(10) ** -27
@@ -190,7 +197,7 @@ def _reference(mechanism: Mechanism, start: Pose, keys: list[str], t: float | No
             motion[link] = LinkMotion(q[k], q[k + 1], q[k + 2], v[0], v[1], v[2], a[0], a[1], a[2])
         values = evaluate(mechanism, motion, keys, Trig(mp.cos, mp.sin), (mp.mpf(origin[0]), mp.mpf(origin[1])))
         rounded = {key: _round(mp, value) for key, value in values.items()}
-    return Reference(tt, rounded, determinant)
+    return Reference(tt, rounded)
 
 
 def _round(mp: Any, value: Any) -> Any:

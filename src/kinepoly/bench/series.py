@@ -24,8 +24,8 @@ import numpy as np
 
 from kinepoly.bench.closed_forms import _slider_crank_links
 from kinepoly.model.mechanism import Mechanism
-from kinepoly.scene.spec import LinkInput
 from kinepoly.model.pose import Pose
+from kinepoly.scene.spec import LinkInput
 
 __all__ = ["SliderSeries", "slider_crank_series"]
 

@@ -86,7 +86,8 @@ class KennedyStep:
 
     ``sin_angle`` is the sine of the angle between the two lines in the plane (None when one is
     the line at infinity); ``conditioning`` the smallest sine of the step's three products (two
-    joins, one crossing); ``relative_error`` the estimated error of the result.
+    joins, one crossing); ``relative_error`` the estimated error of the result. Its words come from
+    ``kinepoly.present.phrasing.kennedy_words``.
     """
 
     number: int
@@ -98,7 +99,6 @@ class KennedyStep:
     conditioning: float
     relative_error: float
     equation: str
-    text: str
 
 
 @dataclass(frozen=True)

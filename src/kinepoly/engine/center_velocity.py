@@ -16,15 +16,14 @@ omega. Nothing here reads the polygons: it is a third, independent check of them
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
-from kinepoly.construct.builder import sense
 from kinepoly.engine.circle_diagram import Edge, edge, pair_name
 from kinepoly.geom.tolerances import COINCIDENT_SIN
 from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, scale, sub, unit
 from kinepoly.model.mechanism import Mechanism
-from kinepoly.scene.spec import LinkInput, SliderInput
 from kinepoly.model.pose import Pose
+from kinepoly.scene.spec import LinkInput, SliderInput
 
 if TYPE_CHECKING:
     from kinepoly.engine.centers import InstantCenter
@@ -48,9 +47,25 @@ class Motion:
         return add(self.velocity, scale(self.omega, perp(sub(point, self.at))))
 
 
+How = Literal["ratio", "velocity", "same", "translating"]
+
+
 @dataclass(frozen=True)
 class CenterOmega:
-    """omega_1j (``symbol``, e.g. ``"omega13"``) from the centers I_1j and I_ij and the motion of link i."""
+    """omega_1j (``symbol``, e.g. ``"omega13"``) of ``link`` j from the centers I_1j and I_ij (``centers``)
+    and the motion of link i (``reference``).
+
+    ``how`` says how, and ``params`` give its numbers, so that any language can say it
+    (``kinepoly.present.phrasing``):
+
+    - ``ratio``: I_1i, I_ij and I_1j on one line, omega_1j = omega_1i (I_1i I_ij)/(I_1j I_ij); ``given`` is
+      omega_1i, ``near`` and ``far`` the two signed distances along I_1j -> I_ij
+    - ``velocity``: link i does not turn about a center of its own: omega_1j = (r x v) / |r|^2 with
+      ``vx``, ``vy`` the velocity of I_ij, ``rx``, ``ry`` the vector r from I_1j to I_ij, ``cross`` r x v,
+      ``distance`` |r|
+    - ``same``: I_ij at infinity, links i and j turn alike: ``given`` is omega_1i
+    - ``translating``: I_1j at infinity, link j translates with the velocity ``vx``, ``vy`` of I_ij
+    """
 
     link: str
     symbol: str
@@ -58,7 +73,8 @@ class CenterOmega:
     reference: str
     centers: tuple[str, str]
     equation: str
-    text: str
+    how: How
+    params: tuple[tuple[str, float], ...]
     motion: Motion
 
 
@@ -79,16 +95,11 @@ def _input_motion(mechanism: Mechanism, pose: Pose) -> tuple[str, Motion] | None
     return None
 
 
-def _fmt(v: Vec) -> str:
-    return f"({v[0]:.6g}, {v[1]:.6g})"
-
-
 class _Omegas:
     def __init__(self, mechanism: Mechanism, centers: dict[Edge, InstantCenter], size: float) -> None:
         self.mechanism, self.centers, self.size = mechanism, centers, size
         self.links = mechanism.link_names
         self.ground = mechanism.ground or ""
-        self.unit = f"{mechanism.scene.units.length}/s"
 
     def omega_name(self, link: str) -> str:
         return f"omega{pair_name((self.ground, link))}"
@@ -106,40 +117,35 @@ class _Omegas:
             if b.position is None:
                 return None
             new = Motion(motion.omega, b.position, (0.0, 0.0), b.name)
-            text = (f"{c.label} is at infinity: links {i} and {j} turn alike, so {wj} = {wi} = {motion.omega:.6g} "
-                    f"rad/s ({sense(motion.omega)}), about {b.label}.")
-            return (0, 0.0), CenterOmega(j, wj, motion.omega, i, names, f"{wj} = {wi} ({c.label} at infinity)", text, new)
+            return (0, 0.0), CenterOmega(j, wj, motion.omega, i, names, f"{wj} = {wi} ({c.label} at infinity)",
+                                         "same", (("given", motion.omega),), new)
         v = motion.velocity_of(c.position)
         if b.position is None:
             new = Motion(0.0, c.position, v)
-            text = (f"{b.label} is at infinity: link {j} translates, {wj} = 0, with the velocity of {c.label} as a "
-                    f"point of link {i}, v = {_fmt(v)} {self.unit}.")
-            return (0, 0.0), CenterOmega(j, wj, 0.0, i, names, f"{wj} = 0 ({b.label} at infinity)", text, new)
+            return (0, 0.0), CenterOmega(j, wj, 0.0, i, names, f"{wj} = 0 ({b.label} at infinity)", "translating",
+                                         (("vx", v[0]), ("vy", v[1])), new)
         r = sub(c.position, b.position)
         length = norm(r)
         if length <= COINCIDENT_SIN * self.size:
             return None
         omega = cross(r, v) / (length * length)
         new = Motion(omega, b.position, (0.0, 0.0), b.name)
-        return (1, self.size / length), CenterOmega(j, wj, omega, i, names, *self.words(j, i, motion, b, c, omega), new)
+        return (1, self.size / length), CenterOmega(j, wj, omega, i, names, *self.how(j, i, motion, b, c, v), new)
 
-    def words(self, j: str, i: str, motion: Motion, b: InstantCenter, c: InstantCenter, omega: float) -> tuple[str, str]:
+    def how(self, j: str, i: str, motion: Motion, b: InstantCenter, c: InstantCenter,
+            v: Vec) -> tuple[str, How, tuple[tuple[str, float], ...]]:
+        """The equation, the way and the numbers of omega_1j when I_1j and I_ij are both finite."""
         wj, wi = self.omega_name(j), self.omega_name(i)
         assert b.position is not None and c.position is not None
         a = self.center(self.ground, i)
+        r = sub(c.position, b.position)
         if motion.about is not None and a is not None and a.position is not None and motion.about == a.name:
-            u = unit(sub(c.position, b.position))
-            p, q = dot(sub(c.position, a.position), u), norm(sub(c.position, b.position))
-            equation = f"{wj} = {wi} ({a.label} {c.label})/({b.label} {c.label})"
-            text = (f"{equation} = {motion.omega:.6g} x ({p:.6g} / {q:.6g}) = {omega:.6g} rad/s ({sense(omega)}): "
-                    f"{c.label} moves as a point of link {i} turning about {a.label} and of link {j} turning about "
-                    f"{b.label}; the distances are signed along {b.label} -> {c.label}.")
-            return equation, text
-        v = motion.velocity_of(c.position)
-        equation = f"{wj} = ({b.label}{c.label} x v_{c.label}) / |{b.label}{c.label}|^2"
-        text = (f"{c.label} as a point of link {i} moves at v = {_fmt(v)} {self.unit}; as a point of link {j}, "
-                f"turning about {b.label}, at {wj} x {b.label}{c.label}; so {wj} = {omega:.6g} rad/s ({sense(omega)}).")
-        return equation, text
+            u = unit(r)
+            near, far = dot(sub(c.position, a.position), u), norm(r)
+            return (f"{wj} = {wi} ({a.label} {c.label})/({b.label} {c.label})", "ratio",
+                    (("given", motion.omega), ("near", near), ("far", far)))
+        return (f"{wj} = ({b.label}{c.label} x v_{c.label}) / |{b.label}{c.label}|^2", "velocity",
+                (("vx", v[0]), ("vy", v[1]), ("rx", r[0]), ("ry", r[1]), ("cross", cross(r, v)), ("distance", norm(r))))
 
 
 def omegas_from_centers(mechanism: Mechanism, pose: Pose, centers: dict[Edge, InstantCenter],

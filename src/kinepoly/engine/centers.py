@@ -27,10 +27,10 @@ from kinepoly.engine.center_values import CenterPlan, InstantCenter, InstantCent
 from kinepoly.engine.center_velocity import omegas_from_centers
 from kinepoly.engine.circle_diagram import Edge, center_label, edge, pair_name, plan_kennedy, split_pair
 from kinepoly.engine.kennedy import derive_centers
+from kinepoly.engine.plan import make_plan
 from kinepoly.errors import SceneError
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Joint, Mechanism, joint_links
-from kinepoly.engine.plan import make_plan
 from kinepoly.model.pose import Pose
 
 __all__ = [

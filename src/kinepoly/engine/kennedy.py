@@ -31,14 +31,14 @@ from kinepoly.engine.circle_diagram import (
     split_pair,
     triangle_name,
 )
+from kinepoly.engine.position import describe_input
 from kinepoly.errors import SingularityError
 from kinepoly.geom.homogeneous import LocalFrame, Place, Projective, Wedge, canonical_direction, wedge
 from kinepoly.geom.tolerances import LOUD_ERROR, NEAR_SINGULAR_SIN
 from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, sub
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute
-from kinepoly.notice import Notice
 from kinepoly.model.pose import Pose
-from kinepoly.solve.position import describe_input
+from kinepoly.notice import Notice
 
 __all__ = ["KennedyResult", "derive_centers"]
 
@@ -186,9 +186,8 @@ class _Finder:
         sin_angle = _planar_sin(lines[0], lines[1])
         conditioning = min(candidate.first.join.sin, candidate.second.join.sin, candidate.meet.sin)
         equation = f"{center.label} = ({lines[0].label}) x ({lines[1].label})"
-        text = self.step_text(center, triangles, lines, sin_angle)
         self.steps.append(KennedyStep(number, center.name, triangles, lines, place.homogeneous, sin_angle,
-                                      conditioning, place.relative_error, equation, text))
+                                      conditioning, place.relative_error, equation))
         if conditioning < NEAR_SINGULAR_SIN or place.relative_error > LOUD_ERROR:
             self.notices.append(Notice("center-ill-conditioned", self.ill_text(center, candidate, lines, sin_angle)))
 
@@ -207,33 +206,6 @@ class _Finder:
             if a.position is not None and b.position is not None and dot(direction, sub(b.position, a.position)) < 0:
                 direction = (-direction[0], -direction[1])
         return KennedyLine(line.third, (a.name, b.name), (a.homogeneous, b.homogeneous), through, direction)
-
-    # -- words --------------------------------------------------------------------------------
-    def describe_line(self, line: KennedyLine) -> str:
-        first, second = (center_label(c) for c in line.centers)
-        a, b = (self.known[_by_name(self.links, c)].center for c in line.centers)
-        if line.is_at_infinity:
-            return f"the line at infinity ({first} and {second} both lie at infinity)"
-        if a.is_at_infinity or b.is_at_infinity:
-            finite, infinite = (b, a) if a.is_at_infinity else (a, b)
-            return (f"the line through {finite.label} toward {infinite.label} at infinity "
-                    f"(direction {_fmt_vec(infinite.direction)})")
-        return f"the line through {first} and {second}"
-
-    def step_text(self, center: InstantCenter, triangles: tuple[str, str], lines: tuple[KennedyLine, KennedyLine],
-                  sin_angle: float | None) -> str:
-        unit_name = self.mechanism.scene.units.length
-        head = (f"Edge {center.name} of the circle diagram closes triangles {triangles[0]} and {triangles[1]}. "
-                f"By the Aronhold-Kennedy theorem {center.label} lies on {self.describe_line(lines[0])} and on "
-                f"{self.describe_line(lines[1])}; ")
-        if center.position is not None:
-            angle = f" at {math.degrees(math.asin(min(1.0, abs(sin_angle)))):.4g} deg" if sin_angle is not None else ""
-            return head + f"they cross{angle} in {center.label} = {_fmt_vec(center.position)} {unit_name}."
-        if sin_angle is None:
-            return head + f"so {center.label} is the point at infinity of the other line, direction " \
-                          f"{_fmt_vec(center.direction)}."
-        return head + (f"the two lines are parallel, so {center.label} is the point at infinity in the direction "
-                       f"{_fmt_vec(center.direction)}.")
 
     def ill_text(self, center: InstantCenter, candidate: _Candidate, lines: tuple[KennedyLine, KennedyLine],
                  sin_angle: float | None) -> str:
@@ -301,11 +273,6 @@ def _planar_sin(first: KennedyLine, second: KennedyLine) -> float | None:
     if first.direction is None or second.direction is None:
         return None
     return cross(first.direction, second.direction)
-
-
-def _fmt_vec(v: Vec | None) -> str:
-    assert v is not None
-    return f"({v[0]:.6g}, {v[1]:.6g})"
 
 
 def derive_centers(mechanism: Mechanism, pose: Pose, plan: CenterPlan, offset: Vec = (0.0, 0.0)) -> KennedyResult:

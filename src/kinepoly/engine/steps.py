@@ -52,8 +52,9 @@ class Step:
     ("magnitude and direction" or "direction"); ``lines`` are the direction lines drawn
     (physical units, through a tip, along a direction); ``result`` names what the step yields.
 
-    ``text`` is the step in English. For texts in other languages the step says what it does as
-    data: ``topic`` names the move and ``params`` its language-neutral arguments (names of points,
+    The step says what it does as data, from which ``kinepoly.present.phrasing`` words it in any
+    language (``solve --steps``, the JSON's ``text``, the drawings and the handout all use that):
+    ``topic`` names the move and ``params`` its language-neutral arguments (names of points,
     links, sliders and tips; numbers), ``directions`` describe ``lines`` one for one:
 
     - ``input-rate``: link, ground, rate, sense (omega12 in the velocity polygon, alpha12 in the other)
@@ -67,15 +68,15 @@ class Step:
     - ``intersection``: point (the directions say the rest)
     - ``read``: link, ground, term, first, second, magnitude, length, rate, sense
     - ``coriolis``: term, guide, ground, omega, relative, speed, magnitude, sense, start
-    - ``normals``: none (the vectors are the normal terms)
+    - ``normals``: none (the vectors are the normal terms; their ω and segment length are the solution's)
     - ``given-normal``: point, reference, magnitude
-    Steps of kind ``linear-solve`` have no topic: their ``result`` lists the tips found.
+    Steps of kind ``linear-solve`` have no topic: their ``result`` lists the tips found; their
+    params are group, links (the group's, comma-separated) and tips.
     """
 
     polygon: Literal["velocity", "acceleration"]
     kind: StepKind
     equation: str
-    text: str
     result: str
     known: tuple[tuple[str, str], ...] = ()
     vectors: tuple[DrawnVector, ...] = ()

@@ -14,8 +14,8 @@ from typing import Any
 
 from kinepoly.engine.circle_diagram import center_label
 from kinepoly.geom.tolerances import LOUD_ERROR
-from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Part, Table
+from kinepoly.present.catalogue import Catalogue
 from kinepoly.solution import Solution
 
 __all__ = ["KINDS", "answers_page"]
@@ -112,7 +112,7 @@ def _check(solution: Solution, say: Catalogue) -> list[Part]:
 
 def answers_page(solution: Solution, say: Catalogue, scales: Mapping[str, float]) -> Page:
     """The answers of the construction and the cross-check; ``scales`` as drawn, for the lengths on paper."""
-    from kinepoly.report import to_json
+    from kinepoly.present.report import to_json
 
     data = to_json(solution)
     unit = solution.scene.units.length

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Column, Page, Paragraph, Table
 from kinepoly.handout.notation import runs_of, text_width, wrap
+from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.primitives import Item, Text
 from kinepoly.render.style import SMALL_MM
 from kinepoly.render.text import DESCENT_EM, Run, plain_runs

@@ -10,29 +10,23 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from kinepoly.errors import EXIT_SCENE, KinepolyError
+from kinepoly.errors import HandoutError
 from kinepoly.handout.answers import answers_page
 from kinepoly.handout.band import band_height, band_items
-from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Handout
 from kinepoly.handout.drawing import GAP_MM, Frame, band_frame, blank_sheet, drawing_layers, page_frame_items, scales_of
 from kinepoly.handout.problem import problem_page
 from kinepoly.handout.step_pages import construction_pages
+from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.layout import paper_size
 from kinepoly.render.primitives import Sheet
 from kinepoly.render.sheet import MARGIN_MM
 from kinepoly.solution import Solution
 
-__all__ = ["HandoutError", "drawn_kinds", "handout_content", "handout_sheets"]
+__all__ = ["drawn_kinds", "handout_content", "handout_sheets"]
 
 _MOST_BAND = 0.55
 """The band of text may take at most this share of the page's height."""
-
-
-class HandoutError(KinepolyError):
-    """A handout that cannot be made as asked (its text does not fit the paper): exit 2."""
-
-    exit_code = EXIT_SCENE
 
 
 def handout_content(solution: Solution, say: Catalogue, scales: Mapping[str, float]) -> Handout:

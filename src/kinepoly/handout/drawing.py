@@ -15,8 +15,8 @@ import re
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
-from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Drawing
+from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.layout import Panel
 from kinepoly.render.primitives import LAYERS, Arrow, Circle, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.sheet import MARGIN_MM, Layout, build_sheet, layout_sheet

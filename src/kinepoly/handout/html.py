@@ -13,10 +13,10 @@ import html
 import re
 
 from kinepoly.handout.build import drawn_kinds, handout_content
-from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Column, Handout, Page, Paragraph, Table
 from kinepoly.handout.drawing import Frame, band_frame, blank_sheet, drawing_layers, page_frame_items, scales_of
 from kinepoly.handout.notation import html_of
+from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.layout import paper_size
 from kinepoly.render.style import TERM_COLORS
 from kinepoly.solution import Solution

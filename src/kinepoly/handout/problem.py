@@ -12,8 +12,8 @@ from collections.abc import Mapping
 from itertools import combinations
 
 from kinepoly.engine.circle_diagram import center_label, pair_name, split_pair
-from kinepoly.handout.catalogue import Catalogue
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
+from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.titleblock import space_scale_text
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 from kinepoly.solution import Solution

@@ -1,98 +1,42 @@
 """One page per construction step, written from the step's data in the catalogue's language.
 
 Each page says the step's vector equation, a table of what is known of each term (magnitude and
-direction, ``?`` where unknown), what to draw and why, and what the step yields. Nothing is
-translated from the English ``Step.text``: the words come from the catalogue, the names and
-numbers from ``Step.topic``, ``Step.params``, ``Step.directions``, ``Step.vectors`` and the polygon
-(``kinepoly.engine.steps`` lists each topic's parameters).
+direction, ``?`` where unknown), what to draw and why, and what the step yields. The words of
+the step are the shared phrasing's (``kinepoly.present.phrasing``, from ``Step.topic``,
+``Step.params``, ``Step.directions``, ``Step.vectors`` and the polygon), as in ``solve --steps``.
 """
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Mapping
 
 from kinepoly.engine.center_values import InstantCenters, KennedyStep
 from kinepoly.engine.circle_diagram import center_label
 from kinepoly.engine.steps import Direction, DrawnVector, Step
-from kinepoly.geom.vec import Vec, norm, sub
-from kinepoly.handout.catalogue import Catalogue
+from kinepoly.geom.vec import norm, sub
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
 from kinepoly.handout.notation import typographic
 from kinepoly.model.mechanism import Revolute, joint_links
+from kinepoly.present.catalogue import Catalogue
+from kinepoly.present.phrasing import Context, Words, kennedy_words, segment, step_words, tip_name
 from kinepoly.solution import Solution
-from kinepoly.engine.plan import NewtonGroup
 
 __all__ = ["construction_pages", "step_equation", "tip_name"]
 
-_TINY = 1e-12
 
-
-def tip_name(label: str, polygon: str) -> str:
-    """A point's tip in the polygon: ``B0`` -> ``b0``; in the acceleration polygon primed, ``b′0``."""
-    point, at, link = label.partition("@")
-    m = re.match(r"^(\D+)(\d*)$", point)
-    base, digits = (m.group(1), m.group(2)) if m else (point, "")
-    prime = "′" if polygon == "acceleration" else ""
-    return f"{base.lower()}{prime}{digits}{at}{link}"
-
-
-def _segment(first: str, second: str) -> str:
-    """The segment between two points of the mechanism: ``A@4`` and ``B0`` -> ``AB0``."""
-    return first.partition("@")[0] + second.partition("@")[0]
-
-
-class _Writer:
-    """The words of one polygon's steps: its symbols, unit, pole and scale on paper."""
-
-    def __init__(self, solution: Solution, say: Catalogue, scales: Mapping[str, float]) -> None:
-        self.solution = solution
-        self.say = say
-        self.scales = scales
-        self.unit = solution.scene.units.length
-
-    def unit_of(self, polygon: str) -> str:
-        return f"{self.unit}/s" if polygon == "velocity" else f"{self.unit}/s²"
-
-    def pole(self, polygon: str) -> str:
-        return "o" if polygon == "velocity" else "o′"
-
-    def rate_unit(self, polygon: str) -> str:
-        return "rad/s" if polygon == "velocity" else "rad/s²"
-
-    def rate_name(self, polygon: str, ground: str, link: str) -> str:
-        return f"{'ω' if polygon == 'velocity' else 'α'}{ground}{link}"
-
-    def paper(self, polygon: str, magnitude: float) -> str:
-        return self.say.number(magnitude * self.scales.get(polygon, 0.0))
-
-    def tips(self, polygon: str) -> dict[str, Vec]:
-        found = self.solution.velocity if polygon == "velocity" else self.solution.acceleration
-        return dict(found.tips) if found is not None else {}
-
-    def tip_or_pole(self, polygon: str, label: str) -> str:
-        """The tip of ``label``, or the pole when the point does not move (a point of the frame)."""
-        tip = self.tips(polygon).get(label)
-        if tip is not None and norm(tip) <= _TINY * max((norm(t) for t in self.tips(polygon).values()), default=1.0):
-            return self.pole(polygon)
-        return tip_name(label, polygon)
-
-    def sense(self, code: str | float) -> str:
-        return self.say.say(f"sense.{code}")
-
-    def n(self, value: str | float) -> str:
-        return self.say.number(float(value))
+class _Writer(Words):
+    """The words of one solution's steps, and the table of a step's terms."""
 
     # -- the table of terms --------------------------------------------------------------------
     def vector_direction(self, vector: DrawnVector) -> str:
         _head, _, names = vector.label.partition("_")
         point, _, reference = names.partition("/")
         if vector.term == "normal":
-            return self.say.say("table.toward", segment=_segment(point, reference),
+            return self.say.say("table.toward", segment=segment(point, reference),
                                 point=reference.partition("@")[0])
         if vector.term in ("tangential", "relative"):
-            return self.say.say("table.perpendicular", reference=_segment(reference, point))
+            return self.say.say("table.perpendicular", reference=segment(reference, point))
         if vector.term == "coriolis":
             return self.say.say("table.coriolis")
         return self.say.say("table.known")
@@ -143,6 +87,7 @@ class _Writer:
         return Table("", header, self.rows(step))
 
 
+
 def step_equation(step: Step, say: Catalogue, solution: Solution) -> str:
     """The equation a step's page shows: the step's own, typeset, where it is notation only."""
     unit = solution.scene.units.length
@@ -171,230 +116,9 @@ def step_equation(step: Step, say: Catalogue, solution: Solution) -> str:
     return typographic(step.equation)
 
 
-class _StepText:
-    """The explanation and the result of one step, in words."""
-
-    def __init__(self, writer: _Writer, step: Step) -> None:
-        self.w = writer
-        self.step = step
-        self.p = dict(step.params)
-        self.polygon = step.polygon
-        self.say = writer.say
-
-    def common(self) -> dict[str, str]:
-        unit = self.w.unit_of(self.polygon)
-        return {"unit": unit, "pole": self.w.pole(self.polygon)}
-
-    def found_tip(self) -> str:
-        """The result of a step that finds a tip: the absolute vector, its angle and length on paper."""
-        step = self.step
-        label = step.result.upper() if step.result else ""
-        tips = self.w.tips(self.polygon)
-        name = next((k for k in tips if k.lower() == step.result), label)
-        value = tips.get(name, (step.value[0], step.value[1]) if len(step.value) == 2 else (0.0, 0.0))
-        symbol = "v" if self.polygon == "velocity" else "a"
-        tip = tip_name(name, self.polygon)
-        if norm(value) == 0.0:
-            return self.say.say("result.tip_at_pole", tip=tip, term=f"{symbol}_{name}", pole=self.w.pole(self.polygon))
-        return self.say.say("result.tip", tip=tip, term=f"{symbol}_{name}", magnitude=self.w.n(norm(value)),
-                            angle=self.say.angle(math.atan2(value[1], value[0])),
-                            paper=self.w.paper(self.polygon, norm(value)), pole=self.w.pole(self.polygon),
-                            unit=self.w.unit_of(self.polygon))
-
-    def explain(self) -> tuple[str, str]:
-        """(what to do and why, what it yields)."""
-        handler = getattr(self, "_" + (self.step.topic or self.step.kind).replace("-", "_"))
-        result: tuple[str, str] = handler()
-        return result
-
-    def _input_rate(self) -> tuple[str, str]:
-        p = self.p
-        name = self.w.rate_name(self.polygon, str(p["ground"]), str(p["link"]))
-        key = "step.input_rate_velocity" if self.polygon == "velocity" else "step.input_rate_acceleration"
-        text = self.say.say(key, link=str(p["link"]), rate_name=name, rate=self.w.n(p["rate"]),
-                            sense=self.w.sense(p["sense"]), pole=self.w.pole(self.polygon))
-        value = self.step.value[0] if self.step.value else 0.0
-        return text, self.say.say("result.given", rate_name=name, value=self.w.n(value),
-                                  unit=self.w.rate_unit(self.polygon))
-
-    def _driven_slider(self) -> tuple[str, str]:
-        p = self.p
-        name = f"{'ṡ' if self.polygon == 'velocity' else 's̈'}{p['slider']}"
-        symbol = "v" if self.polygon == "velocity" else "a"
-        amount = float(p["amount"])
-        text = self.say.say("step.driven_slider", slider=str(p["slider"]), term=f"{symbol}_{p['point']}",
-                            rate_name=name, amount=self.w.n(amount), paper=self.w.paper(self.polygon, abs(amount)),
-                            tip=tip_name(str(p["point"]), self.polygon), **self.common())
-        return text, self.found_tip()
-
-    def _given_point(self) -> tuple[str, str]:
-        p = self.p
-        symbol = "v" if self.polygon == "velocity" else "a"
-        value = self.step.value
-        text = self.say.say("step.given_point", term=f"{symbol}_{p['point']}", magnitude=self.w.n(p["magnitude"]),
-                            angle=self.say.angle(math.atan2(value[1], value[0])),
-                            paper=self.w.paper(self.polygon, float(p["magnitude"])),
-                            tip=tip_name(str(p["point"]), self.polygon), **self.common())
-        return text, self.found_tip()
-
-    def _relative(self) -> tuple[str, str]:
-        p = self.p
-        point, reference = str(p["point"]), str(p["reference"])
-        segment = _segment(reference, point)
-        fields = {"point": point, "reference": reference, "link": str(p["link"]), "segment": segment,
-                  "length": self.w.n(p["length"]), "length_unit": self.w.unit, "sense": self.w.sense(p["sense"]),
-                  "rate": self.w.n(p["rate"]), "from_tip": self.w.tip_or_pole(self.polygon, reference),
-                  "tip": tip_name(point, self.polygon), **self.common()}
-        if self.polygon == "velocity":
-            text = self.say.say("step.relative_velocity", term=f"v_{point}/{reference}",
-                                rate_name=self.w.rate_name("velocity", str(p["ground"]), str(p["link"])),
-                                magnitude=self.w.n(p["magnitude"]),
-                                paper=self.w.paper("velocity", float(p["magnitude"])), **fields)
-        else:
-            text = self.say.say("step.relative_acceleration", normal_term=f"a^n_{point}/{reference}",
-                                tangential_term=f"a^t_{point}/{reference}",
-                                omega_name=self.w.rate_name("velocity", str(p["ground"]), str(p["link"])),
-                                rate_name=self.w.rate_name("acceleration", str(p["ground"]), str(p["link"])),
-                                omega=self.w.n(p["omega"]), normal=self.w.n(p["normal"]),
-                                tangential=self.w.n(p["tangential"]),
-                                normal_paper=self.w.paper(self.polygon, float(p["normal"])),
-                                tangential_paper=self.w.paper(self.polygon, float(p["tangential"])), **fields)
-        return text, self.found_tip()
-
-    def _image_fields(self) -> dict[str, str]:
-        p = self.p
-        first, second, point = str(p["first"]), str(p["second"]), str(p["point"])
-        return {"point": point, "link": str(p["link"]), "first": first, "second": second,
-                "first_tip": tip_name(first, self.polygon), "second_tip": tip_name(second, self.polygon),
-                "tip": tip_name(point, self.polygon), "triangle": f"{first}{second}{point}",
-                "image": "".join(tip_name(x, self.polygon) for x in (first, second, point))}
-
-    def _image(self) -> tuple[str, str]:
-        p = self.p
-        text = self.say.say("step.image", angle_first=f"{self.w.n(p['angle_first'])}°",
-                            angle_second=f"{self.w.n(p['angle_second'])}°", **self._image_fields())
-        return text, self.found_tip()
-
-    def _image_translating(self) -> tuple[str, str]:
-        key = "step.image_translating_velocity" if self.polygon == "velocity" else "step.image_translating_acceleration"
-        return self.say.say(key, **self._image_fields()), self.found_tip()
-
-    def _proportional(self) -> tuple[str, str]:
-        p = self.p
-        fields = self._image_fields()
-        if abs(float(p["height"])) > 1e-9:
-            text = self.say.say("step.proportional_offset", ratio=self.w.n(p["ratio"]),
-                                height=self.w.n(p["height"]), **fields)
-        else:
-            text = self.say.say("step.proportional", ratio=self.w.n(p["ratio"]), **fields)
-        return text, self.found_tip()
-
-    def _line(self, direction: Direction) -> str:
-        through = direction.through
-        label = next((k for k in self.w.tips(self.polygon) if k.lower() == through), through)
-        tip = self.w.tip_or_pole(self.polygon, label)
-        key = "line.parallel" if direction.relation == "parallel" else "line.perpendicular"
-        return self.say.say(key + ("_end" if direction.after else ""), through=tip, after=direction.after,
-                            term=direction.term, slider=direction.reference, reference=direction.reference)
-
-    def _intersection(self) -> tuple[str, str]:
-        step = self.step
-        point = str(self.p["point"])
-        symbol = "v" if self.polygon == "velocity" else "a"
-        key = "step.intersection_velocity" if self.polygon == "velocity" else "step.intersection_acceleration"
-        text = self.say.say(key, first_line=self._line(step.directions[0]), second_line=self._line(step.directions[1]),
-                            tip=tip_name(point, self.polygon), term=f"{symbol}_{point}", **self.common())
-        parts = []
-        for direction, line in zip(step.directions, step.lines, strict=True):
-            size = norm(sub((step.value[0], step.value[1]), line.through))
-            parts.append(self.say.say("result.term", term=direction.term, magnitude=self.w.n(size),
-                                      unit=self.w.unit_of(self.polygon)))
-        return text, f"{self.found_tip()} {self.say.say('result.terms', terms='; '.join(parts))}"
-
-    def _read(self) -> tuple[str, str]:
-        p = self.p
-        name = self.w.rate_name(self.polygon, str(p["ground"]), str(p["link"]))
-        first, second = str(p["first"]), str(p["second"])
-        text = self.say.say("step.read", rate_name=name, term=str(p["term"]), segment=_segment(first, second),
-                            magnitude=self.w.n(p["magnitude"]), length=self.w.n(p["length"]),
-                            rate=self.w.n(p["rate"]), rate_unit=self.w.rate_unit(self.polygon),
-                            sense=self.w.sense(p["sense"]), first=first.partition("@")[0],
-                            second=second.partition("@")[0], link=str(p["link"]))
-        value = self.step.value[0] if self.step.value else 0.0
-        return text, self.say.say("result.rate", rate_name=name, value=self.w.n(value),
-                                  unit=self.w.rate_unit(self.polygon), sense=self.w.sense(p["sense"]))
-
-    def _coriolis(self) -> tuple[str, str]:
-        p = self.p
-        term = str(p["term"])
-        vector = self.step.vectors[0]
-        along = sub(vector.end, vector.start)
-        text = self.say.say("step.coriolis", term=term, guide=str(p["guide"]),
-                            omega_name=self.w.rate_name("velocity", str(p["ground"]), str(p["guide"])),
-                            omega=self.w.n(p["omega"]), relative=str(p["relative"]), speed=self.w.n(p["speed"]),
-                            magnitude=self.w.n(p["magnitude"]), paper=self.w.paper(self.polygon, float(p["magnitude"])),
-                            sense=self.w.sense(p["sense"]), from_tip=self.w.tip_or_pole(self.polygon, str(p["start"])),
-                            **self.common())
-        return text, self._vector_result(term, along)
-
-    def _vector_result(self, term: str, value: Vec) -> str:
-        if norm(value) == 0.0:
-            return self.say.say("result.vector_zero", term=term)
-        return self.say.say("result.vector", term=term, magnitude=self.w.n(norm(value)),
-                            angle=self.say.angle(math.atan2(value[1], value[0])), unit=self.w.unit_of(self.polygon))
-
-    def _normals(self) -> tuple[str, str]:
-        items = []
-        for v in self.step.vectors:
-            point, _, reference = v.label.partition("_")[2].partition("/")
-            size = norm(sub(v.end, v.start))
-            items.append(self.say.say("step.normal_item", term=v.label, magnitude=self.w.n(size),
-                                      unit=self.w.unit_of(self.polygon), point=point.partition("@")[0],
-                                      reference=reference.partition("@")[0],
-                                      from_tip=self._normal_start(v), paper=self.w.paper(self.polygon, size)))
-        text = self.say.say("step.normals", items="; ".join(items))
-        return text, self.say.say("result.laid", terms=", ".join(v.label for v in self.step.vectors))
-
-    def _normal_start(self, vector: DrawnVector) -> str:
-        tips = self.w.tips(self.polygon)
-        for label, value in tips.items():
-            if norm(sub(value, vector.start)) <= 1e-12 * max(norm(value), 1.0):
-                return self.w.tip_or_pole(self.polygon, label)
-        return "?"
-
-    def _given_normal(self) -> tuple[str, str]:
-        p = self.p
-        point, reference = str(p["point"]), str(p["reference"])
-        normal, tangential = self.step.vectors
-        text = self.say.say("step.given_normal", term=normal.label, tangential=tangential.label,
-                            segment=_segment(reference, point), magnitude=self.w.n(p["magnitude"]),
-                            point=point, reference=reference, from_tip=tip_name(reference, self.polygon),
-                            tip=tip_name(point, self.polygon), paper=self.w.paper(self.polygon, float(p["magnitude"])),
-                            **self.common())
-        return text, self._vector_result(tangential.label, sub(tangential.end, tangential.start))
-
-    def _linear_solve(self) -> tuple[str, str]:
-        step = self.step
-        tips = [t.strip() for t in step.result.split(",") if t.strip()]
-        shown = ", ".join(tip_name(t.upper(), self.polygon) if self.polygon == "acceleration" else t for t in tips)
-        group = self.group()
-        links = ", ".join(group.links) if group is not None else "?"
-        key = "step.linear_solve_velocity" if self.polygon == "velocity" else "step.linear_solve_acceleration"
-        text = self.say.say(key, links=links, tips=shown, count=str(len(group.links) if group else 0))
-        return text, self.say.say("result.tips", tips=shown)
-
-    def group(self) -> NewtonGroup | None:
-        """The group a linear-solve step belongs to: the n-th such step of its polygon is the n-th Newton group."""
-        solution = self.w.solution
-        same = [s for s in solution.steps if s.polygon == self.polygon and s.kind == "linear-solve"]
-        groups = [g for g in solution.plan.groups if isinstance(g, NewtonGroup)]
-        index = next(k for k, s in enumerate(same) if s is self.step)
-        return groups[index] if index < len(groups) else None
-
-
-def _step_page(writer: _Writer, step: Step, number: int, total: int) -> Page:
+def _step_page(writer: _Writer, context: Context, step: Step, number: int, total: int) -> Page:
     say = writer.say
-    text, result = _StepText(writer, step).explain()
+    text, result = step_words(step, say, context)
     heading = say.say("page.step", number=str(number), total=str(total), polygon=say.say(f"polygon.{step.polygon}"))
     equation = step_equation(step, say, writer.solution)
     first: list[Paragraph | Table] = [Paragraph(heading, "heading"), Paragraph(equation, "equation")]
@@ -418,30 +142,12 @@ def _how_found(solution: Solution, centers: InstantCenters, name: str, say: Cata
     return say.say("table.known")
 
 
-def _links(triangle: str) -> str:
-    """``"123"`` or ``"1-2-14"`` (a triangle of the circle diagram) as ``1, 2, 3``."""
-    return ", ".join(triangle.split("-") if "-" in triangle else list(triangle))
-
-
-def _kennedy_page(solution: Solution, say: Catalogue, step: KennedyStep, number: int, total: int) -> Page:
+def _kennedy_page(context: Context, say: Catalogue, step: KennedyStep, number: int, total: int) -> Page:
+    solution = context.solution
     centers = solution.centers
     assert centers is not None
-    center = centers.centers[step.center]
-    label = center_label(step.center)
-    first, second = step.lines
-    text = say.say("step.kennedy", center=label, links=", ".join(center.links),
-                   first_triangle=_links(step.triangles[0]), second_triangle=_links(step.triangles[1]),
-                   first_line=first.label, second_line=second.label)
+    text, result = kennedy_words(step, say, context)
     used = list(dict.fromkeys(c for line in step.lines for c in line.centers))
-    if any(centers.centers[c].is_at_infinity for c in used) or center.is_at_infinity:
-        text += " " + say.say("step.kennedy_infinity")
-    unit = solution.scene.units.length
-    if center.position is not None:
-        result = say.say("result.center", center=label, place=say.pair(*center.position), unit=unit)
-    else:
-        assert center.direction is not None
-        result = say.say("result.center_infinity", center=label,
-                         angle=say.angle(math.atan2(center.direction[1], center.direction[0])))
     heading = say.say("page.step", number=str(number), total=str(total), polygon=say.say("polygon.centers"))
     equation = typographic(step.equation)
     rows = tuple((center_label(c), _how_found(solution, centers, c, say)) for c in used)
@@ -453,9 +159,10 @@ def _kennedy_page(solution: Solution, say: Catalogue, step: KennedyStep, number:
 
 def construction_pages(solution: Solution, say: Catalogue, scales: Mapping[str, float]) -> list[Page]:
     """A page per construction step, then one per Kennedy step; ``scales`` are kv and ka as drawn."""
-    writer = _Writer(solution, say, scales)
+    context = Context(solution, scales)
+    writer = _Writer(context, say)
     kennedy = solution.centers.steps if solution.centers is not None and solution.scene.find.instant_centers else ()
     total = len(solution.steps) + len(kennedy)
-    pages = [_step_page(writer, step, n, total) for n, step in enumerate(solution.steps, 1)]
-    pages += [_kennedy_page(solution, say, step, len(solution.steps) + k, total) for k, step in enumerate(kennedy, 1)]
+    pages = [_step_page(writer, context, step, n, total) for n, step in enumerate(solution.steps, 1)]
+    pages += [_kennedy_page(context, say, step, len(solution.steps) + k, total) for k, step in enumerate(kennedy, 1)]
     return pages

@@ -19,8 +19,8 @@ The construction mistakes are recomputed honestly: the polygons' equations are s
 with the term left out, reversed or turned (kinepoly.homework.mistakes); the input mistakes
 solve the scene again at the mistaken input; only the reading mistakes (kv, ka, a unit) and the
 sign act on the right answer itself. An answer matches a mistake when it is within the answers
-file's tolerance of the recomputed value; the closest match wins, and a mistake that changes
-nothing visible is never offered.
+file's tolerance of the recomputed value; the closest match wins (of matches equally close to
+roundoff, the first tried), and a mistake that changes nothing visible is never offered.
 """
 
 from __future__ import annotations
@@ -29,13 +29,12 @@ import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
 
 from kinepoly.errors import KinepolyError
 from kinepoly.homework.answers import AnswerKey, Direction, Tolerance, Value
 from kinepoly.homework.compare import compare
 from kinepoly.homework.mistakes import RIGHT, Construction, student_solution
-from kinepoly.homework.reference import Reference, asked_keys, fixed_angles, solve_for, value_of
+from kinepoly.homework.reference import Reference, Values, asked_keys, fixed_angles, solve_for, value_in
 from kinepoly.scene.spec import LinkInput, Scene
 
 __all__ = ["Candidate", "Diagnosis", "Recomputed", "candidates", "diagnose", "recompute"]
@@ -49,6 +48,7 @@ _CONSTRUCTIONS = (
      Construction(normal_sign=1.0)),
 )
 _AGREEMENT = 1e-9  # the student equations done right must reproduce the reference this closely
+_TIE = 1e-9  # matches this much closer (relative) than another are a tie: the earlier candidate wins
 _VELOCITY_LEVEL = ("velocity", "s_dot", "omega")
 _ACCELERATION_LEVEL = ("acceleration", "s_ddot", "alpha")
 _NOUNS = {"omega": "angular velocity", "alpha": "angular acceleration", "theta": "angle",
@@ -58,11 +58,11 @@ _NOUNS = {"omega": "angular velocity", "alpha": "angular acceleration", "theta":
 
 @dataclass(frozen=True)
 class Recomputed:
-    """The whole problem solved again with one mistake: ``data`` shaped like ``kinepoly solve --json``."""
+    """The whole problem solved again with one mistake: its answers by key."""
 
     code: str
     text: str
-    data: Mapping[str, Any]
+    values: Values
 
 
 @dataclass(frozen=True)
@@ -92,46 +92,45 @@ class Diagnosis:
 # The problem recomputed with each mistake, once per scene
 
 
-def _agrees(reference: Reference, data: Mapping[str, Any]) -> bool:
+def _agrees(reference: Reference, values: Values) -> bool:
     """The student equations done right reproduce every rate, velocity and acceleration of the reference."""
-    ref = reference.data
-    for rate in ("omega", "alpha"):
-        allowed = _AGREEMENT * reference.scales["omega" if rate == "omega" else "alpha"]
-        for link, entry in ref.get("links", {}).items():
-            if rate in entry and abs(entry[rate] - data["links"][link][rate]) > allowed:
-                return False
-    for kind in ("velocity", "acceleration"):
-        allowed = _AGREEMENT * reference.scales["velocity" if kind == "velocity" else "acceleration"]
-        for label, entry in ref.get("points", {}).items():
-            if kind in entry and math.dist(entry[kind], data["points"][label][kind]) > allowed:
-                return False
+    for key, expected in reference.values.items():
+        if key.kind not in ("omega", "alpha", "velocity", "acceleration"):
+            continue
+        got = values.get(key)
+        if isinstance(expected, tuple) and isinstance(got, tuple):
+            off = math.dist(expected, got)
+        elif isinstance(expected, float) and isinstance(got, float):
+            off = abs(expected - got)
+        else:
+            return False
+        if off > _AGREEMENT * reference.scales[key.kind]:
+            return False
     return True
 
 
 def _construction_mistakes(reference: Reference) -> list[Recomputed]:
-    if not any("alpha" in entry for entry in reference.data.get("links", {}).values()):
+    if not any(key.kind == "alpha" for key in reference.values):
         return []  # no accelerations in this problem
-    right = student_solution(reference.scene, reference.data, RIGHT)
+    right = student_solution(reference.solution, RIGHT)
     if right is None or not _agrees(reference, right):
         return []  # never diagnose from equations that do not reproduce the right answer
     out = []
     for code, text, how in _CONSTRUCTIONS:
-        data = student_solution(reference.scene, reference.data, how)
-        if data is not None:
-            positions = {label: {**entry, "position": reference.data["points"][label]["position"]}
-                         for label, entry in data["points"].items()}
-            out.append(Recomputed(code, text, {**data, "points": positions}))
+        values = student_solution(reference.solution, how)
+        if values is not None:
+            out.append(Recomputed(code, text, values))
     return out
 
 
 def _resolved(scene: Scene, reference: Reference, code: str, text: str, changed: LinkInput) -> list[Recomputed]:
     """The scene solved again at a mistaken input (nothing when it does not assemble there)."""
-    keys = asked_keys(reference.data)
+    keys = asked_keys(reference.values)
     try:
-        data = solve_for(dataclasses.replace(scene, input=changed), keys, everything=False)
+        values = solve_for(dataclasses.replace(scene, input=changed), keys, everything=False)
     except KinepolyError:
         return []
-    return [Recomputed(code, text, data)]
+    return [Recomputed(code, text, values)]
 
 
 def _input_mistakes(reference: Reference, written: Mapping[str, object] | None) -> list[Recomputed]:
@@ -241,33 +240,29 @@ def _reading_mistakes(reference: Reference, key: AnswerKey, expected: Value) -> 
 
 def _others(reference: Reference, key: AnswerKey) -> list[Candidate]:
     """The right values of every other point (link, slider, center) for the same question."""
-    scene, data, units = reference.scene, reference.data, reference.scene.units
+    scene = reference.scene
     kind, noun = key.kind, _NOUNS[key.kind]
     fixed = set(fixed_angles(scene))
+    same = [other for other in reference.values if other.kind == kind]
     if kind in ("velocity", "acceleration"):
-        labels = [label for label, entry in data.get("points", {}).items()
-                  if kind in entry and _owner(scene, label) not in (scene.ground, *fixed)]
+        same = [other for other in same if _owner(scene, other.target) not in (scene.ground, *fixed)]
         code, name = "other-point", "point"
     elif kind in ("omega", "alpha", "theta"):
-        labels = [link for link in data.get("links", {}) if link not in fixed]
+        same = [other for other in same if other.target not in fixed]
         code, name = "other-link", "link"
     elif kind == "center":
-        labels = list(data.get("instant_centers", {}))
         code, name = "other-link", "instant center"
     else:
-        labels = list(data.get("sliders", {}))
         code, name = "other-link", "slider"
     out = []
-    for label in labels:
-        other = AnswerKey(kind, label)
-        value = value_of(data, other, units)
-        if value is not None and other.question != key.question:
+    for other in same:
+        if other.question != key.question:
             if kind == "center":
                 text = f"the right value of another instant center: {other.text}, of links " + " and ".join(
                     sorted(other.question[1]))
             else:
-                text = f"the right value of another {name}: {other.text}, the {noun} of {name} {label}"
-            out.append(Candidate(code, text, value))
+                text = f"the right value of another {name}: {other.text}, the {noun} of {name} {other.target}"
+            out.append(Candidate(code, text, reference.values[other]))
     return out
 
 
@@ -278,7 +273,7 @@ def candidates(reference: Reference, recomputed: tuple[Recomputed, ...], key: An
         return []
     out = _reading_mistakes(reference, key, expected)
     for mistake in recomputed:
-        value = value_of(mistake.data, key, reference.scene.units)
+        value = value_in(mistake.values, key)
         if value is not None:
             out.append(Candidate(mistake.code, mistake.text, value))
     return out + _others(reference, key)
@@ -301,7 +296,8 @@ def diagnose(reference: Reference, recomputed: tuple[Recomputed, ...], key: Answ
     if not matches:
         names = ", ".join(dict.fromkeys(tried)) or "none applies"
         return Diagnosis("unrecognised", f"no common mistake gives this answer (tried: {names})")
-    matches.sort(key=lambda item: (item[0], item[1]))
+    least = min(closeness for closeness, _, _ in matches)
+    matches.sort(key=lambda item: (0.0 if item[0] <= least * (1.0 + _TIE) else item[0], item[1]))
     best = matches[0][2]
     others = tuple(dict.fromkeys(c.code for _, _, c in matches[1:] if c.code != best.code))
     return Diagnosis(best.code, best.text, best.value, others)

@@ -15,7 +15,7 @@ J the quarter turn ccw:
   ``[given]`` scene the given points' motion (solved by least squares, exact for rigid data).
 
 Unknowns: (v_k, omega_k) then (a_k, alpha_k) of every moving link and s_dot, s_ddot of every
-slider. The poses are read from the reference solution (``kinepoly solve --json``); velocities
+slider. The poses are read from the reference :class:`~kinepoly.solution.Solution`; velocities
 are solved here, so the right construction (n = -1, c = 1) reproduces the reference exactly:
 the tests hold it to that. Nothing here reads kinepoly's construction or analytic modules.
 """
@@ -23,13 +23,14 @@ the tests hold it to that. Nothing here reads kinepoly's construction or analyti
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
+from kinepoly.homework.answers import AnswerKey, Value
+from kinepoly.model.pose import Pose
 from kinepoly.scene.spec import GivenInput, LinkInput, Scene, SliderInput, SliderSpec
+from kinepoly.solution import Solution
 
 __all__ = ["RIGHT", "Construction", "student_solution"]
 
@@ -64,22 +65,17 @@ def _quarter(v: np.ndarray) -> np.ndarray:
     return np.array([-v[1], v[0]])
 
 
-def _poses(scene: Scene, data: Mapping[str, Any]) -> dict[str, _Pose] | None:
-    """Each link's pose from the reference JSON: its angle and the position of one of its points."""
-    to_rad = math.pi / 180.0 if scene.units.angle == "deg" else 1.0
-    points = data.get("points", {})
+def _poses(scene: Scene, pose: Pose) -> dict[str, _Pose] | None:
+    """Each link's pose in the reference solution; None when a link was not solved."""
     poses: dict[str, _Pose] = {}
     for link in scene.links:
         if link.name == scene.ground:
             poses[link.name] = _Pose(0.0, np.zeros(2))
-            continue
-        entry = data.get("links", {}).get(link.name)
-        known = [p for p in link.points if p.name in points]
-        if entry is None or "angle" not in entry or not known:
+        elif link.name in pose.links:
+            place = pose.links[link.name]
+            poses[link.name] = _Pose(place.theta, np.array([place.x, place.y]))
+        else:
             return None
-        theta = float(entry["angle"]) * to_rad
-        arm = _Pose(theta, np.zeros(2)).world(known[0].local)
-        poses[link.name] = _Pose(theta, np.asarray(points[known[0].name]["position"], dtype=float) - arm)
     return poses
 
 
@@ -196,17 +192,19 @@ def _solve(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
     return np.asarray(np.linalg.lstsq(matrix, rhs, rcond=None)[0], dtype=float)
 
 
-def student_solution(scene: Scene, data: Mapping[str, Any], how: Construction = RIGHT) -> dict[str, Any] | None:
-    """The answers of a student who lays the terms as ``how`` says, shaped like ``data`` (the reference JSON).
+def student_solution(solution: Solution, how: Construction = RIGHT) -> dict[AnswerKey, Value] | None:
+    """The answers of a student who lays the terms as ``how`` says, at the poses of ``solution``.
 
-    Gives links' omega and alpha, points' velocity and acceleration (every label of ``data``), and
-    sliders' s_dot and s_ddot. None when ``data`` does not fix every link's pose, when the scene has
-    no accelerations (a ``[given]`` scene without them), or when the equations are singular.
+    Gives links' omega and alpha, the velocity and acceleration of every point ``solution``'s [find]
+    asks the velocity or acceleration of, and sliders' s_dot and s_ddot. None when ``solution``
+    does not fix every link's pose, when the scene has no accelerations (a ``[given]`` scene
+    without them), or when the equations are singular.
     """
+    scene = solution.scene
     inp = scene.input
     if isinstance(inp, GivenInput) and any(p.acceleration is None for p in inp.points):
         return None
-    poses = _poses(scene, data)
+    poses = _poses(scene, solution.pose)
     if poses is None:
         return None
     eq = _Equations(scene, poses)
@@ -219,22 +217,23 @@ def student_solution(scene: Scene, data: Mapping[str, Any], how: Construction = 
     if acceleration is None:
         return None
     alpha = {name: float(acceleration[eq.column[name] + 2]) for name in eq.moving}
-
-    def motion(label: str) -> dict[str, list[float]]:
+    out: dict[AnswerKey, Value] = {}
+    for name in eq.moving:
+        out[AnswerKey("omega", name)] = omega[name]
+        out[AnswerKey("alpha", name)] = alpha[name]
+    for label in dict.fromkeys((*scene.find.velocity, *scene.find.acceleration)):
         point, _, on = label.partition("@")
         link = on or _owner(scene, point)
-        if link not in eq.column:
-            return {"velocity": [0.0, 0.0], "acceleration": [0.0, 0.0]}
-        k = eq.column[link]
-        r = eq.position(point) - poses[link].origin
-        w, a = omega[link], alpha[link]
-        v = velocity[k : k + 2] + w * _quarter(r)
-        acc = acceleration[k : k + 2] + a * _quarter(r) + how.normal_sign * w * w * r
-        return {"velocity": [float(v[0]), float(v[1])], "acceleration": [float(acc[0]), float(acc[1])]}
-
-    return {
-        "links": {name: {"omega": omega[name], "alpha": alpha[name]} for name in eq.moving},
-        "points": {label: motion(label) for label in data.get("points", {})},
-        "sliders": {name: {"s_dot": s_dot[name], "s_ddot": float(acceleration[k])}
-                    for name, k in eq.slider_column.items()},
-    }
+        v, a = np.zeros(2), np.zeros(2)
+        if link in eq.column:
+            k = eq.column[link]
+            r = eq.position(point) - poses[link].origin
+            w = omega[link]
+            v = velocity[k : k + 2] + w * _quarter(r)
+            a = acceleration[k : k + 2] + alpha[link] * _quarter(r) + how.normal_sign * w * w * r
+        out[AnswerKey("velocity", label)] = (float(v[0]), float(v[1]))
+        out[AnswerKey("acceleration", label)] = (float(a[0]), float(a[1]))
+    for name, k in eq.slider_column.items():
+        out[AnswerKey("s_dot", name)] = s_dot[name]
+        out[AnswerKey("s_ddot", name)] = float(acceleration[k])
+    return out

@@ -4,7 +4,7 @@ A key the scene's own ``[find]`` does not ask for is answered by solving a copy 
 ``[find]`` asks for it. The copy asks for every point and link too when it can (the diagnosis
 compares a wrong answer with the values of the other points and links); when that wider copy
 cannot be solved (a group the question never needed does not assemble) only what is asked or
-answered is solved.
+answered is solved. The values are read off the :class:`~kinepoly.solution.Solution` itself.
 """
 
 from __future__ import annotations
@@ -13,35 +13,41 @@ import dataclasses
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Literal
 
 from kinepoly.errors import KinepolyError
+from kinepoly.geom.vec import Vec
 from kinepoly.homework.answers import AnswerKey, Direction, Value
-from kinepoly.report import to_json
-from kinepoly.scene.spec import FindSpec, GivenInput, Scene, Units
-from kinepoly.solution import solve
+from kinepoly.present.scales import polygon_scales
+from kinepoly.scene.spec import FindSpec, GivenInput, Scene
+from kinepoly.solution import Solution, solve
 
-__all__ = ["FLOOR_FRACTION", "Reference", "asked_keys", "fixed_angles", "prepare", "solve_for", "value_of"]
+__all__ = ["FLOOR_FRACTION", "Reference", "Values", "asked_keys", "fixed_angles", "prepare", "solve_for",
+           "value_in", "values_of"]
 
 FLOOR_FRACTION = 0.01
 """A value is judged against at least this fraction of the largest value of its kind in the mechanism."""
 
 _RATES = ("omega", "alpha", "theta")
 ScaleKind = Literal["omega", "alpha", "theta", "velocity", "acceleration", "length"]
+Values = Mapping[AnswerKey, Value]
+"""Answers by key, in internal units (angles in radians), in the order ``kinepoly solve`` reports them."""
 
 
 @dataclass(frozen=True)
 class Reference:
     """The scene solved for the answers.
 
-    ``data`` is ``kinepoly.to_json`` of the scene solved for every key (and, when it could be,
-    every point and link); ``asked`` the keys the scene's own ``[find]`` asks for (none when the
-    scene has no ``[find]``); ``kv`` and ``ka`` the polygon scales ``kinepoly solve`` draws the
-    scene at (None where there is no such polygon); ``scales`` the largest size of each kind.
+    ``solution`` is the scene solved for every key (and, when it could be, every point and link);
+    ``values`` its answers (see :func:`values_of`) and those of the links that never turn; ``asked``
+    the keys the scene's own ``[find]`` asks for (none when the scene has no ``[find]``); ``kv`` and
+    ``ka`` the polygon scales ``kinepoly solve`` draws the scene at (None where there is no such
+    polygon); ``scales`` the largest size of each kind.
     """
 
     scene: Scene
-    data: Mapping[str, Any]
+    solution: Solution
+    values: Values
     asked: tuple[AnswerKey, ...]
     kv: float | None
     ka: float | None
@@ -51,10 +57,10 @@ class Reference:
     @property
     def warnings(self) -> list[str]:
         """kinepoly's own cross-check failing on the reference: its answers are then in doubt."""
-        return [w["message"] for w in self.data.get("warnings", []) if w.get("code") == "check-failed"]
+        return [n.message for n in self.solution.notices if n.code == "check-failed"]
 
     def expected(self, key: AnswerKey) -> Value | None:
-        return value_of(self.data, key, self.scene.units)
+        return value_in(self.values, key)
 
     def floor(self, key: AnswerKey) -> float:
         """The least size a value of this key is judged against (see ``FLOOR_FRACTION``); for an
@@ -72,7 +78,45 @@ def _scale_kind(key: AnswerKey) -> ScaleKind:
 
 
 # --------------------------------------------------------------------------------------------
-# Values out of the contract's JSON
+# Values off the solution
+
+
+def _pair(v: Vec) -> tuple[float, float]:
+    return (float(v[0]) + 0.0, float(v[1]) + 0.0)  # + 0.0 turns -0.0 into 0.0
+
+
+def values_of(solution: Solution) -> dict[AnswerKey, Value]:
+    """Every value ``solution`` reports for its scene's [find], keyed, in the order ``kinepoly solve`` shows them:
+    links (theta, omega, alpha), points (velocity, acceleration), sliders (s, s_dot, s_ddot), instant centers."""
+    asked, find = solution.asked, solution.scene.find
+    velocity, acceleration = solution.velocity, solution.acceleration
+    out: dict[AnswerKey, Value] = {}
+    for link in dict.fromkeys((*asked.omega, *asked.alpha)):
+        out[AnswerKey("theta", link)] = solution.angle(link)
+        if link in asked.omega and velocity is not None:
+            out[AnswerKey("omega", link)] = float(velocity.omega[link])
+        if link in asked.alpha and acceleration is not None:
+            out[AnswerKey("alpha", link)] = float(acceleration.alpha[link])
+    for label in dict.fromkeys((*find.velocity, *find.acceleration)):
+        if label in find.velocity and velocity is not None:
+            out[AnswerKey("velocity", label)] = _pair(velocity.tips[label])
+        if label in find.acceleration and acceleration is not None:
+            out[AnswerKey("acceleration", label)] = _pair(acceleration.tips[label])
+    for name in asked.sliders:
+        slider = solution.slider(name)
+        out[AnswerKey("s", name)] = float(slider.s)
+        if slider.s_dot is not None:
+            out[AnswerKey("s_dot", name)] = float(slider.s_dot)
+        if slider.s_ddot is not None and slider.coriolis is not None:
+            out[AnswerKey("s_ddot", name)] = float(slider.s_ddot)
+    centers = solution.centers.centers if solution.centers is not None else {}
+    for key, name in solution.centers.asked if solution.centers is not None else ():
+        center = centers[name]
+        if center.position is not None:
+            out[AnswerKey("center", key)] = _pair(center.position)
+        elif center.direction is not None:
+            out[AnswerKey("center", key)] = Direction(*_pair(center.direction))
+    return out
 
 
 def _other_order(pair: str) -> str:
@@ -82,42 +126,17 @@ def _other_order(pair: str) -> str:
     return pair[::-1]
 
 
-def value_of(data: Mapping[str, Any], key: AnswerKey, units: Units) -> Value | None:
-    """The value of ``key`` in a ``kinepoly solve --json`` object (internal units), None if absent."""
-    kind, target = key.kind, key.target
-    if kind in ("omega", "alpha", "theta"):
-        link = data.get("links", {}).get(target, {})
-        if kind == "theta":
-            angle = link.get("angle")
-            return None if angle is None else (math.radians(angle) if units.angle == "deg" else float(angle))
-        rate = link.get(kind)
-        return None if rate is None else float(rate)
-    if kind in ("velocity", "acceleration"):
-        vector = data.get("points", {}).get(target, {}).get(kind)
-        return None if vector is None else (float(vector[0]), float(vector[1]))
-    if kind == "center":
-        centers = data.get("instant_centers", {})
-        entry = centers.get(target) or centers.get(_other_order(target))
-        if entry is None:
-            return None
-        if "position" in entry:
-            return (float(entry["position"][0]), float(entry["position"][1]))
-        return Direction(float(entry["direction"][0]), float(entry["direction"][1]))
-    number = data.get("sliders", {}).get(target, {}).get(kind)
-    return None if number is None else float(number)
+def value_in(values: Values, key: AnswerKey) -> Value | None:
+    """The value of ``key`` in ``values``, None if absent; an instant center under either order of its links."""
+    found = values.get(key)
+    if found is None and key.kind == "center":
+        found = values.get(AnswerKey("center", _other_order(key.target)))
+    return found
 
 
-def asked_keys(data: Mapping[str, Any]) -> tuple[AnswerKey, ...]:
-    """The keys a solved scene's JSON reports, in its order: what its [find] asks."""
-    keys: list[AnswerKey] = []
-    for link, entry in data.get("links", {}).items():
-        keys += [AnswerKey(kind, link) for kind in ("omega", "alpha") if kind in entry]
-    for label, entry in data.get("points", {}).items():
-        keys += [AnswerKey(kind, label) for kind in ("velocity", "acceleration") if kind in entry]
-    for name, entry in data.get("sliders", {}).items():
-        keys += [AnswerKey(kind, name) for kind in ("s", "s_dot", "s_ddot") if kind in entry]
-    keys += [AnswerKey("center", pair) for pair in data.get("instant_centers", {})]
-    return tuple(keys)
+def asked_keys(values: Values) -> tuple[AnswerKey, ...]:
+    """The keys a solved scene reports (its angles aside), in its order: what its [find] asks."""
+    return tuple(key for key in values if key.kind != "theta")
 
 
 # --------------------------------------------------------------------------------------------
@@ -178,32 +197,40 @@ def _find_for(scene: Scene, keys: Iterable[AnswerKey], *, everything: bool) -> F
                     sliders=tuple(dict.fromkeys(sliders)), instant_centers=centers)
 
 
-def solve_for(scene: Scene, keys: Iterable[AnswerKey], *, everything: bool = True) -> dict[str, Any]:
-    """``to_json`` of ``scene`` solved with a [find] that asks for ``keys`` (and every point and link)."""
-    keys = tuple(keys)
-    data = to_json(solve(dataclasses.replace(scene, find=_find_for(scene, keys, everything=everything))))
-    links = data.setdefault("links", {})
+def _solved_for(scene: Scene, keys: tuple[AnswerKey, ...], *, everything: bool) -> Solution:
+    return solve(dataclasses.replace(scene, find=_find_for(scene, keys, everything=everything)))
+
+
+def _with_fixed_links(scene: Scene, values: Values) -> dict[AnswerKey, Value]:
+    """``values`` and, for each link that never turns, its angle and omega = alpha = 0."""
+    out = dict(values)
     for link, angle in fixed_angles(scene).items():
-        angle = math.remainder(angle, 2.0 * math.pi)
-        shown = math.degrees(angle) if scene.units.angle == "deg" else angle
-        links.setdefault(link, {"angle": shown, "omega": 0.0, "alpha": 0.0})
-    return data
+        out.setdefault(AnswerKey("theta", link), math.remainder(angle, 2.0 * math.pi))
+        out.setdefault(AnswerKey("omega", link), 0.0)
+        out.setdefault(AnswerKey("alpha", link), 0.0)
+    return out
 
 
-def _scales(data: Mapping[str, Any], scene: Scene) -> dict[ScaleKind, float]:
-    links = data.get("links", {}).values()
-    points = data.get("points", {}).values()
-    sliders = data.get("sliders", {}).values()
-    positions = [p["position"] for p in points]
+def solve_for(scene: Scene, keys: Iterable[AnswerKey], *, everything: bool = True) -> dict[AnswerKey, Value]:
+    """The values of ``scene`` solved with a [find] that asks for ``keys`` (and every point and link)."""
+    return _with_fixed_links(scene, values_of(_solved_for(scene, tuple(keys), everything=everything)))
+
+
+def _scales(solution: Solution, values: Values) -> dict[ScaleKind, float]:
+    find = solution.scene.find
+    positions = [solution.position(label) for label in dict.fromkeys((*find.velocity, *find.acceleration))]
     size = max((math.dist(a, b) for a in positions for b in positions), default=0.0)
-    inp = scene.input
+
+    def sizes(kind: str) -> list[float]:
+        return [math.hypot(*v) if isinstance(v, tuple) else abs(v)
+                for key, v in values.items() if key.kind == kind and not isinstance(v, Direction)]
+
+    inp = solution.scene.input
     inputs = [abs(getattr(inp, "omega", 0.0)), abs(getattr(inp, "alpha", 0.0))]
-    omega = max([abs(x.get("omega", 0.0)) for x in links] + inputs[:1])
-    alpha = max([abs(x.get("alpha", 0.0)) for x in links] + inputs[1:] + [omega * omega])
-    speed = max([math.hypot(*p["velocity"]) for p in points if "velocity" in p]
-                + [abs(s.get("s_dot", 0.0)) for s in sliders] + [size * omega])
-    accel = max([math.hypot(*p["acceleration"]) for p in points if "acceleration" in p]
-                + [abs(s.get("s_ddot", 0.0)) for s in sliders] + [size * alpha])
+    omega = max(sizes("omega") + inputs[:1])
+    alpha = max(sizes("alpha") + inputs[1:] + [omega * omega])
+    speed = max(sizes("velocity") + sizes("s_dot") + [size * omega])
+    accel = max(sizes("acceleration") + sizes("s_ddot") + [size * alpha])
     return {"omega": omega, "alpha": alpha, "theta": math.pi, "velocity": speed, "acceleration": accel,
             "length": size}
 
@@ -211,18 +238,20 @@ def _scales(data: Mapping[str, Any], scene: Scene) -> dict[ScaleKind, float]:
 def prepare(scene: Scene, keys: Iterable[AnswerKey] = ()) -> Reference:
     """Solve ``scene`` for what its [find] asks and for ``keys``; raises KinepolyError as ``solve`` does."""
     keys = tuple(keys)
-    original = to_json(solve(scene))
+    original = solve(scene)
     try:
-        data = solve_for(scene, keys, everything=True)
+        solution = _solved_for(scene, keys, everything=True)
     except KinepolyError:
-        data = solve_for(scene, keys, everything=False)
-    polygons = original.get("polygons", {})
+        solution = _solved_for(scene, keys, everything=False)
+    values = _with_fixed_links(scene, values_of(solution))
+    kv_ka = polygon_scales(original)
     return Reference(
         scene=scene,
-        data=data,
-        asked=() if scene.find.is_default else asked_keys(original),
-        kv=polygons.get("velocity", {}).get("scale"),
-        ka=polygons.get("acceleration", {}).get("scale"),
-        scales=_scales(data, scene),
-        has_centers="instant_centers" in data,
+        solution=solution,
+        values=values,
+        asked=() if scene.find.is_default else asked_keys(values_of(original)),
+        kv=kv_ka.get("velocity"),
+        ka=kv_ka.get("acceleration"),
+        scales=_scales(solution, values),
+        has_centers=solution.centers is not None,
     )

@@ -30,14 +30,13 @@ import random
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 from kinepoly.errors import AssemblyError, KinepolyError, SceneError
+from kinepoly.geom.vec import norm, unit
 from kinepoly.homework.answers import AnswerKey, Value
-from kinepoly.homework.reference import asked_keys, value_of
+from kinepoly.homework.reference import asked_keys, values_of
 from kinepoly.homework.toml_out import answers_toml, scene_toml
 from kinepoly.homework.vary import Range, Ranges
-from kinepoly.report import to_json
 from kinepoly.scene.loader import loads_scene
 from kinepoly.scene.spec import GivenInput, LinkInput, LinkSpec, PointSpec, Scene
 from kinepoly.solution import Solution, solve
@@ -159,16 +158,16 @@ def _draw(rng: random.Random, scene: Scene, ranges: Ranges) -> _Numbers:
 @dataclass(frozen=True)
 class _Solved:
     solution: Solution
-    data: dict[str, Any]
 
     @property
     def crossings(self) -> dict[str, float]:
         """Each dyad's velocity intersection: the signed sine of the angle from its first line to its second."""
         out = {}
-        for step in self.data["steps"]:
-            if step["polygon"] == "velocity" and step["kind"] == "intersection" and len(step["lines"]) == 2:
-                (a, b), (c, d) = step["lines"][0]["direction"], step["lines"][1]["direction"]
-                out[step["result"]] = a * d - b * c
+        for step in self.solution.steps:
+            if step.polygon == "velocity" and step.kind == "intersection" and len(step.lines) == 2:
+                (a, b), (c, d) = (unit(line.direction) if norm(line.direction) > 0 else (0.0, 0.0)
+                                  for line in step.lines)
+                out[step.result] = a * d - b * c
         return out
 
     @property
@@ -182,11 +181,11 @@ class _Solved:
 
     @property
     def has_linear_solve(self) -> bool:
-        return any(step["kind"] == "linear-solve" for step in self.data["steps"])
+        return any(step.kind == "linear-solve" for step in self.solution.steps)
 
     @property
     def condition(self) -> float:
-        return float(self.data["check"].get("condition_number", 0.0))
+        return float(self.solution.check.condition_number)
 
     def guess(self) -> tuple[tuple[str, Vec], ...]:
         """Every point of a moving, solved link (but not of the frame), where it is."""
@@ -202,11 +201,11 @@ def _solved(scene: Scene) -> _Solved | None:
         solution = solve(scene)
     except KinepolyError:
         return None
-    return _Solved(solution, to_json(solution))
+    return _Solved(solution)
 
 
 def _is_good(solved: _Solved, original: _Solved, min_transmission_deg: float) -> bool:
-    codes = {w["code"] for w in solved.data["warnings"]}
+    codes = {notice.code for notice in solved.solution.notices}
     if codes & {"near-singular", "check-failed"} or solved.signature != original.signature:
         return False
     transmission = solved.min_transmission_deg
@@ -265,13 +264,8 @@ def _reach(base: Scene, start: _Numbers, end: _Numbers, original: _Solved) -> _S
 
 
 def _key(solved: _Solved) -> tuple[tuple[AnswerKey, Value], ...]:
-    units = solved.solution.scene.units
-    pairs = []
-    for key in asked_keys(solved.data):
-        value = value_of(solved.data, key, units)
-        if value is not None:
-            pairs.append((key, value))
-    return tuple(pairs)
+    values = values_of(solved.solution)
+    return tuple((key, values[key]) for key in asked_keys(values))
 
 
 def _same_pose(first: _Solved, second: _Solved, size: float) -> bool:

@@ -8,11 +8,13 @@ an angle is reported.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from kinepoly.geom.arrays import Points, Reals, length
+from kinepoly.model.pose import LinkPose
 
 __all__ = ["ArrayPose", "pose_from_point", "pose_from_two_points", "still_pose"]
 
@@ -44,6 +46,13 @@ class ArrayPose:
         if low.any():
             angle[low] = half
         return np.asarray(angle)
+
+    @staticmethod
+    def of_rows(poses: Sequence[LinkPose]) -> ArrayPose:
+        """The array pose whose row k is ``poses[k]``."""
+        origin = np.array([complex(p.x, p.y) for p in poses], np.complex128)
+        rotation = np.array([complex(math.cos(p.theta), math.sin(p.theta)) for p in poses], np.complex128)
+        return ArrayPose(origin, rotation)
 
     def row(self, k: int) -> tuple[float, float, float]:
         """(x, y, theta) of row k, for the scalar solvers."""

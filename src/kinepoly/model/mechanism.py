@@ -70,15 +70,41 @@ class Mechanism:
     def link_names(self) -> tuple[str, ...]:
         return tuple(link.name for link in self.scene.links)
 
+    @cached_property
+    def _locals(self) -> dict[tuple[str, str], Vec]:
+        """Every point of every link, keyed (link, point): the one index of the mechanism's names."""
+        return {(link.name, p.name): p.local for link in self.scene.links for p in link.points}
+
+    @cached_property
+    def _links_of(self) -> dict[str, tuple[str, ...]]:
+        out: dict[str, list[str]] = {}
+        for link in self.scene.links:
+            for p in link.points:
+                out.setdefault(p.name, []).append(link.name)
+        return {point: tuple(links) for point, links in out.items()}
+
+    @cached_property
+    def _joints_of(self) -> dict[str, tuple[Joint, ...]]:
+        out: dict[str, list[Joint]] = {name: [] for name in self.link_names}
+        for joint in self.joints:
+            for link in dict.fromkeys(joint_links(joint)):
+                out.setdefault(link, []).append(joint)
+        return {link: tuple(joints) for link, joints in out.items()}
+
+    @cached_property
+    def _sliders(self) -> dict[str, SliderSpec]:
+        return {s.name: s for s in self.sliders}
+
     def local(self, link: str, point: str) -> Vec:
-        """Coordinates of ``point`` in ``link``'s own frame."""
-        return self.scene.link(link).point(point).local
+        """Coordinates of ``point`` in ``link``'s own frame (KeyError when the link has no such point)."""
+        return self._locals[(link, point)]
 
     def has_point(self, link: str, point: str) -> bool:
-        return point in self.scene.link(link).point_names
+        return (link, point) in self._locals
 
     def links_of_point(self, point: str) -> tuple[str, ...]:
-        return tuple(link.name for link in self.scene.links if point in link.point_names)
+        """The links that have ``point``, in scene order."""
+        return self._links_of.get(point, ())
 
     def owner(self, point: str) -> str:
         """The first link (in scene order) that has ``point``."""
@@ -88,17 +114,14 @@ class Mechanism:
         return owners[0]
 
     def slider(self, name: str) -> SliderSpec:
-        for s in self.sliders:
-            if s.name == name:
-                return s
-        raise KeyError(name)
+        return self._sliders[name]
 
     @cached_property
     def joints(self) -> tuple[Joint, ...]:
         return (*self.revolutes, *self.sliders)
 
     def joints_of(self, link: str) -> tuple[Joint, ...]:
-        return tuple(j for j in self.joints if link in joint_links(j))
+        return self._joints_of.get(link, ())
 
     @cached_property
     def rotation_class(self) -> dict[str, str]:
@@ -116,10 +139,17 @@ class Mechanism:
                 parent[max(a, b)] = min(a, b)
         return {name: find(name) for name in self.link_names}
 
+    @cached_property
+    def _classes(self) -> dict[str, tuple[str, ...]]:
+        cls = self.rotation_class
+        out: dict[str, list[str]] = {}
+        for name in self.link_names:
+            out.setdefault(cls[name], []).append(name)
+        return {name: tuple(out[cls[name]]) for name in self.link_names}
+
     def turning_together(self, link: str) -> tuple[str, ...]:
         """``link`` and every link that must turn with it (joined by sliders): one omega, one alpha."""
-        cls = self.rotation_class
-        return tuple(name for name in self.link_names if cls[name] == cls[link])
+        return self._classes[link]
 
     def class_rate(self, rates: Mapping[str, T], link: str) -> T | None:
         """The rate (omega or alpha) of ``link`` from ``rates`` known for any link that turns with it."""

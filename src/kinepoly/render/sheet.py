@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from kinepoly.present.phrasing import Context, english, step_sentence
+from kinepoly.present.scales import polygon_scales
 from kinepoly.render import centers as centers_layer
 from kinepoly.render.labels import Request, place
 from kinepoly.render.layout import Content, Panel, arrange, paper_size
@@ -18,6 +20,7 @@ from kinepoly.render.polygons import Figure, figure_box, polygon_figure, polygon
 from kinepoly.render.primitives import LAYERS, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.text import plain_runs
 from kinepoly.render.titleblock import (
+    STEP_TEXT_MM,
     Block,
     block_items,
     flow,
@@ -55,12 +58,6 @@ class Layout:
         return next((p for p in self.panels if p.name == name), None)
 
 
-def _polygon_scales(solution: Solution) -> dict[str, float]:
-    from kinepoly.report import polygon_scales
-
-    return polygon_scales(solution)
-
-
 def _title_blocks(solution: Solution, figures: tuple[Figure, ...], notes: tuple[str, ...], width: float) -> list[Block]:
     blocks = title_blocks(solution, notes, width)
     kinds = _drawn_terms(figures)
@@ -89,7 +86,7 @@ def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4") ->
     for _ in range(2):
         title_h = flow_height(_title_blocks(solution, figures, notes, inner_w), inner_w)
         area = (inner[0], inner[1] + title_h + _INNER_MM, inner[2], inner[3])
-        scales = _polygon_scales(solution)
+        scales = polygon_scales(solution)
         contents = [Content("mechanism", _mechanism_box(solution), None, _PADDING_MM["mechanism"])]
         diagram = centers_layer.centers_content(solution)
         if diagram is not None:
@@ -152,23 +149,45 @@ def _headings(solution: Solution, layout: Layout) -> tuple[list[Item], list[Item
 def _title_items(solution: Solution, layout: Layout, step: int | None) -> list[Item]:
     x0, _, x1, y1 = layout.title_rect
     width = x1 - x0 - 2 * _INNER_MM
-    if step is None:
-        blocks = _title_blocks(solution, layout.figures, layout.notes, width)
-    else:
-        s = solution.steps[step - 1]
-        kinds = _drawn_terms(layout.figures)
-        head = title_blocks(solution, layout.notes, width)[0]
-        text_w = max(width - head.width - 40.0, 60.0)
-        blocks = [head, step_block(step, len(solution.steps), f"[{s.polygon}, {s.kind}] {s.equation}", s.text,
-                                   text_w)]
-        if kinds:
-            blocks.append(legend_block(kinds))
+    blocks = _title_blocks(solution, layout.figures, layout.notes, width) if step is None else \
+        _step_blocks(solution, layout, step, width)
     items: list[Item] = []
     kinds = _drawn_terms(layout.figures)
     for k, (block, (bx, by)) in enumerate(flow(blocks, width)):
         legend = kinds if block.lines and block.lines[0][0][0].text == "vectors" else []
         items += block_items(block, (x0 + _INNER_MM + bx, y1 - 2.5 + by), f"title block {k}", legend)
     return items
+
+
+def _step_blocks(solution: Solution, layout: Layout, step: int, width: float) -> list[Block]:
+    """The title block of a step's sheet: the title, the step (its equation and sentence), the legend.
+
+    The sheet keeps the drawing's layout, so the step's block fits the drawing's title block: as
+    wide as the row leaves it, in smaller type where its sentence is long.
+    """
+    s = solution.steps[step - 1]
+    kinds = _drawn_terms(layout.figures)
+    head = title_blocks(solution, layout.notes, width)[0]
+    legend = [legend_block(kinds)] if kinds else []
+    words = step_sentence(s, english(), Context(solution, {p.name: p.scale for p in layout.panels}))
+    heading = f"[{s.polygon}, {s.kind}] {s.equation}"
+    room = layout.title_rect[3] - layout.title_rect[1]
+
+    def blocks(text_w: float, size: float) -> list[Block]:
+        return [head, step_block(step, len(solution.steps), heading, words, text_w, size), *legend]
+
+    def one_row(text_w: float) -> bool:
+        return all(y == 0.0 for _, (_, y) in flow(blocks(text_w, STEP_TEXT_MM), width))
+
+    narrow = max(width - head.width - 40.0, 60.0)
+    wide = max(width - head.width - sum(b.width for b in legend), narrow)
+    while wide > narrow and not one_row(wide):
+        wide -= 2.0
+    tries = [(narrow, STEP_TEXT_MM)] + [(wide, STEP_TEXT_MM * k / 10) for k in range(10, 5, -1)]
+    for text_w, size in tries:
+        if flow_height(blocks(text_w, size), width) <= room:
+            break
+    return blocks(text_w, size)
 
 
 def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, step: int | None = None,

@@ -16,8 +16,8 @@ from kinepoly.render.style import SMALL_MM, TERM_COLORS, TERM_NAMES, THIN, TITLE
 from kinepoly.render.text import DESCENT_EM, Run, plain_runs, point_runs, text_width, wrap
 from kinepoly.solution import Solution
 
-__all__ = ["Block", "block_items", "flow", "flow_height", "format_number", "heading_items", "legend_block",
-           "space_scale_text", "step_block", "title_blocks"]
+__all__ = ["STEP_TEXT_MM", "Block", "block_items", "flow", "flow_height", "format_number", "heading_items",
+           "legend_block", "space_scale_text", "step_block", "title_blocks"]
 
 Point = tuple[float, float]
 _ROW_MM = 1.45 * SMALL_MM
@@ -99,6 +99,18 @@ def _table(header: Sequence[str], raw_rows: Sequence[Sequence[str | float | None
     return _block(lines)
 
 
+def _check_words(solution: Solution, err: float) -> str:
+    """The cross-check for people: within the error estimate, the power of ten above the estimate
+    (the error's own digits are rounding noise that changes with the machine's arithmetic); beyond
+    it, the error itself."""
+    verdict = "agrees" if err <= 1e-9 else "DISAGREES"
+    estimate = max(solution.accuracy.estimated.values(), default=0.0) if solution.accuracy else 0.0
+    if 0.0 < estimate and err <= estimate:
+        bound = 10.0 ** math.ceil(math.log10(estimate))
+        return f"largest relative error below {bound:.0e}, within its estimate ({verdict})"
+    return f"largest relative error {err:.1e} ({verdict})"
+
+
 def _unit_text(solution: Solution) -> tuple[str, str, str]:
     u = solution.scene.units.length
     return u, f"{u}/s", f"{u}/s²"
@@ -113,7 +125,7 @@ def _angle_of(v: Sequence[float]) -> str | float | None:
 
 def title_blocks(solution: Solution, notes: Sequence[str], width: float) -> list[Block]:
     """The title block's columns: title and input, the tables of asked results, notes and legend."""
-    from kinepoly.report import _input_text, to_json
+    from kinepoly.present.report import input_text, to_json
 
     data = to_json(solution)
     u, uv, ua = _unit_text(solution)
@@ -122,11 +134,9 @@ def title_blocks(solution: Solution, notes: Sequence[str], width: float) -> list
     head: list[tuple[tuple[Run, ...], bool]] = []
     for line in wrap(solution.scene.title, TITLE_MM, left_w, bold=True):
         head.append((plain_runs(line, TITLE_MM), True))
-    text = readable(_input_text(solution).replace("s_ddot", "s̈").replace("s_dot", "ṡ"))
+    text = readable(input_text(solution).replace("s_ddot", "s̈").replace("s_dot", "ṡ"))
     head += [(plain_runs(line, SMALL_MM), False) for line in wrap("input: " + text, SMALL_MM, left_w)]
-    err = data["check"]["max_rel_error"]
-    verdict = "agrees" if err <= 1e-9 else "DISAGREES"
-    check = (f"cross-check against the analytic solution: largest relative error {err:.1e} ({verdict})")
+    check = "cross-check against the analytic solution: " + _check_words(solution, data["check"]["max_rel_error"])
     head += [(plain_runs(line, SMALL_MM), False) for line in wrap(check, SMALL_MM, left_w)]
     for note in notes:
         head += [(plain_runs(line, SMALL_MM), False) for line in wrap(note, SMALL_MM, left_w)]
@@ -164,9 +174,12 @@ def readable(text: str) -> str:
     return text
 
 
-def step_block(number: int, total: int, equation: str, text: str, width: float) -> Block:
+STEP_TEXT_MM = SMALL_MM * 1.1
+"""The size of a step's equation and sentence in its block (``step_block``), unless it must shrink to fit."""
+
+
+def step_block(number: int, total: int, equation: str, text: str, width: float, size: float = STEP_TEXT_MM) -> Block:
     lines: list[tuple[tuple[Run, ...], bool]] = [(plain_runs(f"Step {number} of {total}", TITLE_MM * 0.8), True)]
-    size = SMALL_MM * 1.1
     lines += [(plain_runs(line, size), True) for line in wrap(readable(equation), size, width, bold=True)]
     lines += [(plain_runs(line, size), False) for line in wrap(readable(text), size, width)]
     return _block(lines, width)

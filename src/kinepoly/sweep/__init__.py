@@ -2,6 +2,8 @@
 
 ``sweep(scene, steps=3600)`` returns a ``SweepResult``: one column per asked quantity over the
 input's turn (or range), each row with its status; ``csv_text`` and ``plot_png`` present it.
+``kinepoly.sweep.rows`` gives a row's link poses and a ``[guess]`` that pins a solve there to the
+sweep's assembly.
 """
 
 from kinepoly.sweep.run import STATUS, Column, PreparedSweep, SweepResult, prepare_sweep, run_sweep, sweep

@@ -19,14 +19,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinepoly.engine.assembly import Continuity
+from kinepoly.engine.plan import NewtonGroup, PositionPlan
+from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
+from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.mechanism import Mechanism
+from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, SliderInput
-from kinepoly.engine.plan import NewtonGroup, PositionPlan
-from kinepoly.model.pose import LinkPose
-from kinepoly.geom.arrays import Bools, Reals
-from kinepoly.sweep.position import SweepPositions, sweep_positions
 
 __all__ = ["FULL_TURN_CHECK_ROWS", "MAX_STEPS", "InputGrid", "full_turn_grid", "input_grid", "input_name"]
 
@@ -117,8 +118,8 @@ def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) ->
 
 
 def _evaluate(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: int, seed: dict[str, LinkPose],
-              periodic: bool) -> SweepPositions:
-    return sweep_positions(mechanism, plan, _internal(mechanism, values), seed_row, seed, periodic)
+              periodic: bool) -> Positions:
+    return solve_positions(mechanism, plan, _internal(mechanism, values), Continuity(seed_row, seed, periodic))
 
 
 def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: float,
@@ -131,7 +132,7 @@ def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: floa
         last = int(np.argmin(ok)) - 1 if not ok.all() else len(values) - 1
         if last < 0:
             break
-        inside, seed = float(values[last]), found.scalar_poses(last)
+        inside, seed = float(values[last]), found.row(last)
         if last == len(values) - 1:
             return inside, seed
         outside = float(values[last + 1])
@@ -188,7 +189,7 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
             ends.append(inside)
             continue
         outside = inside + sign * abs(float(values[1] - values[0]))
-        edge, _ = _edge(mechanism, plan, inside, outside, found.scalar_poses(row))
+        edge, _ = _edge(mechanism, plan, inside, outside, found.row(row))
         ends.append(edge)
     return ends[0], ends[1], False, notices
 

@@ -20,29 +20,30 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Literal
 
 import numpy as np
 import numpy.typing as npt
 
-from kinepoly.errors import SceneError
+from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
+from kinepoly.engine.assembly import Continuity, position_at_input
+from kinepoly.engine.group import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
+from kinepoly.engine.plan import NewtonGroup, PositionPlan, make_plan
+from kinepoly.engine.polygon import JointSolve, LineCrossing
+from kinepoly.engine.position import Failure, Positions, solve_positions
+from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
+from kinepoly.errors import AssemblyError, SceneError, SingularityError
+from kinepoly.geom.arrays import Bools, Points, Reals, dot
 from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Mechanism, build_mechanism
+from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
-from kinepoly.engine.plan import NewtonGroup, PositionPlan, make_plan
-from kinepoly.model.pose import LinkPose
-from kinepoly.sweep.acceleration import SweepAcceleration, sweep_acceleration
-from kinepoly.sweep.indexed import indexed
 from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
-from kinepoly.geom.arrays import Bools, Points, Reals, dot
-from kinepoly.sweep.newton import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
-from kinepoly.sweep.polygon import JointSolve, LineCrossing
-from kinepoly.sweep.position import Progress, SweepPositions, seed_poses, sweep_positions
 from kinepoly.sweep.transmission import transmission_angles
-from kinepoly.sweep.velocity import SweepVelocity, slide_direction, sweep_velocity
 
 __all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]
 
@@ -88,6 +89,10 @@ class SweepResult:
     skeleton: tuple[tuple[str, tuple[complex, ...]], ...] = ()
     """Each solved link's points at the scene's own input (frame coordinates), for drawings."""
     timing: dict[str, float] = field(default_factory=dict)
+    positions: Positions | None = field(default=None, repr=False, compare=False)
+    """The link poses at every row computed (shown or not), read by ``kinepoly.sweep.rows``."""
+    shown: Bools | None = field(default=None, repr=False, compare=False)
+    """Which of the rows computed are shown (the rows of ``input`` and ``columns``)."""
 
     def column(self, name: str) -> Column:
         for col in (self.input, *self.columns):
@@ -174,7 +179,7 @@ class _Builder:
     """Collects the columns of one sweep; their validity is settled once every row's level is known."""
 
     mechanism: Mechanism
-    positions: SweepPositions
+    positions: Positions
     raw: list[tuple[str, Kind, Reals, Bools | None]] = field(default_factory=list)
 
     def add(self, name: str, kind: Kind, values: Reals, extra: Bools | None = None) -> None:
@@ -203,6 +208,15 @@ class _Builder:
         return tuple(out)
 
 
+def _overflow_flags(flags: _Flags, ok: Bools, out: _Builder) -> None:
+    """Rows where a value is not a number (rates whose squares overflow): singular, never printed."""
+    for name, kind, values, extra in out.raw:
+        rows = ok & ~np.isfinite(values) & (True if extra is None else extra)
+        if rows.any():
+            flags.raise_to(rows, _SINGULAR if _ORDER[kind] > 0 else _CANNOT,
+                           f"singular: {name} overflowed (beyond the range of double precision)")
+
+
 def _rate(value: Reals | None) -> Reals:
     assert value is not None, "every link of the plan has its rate"
     return value
@@ -212,7 +226,7 @@ def _angle_unit(scene: Scene, radians: Reals) -> Reals:
     return np.degrees(radians) if scene.units.angle == "deg" else radians
 
 
-def _position(positions: SweepPositions, label: str) -> Points:
+def _position(positions: Positions, label: str) -> Points:
     return positions.point(label.partition("@")[0])
 
 
@@ -220,7 +234,7 @@ def _label(mechanism: Mechanism, link: str, point: str) -> str:
     return point if mechanism.has_point(link, point) else f"{point}@{link}"
 
 
-def _columns(out: _Builder, asked: Asked, velocity: SweepVelocity | None, acceleration: SweepAcceleration | None,
+def _columns(out: _Builder, asked: Asked, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
              input_column: str) -> None:
     mech, positions = out.mechanism, out.positions
     scene = mech.scene
@@ -250,7 +264,7 @@ def _columns(out: _Builder, asked: Asked, velocity: SweepVelocity | None, accele
             out.pair(f"coriolis_{name}", "coriolis", acceleration.coriolis[name])
 
 
-def _centrode(out: _Builder, link: str, velocity: SweepVelocity, size: float,
+def _centrode(out: _Builder, link: str, velocity: VelocityResult, size: float,
               level: npt.NDArray[np.int8]) -> list[Notice]:
     """The instant center of ``link`` with the frame: the point of the link whose velocity image is the pole."""
     mech, positions = out.mechanism, out.positions
@@ -286,6 +300,20 @@ def _gap_notices(grid: InputGrid, ok: Bools, name: str, unit: str) -> list[Notic
     return [Notice("cannot-assemble", text)]
 
 
+Progress = Callable[[int, int], None]
+"""Called with (rows done, rows in all) by the loops that take long (Newton groups)."""
+
+
+def seed_poses(mechanism: Mechanism, plan: PositionPlan) -> dict[str, LinkPose]:
+    """The assembly ``kinepoly solve`` takes at the scene's own input: the sweep follows it from there."""
+    try:
+        return position_at_input(mechanism, plan).row(0)
+    except (AssemblyError, SingularityError) as error:
+        raise type(error)(f"{error}; kinepoly sweep takes its assembly where kinepoly solve does, at the "
+                          "scene's own input, so that input must be a position where the mechanism closes "
+                          "in one definite way (change [input])") from error
+
+
 @dataclass(frozen=True)
 class PreparedSweep:
     """What a sweep needs once per scene: the mechanism, what is asked, the plan, and the seed assembly."""
@@ -301,7 +329,7 @@ class PreparedSweep:
 def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
     """Build the mechanism, plan backwards from ``[find]`` and take the assembly at the scene's input."""
     t0 = time.perf_counter()
-    mechanism = indexed(build_mechanism(scene))
+    mechanism = build_mechanism(scene)
     if not isinstance(scene.input, (LinkInput, SliderInput)):
         raise SceneError(f"{scene.source}: given: kinepoly sweep varies the input of [input]; a [given] scene "
                          "has none to vary (give an [input] link or slider)")
@@ -325,7 +353,7 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
         grid, positions = None, None
         trial = full_turn_grid(mechanism, steps) if start is None and steps >= FULL_TURN_CHECK_ROWS else None
         if trial is not None and not any(isinstance(g, NewtonGroup) for g in plan.groups):
-            positions = sweep_positions(mechanism, plan, trial.internal, trial.seed_row, seed, True, progress)
+            positions = solve_positions(mechanism, plan, trial.internal, Continuity(trial.seed_row, seed, True, progress))
             grid, positions = (trial, positions) if positions.ok.all() else (None, None)
         if grid is None:
             grid = input_grid(mechanism, plan, seed, steps, start, stop)
@@ -347,10 +375,11 @@ def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float |
 
 
 def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: InputGrid, seed: dict[str, LinkPose],
-             centrode: str | None, progress: Progress | None, positions: SweepPositions | None) -> SweepResult:
+             centrode: str | None, progress: Progress | None, positions: Positions | None) -> SweepResult:
     scene = mechanism.scene
     if positions is None:
-        positions = sweep_positions(mechanism, plan, grid.internal, grid.seed_row, seed, grid.periodic, progress)
+        positions = solve_positions(mechanism, plan, grid.internal,
+                                    Continuity(grid.seed_row, seed, grid.periodic, progress))
     flags = _Flags(np.zeros(len(grid.values), np.int8))
     for failure in positions.failures:
         flags.raise_to(failure.rows, _CANNOT, _failure_text(failure))
@@ -359,10 +388,10 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     ok = positions.ok
     velocity = acceleration = None
     if asked.needs_velocity or centrode is not None:
-        velocity = sweep_velocity(mechanism, positions, plan, asked.velocity)
+        velocity = construct_velocity(positions, plan, asked.velocity)
         _crossing_flags(flags, ok, velocity.polygon.crossings)
     if asked.needs_acceleration and velocity is not None:
-        acceleration = sweep_acceleration(mechanism, positions, plan, velocity, asked.acceleration)
+        acceleration = construct_acceleration(velocity, plan, asked.acceleration)
         _crossing_flags(flags, ok, acceleration.polygon.crossings)
     name = input_name(mechanism)
     out = _Builder(mechanism, positions)
@@ -375,6 +404,7 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
         out.add(f"mu_{dyad_point}", "transmission", _angle_unit(scene, mu))
     unit = scene.units.angle if isinstance(scene.input, LinkInput) else scene.units.length
     notices += _gap_notices(grid, ok, name, unit)
+    _overflow_flags(flags, ok, out)
     shown = grid.shown
     every = bool(shown.all())
     input_column = Column(name, "input", grid.values if every else grid.values[shown],
@@ -383,13 +413,11 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
                      for link, pose in seed.items())
     return SweepResult(scene, input_column, out.columns(flags.level, shown),
                        flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
-                       tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), skeleton)
+                       tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), skeleton,
+                       positions=positions, shown=shown)
 
 
-def _failure_text(failure: object) -> object:
-    from kinepoly.sweep.position import Failure
-
-    assert isinstance(failure, Failure)
+def _failure_text(failure: Failure) -> object:
     joint = f"joint {failure.joint} of " if failure.joint else ""
 
     def text(row: int) -> str:
@@ -397,8 +425,8 @@ def _failure_text(failure: object) -> object:
     return text
 
 
-def _size(positions: SweepPositions, row: int) -> float:
-    poses = positions.scalar_poses(row)
+def _size(positions: Positions, row: int) -> float:
+    poses = positions.row(row)
     mech = positions.mechanism
     points = [complex(*pose.world(p.local)) for link, pose in poses.items() for p in mech.scene.link(link).points]
     return max((abs(a - b) for a in points for b in points), default=1.0) or 1.0

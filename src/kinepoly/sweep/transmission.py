@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from kinepoly.engine.plan import Dyad, PositionPlan
+from kinepoly.engine.position import Positions
+from kinepoly.geom.arrays import Points, Reals, cross, length, turn
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import SliderSpec
-from kinepoly.engine.plan import Dyad, PositionPlan
-from kinepoly.geom.arrays import Points, Reals, cross, length, turn
-from kinepoly.sweep.position import SweepPositions
 
 __all__ = ["dyad_point", "transmission_angles"]
 
@@ -34,11 +34,11 @@ def dyad_point(mechanism: Mechanism, dyad: Dyad) -> str:
     return mechanism.scene.link(dyad.second).points[0].name
 
 
-def _slide(positions: SweepPositions, slider: SliderSpec) -> Points:
+def _slide(positions: Positions, slider: SliderSpec) -> Points:
     return positions.poses[slider.guide].rotation * turn(slider.angle_rad)
 
 
-def _directions(positions: SweepPositions, dyad: Dyad) -> tuple[Points, Points]:
+def _directions(positions: Positions, dyad: Dyad) -> tuple[Points, Points]:
     point = positions.point
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
@@ -59,7 +59,7 @@ def _directions(positions: SweepPositions, dyad: Dyad) -> tuple[Points, Points]:
     return _slide(positions, first_slider), _slide(positions, dyad.second_joint)
 
 
-def transmission_angles(positions: SweepPositions, plan: PositionPlan,
+def transmission_angles(positions: Positions, plan: PositionPlan,
                         line_sines: dict[str, Reals] | None = None) -> dict[str, Reals]:
     """Per dyad (named by ``dyad_point``), the acute angle in radians between its velocity lines.
 

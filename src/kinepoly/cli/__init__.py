@@ -1,0 +1,88 @@
+"""The command line: the only place that prints or writes files. ``main(argv) -> int`` so tests call it in-process.
+
+One module per command, each with ``add_arguments(parser)`` and ``run(args) -> int`` (the exit
+status): ``solve``, ``draw``, ``check``, ``variants``, ``bench``, ``sweep``, ``handout``. The
+modules import their heavy dependencies inside ``run``, so building the parser stays cheap;
+``files`` writes a file whole or not at all.
+
+Exit status: 0 solved; 1 an answer was wrong (``check``); 2 the scene or the command is wrong;
+3 the mechanism cannot be assembled or is singular at that input; 70 an internal error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Callable, Sequence
+
+from kinepoly.cli import bench, check, draw, handout, solve, sweep, variants
+from kinepoly.errors import EXIT_SCENE, KinepolyError
+
+__all__ = ["EXIT_INTERNAL", "main", "main_exit"]
+
+EXIT_INTERNAL = 70
+
+_COMMANDS: tuple[tuple[str, str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]],
+                 ...] = (
+    ("solve", "solve a scene: a table, the JSON of the contract, or the steps", solve.add_arguments, solve.run),
+    ("draw", "draw the mechanism and its polygons: SVG, DXF, PNG, PDF, and the construction step by step",
+     draw.add_arguments, draw.run),
+    ("check", "check a student's answers and diagnose the mistakes", check.add_arguments, check.run),
+    ("variants", "randomised versions of a problem with answer keys", variants.add_arguments, variants.run),
+    ("bench", ("error against run time of the construction and other methods (closed forms, finite differences, "
+               "GEOS), against a 50-digit reference; --sweep over a full turn"), bench.add_arguments, bench.run),
+    ("sweep", "the input over a turn or a range: a CSV of the asked quantities, their plots, centrodes",
+     sweep.add_arguments, sweep.run),
+    ("handout", ("a teaching handout: the problem, the construction step by step, the answers; PDF or one web "
+                 "page; en, tr, ro or your own"), handout.add_arguments, handout.run),
+)
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.print_usage(sys.stderr)
+        raise SystemExit(_usage_exit(f"{self.prog}: {message}"))
+
+
+def _usage_exit(message: str) -> int:
+    print(f"kinepoly: error: {message}", file=sys.stderr)
+    return EXIT_SCENE
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="kinepoly", description="Velocity and acceleration polygons of planar mechanisms, "
+                     "constructed as the graphical method draws them and checked analytically.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    for name, help_text, add_arguments, run in _COMMANDS:
+        command = sub.add_parser(name, help=help_text)
+        add_arguments(command)
+        command.set_defaults(run=run)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit status."""
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as stop:
+        return int(stop.code or 0)
+    try:
+        status: int = args.run(args)
+        return status
+    except KinepolyError as error:
+        print(f"kinepoly: error: {error}", file=sys.stderr)
+        return error.exit_code
+    except BrokenPipeError:  # the reader (``| head``) left early: what it read is all it wanted
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
+    except Exception as error:  # noqa: BLE001 - the promise is: never a traceback
+        print(f"kinepoly: internal error: {type(error).__name__}: {error}; please report it with the scene",
+              file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+def main_exit() -> None:
+    """Console-script entry point."""
+    sys.exit(main())

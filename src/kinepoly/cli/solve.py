@@ -1,0 +1,41 @@
+"""``kinepoly solve SCENE [--json | --steps]``: a readable table, the JSON of the contract, or the steps.
+
+The text comes from ``kinepoly.present.report``; a failed cross-check is also a warning on
+standard error (the exit status stays 0: the construction's numbers are printed).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+
+__all__ = ["add_arguments", "run"]
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("scene", help="the scene file (TOML)")
+    parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    parser.add_argument("--steps", action="store_true", help="print the construction step by step")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Load, solve, print; the exit status."""
+    from kinepoly.present.report import steps_text, table_text, to_json
+    from kinepoly.scene.loader import load_scene
+    from kinepoly.solution import solve
+
+    t0 = time.perf_counter()
+    scene = load_scene(args.scene)
+    solution = solve(scene, load_s=time.perf_counter() - t0)
+    if args.json:
+        print(json.dumps(to_json(solution), indent=1, allow_nan=False))
+    elif args.steps:
+        print(steps_text(solution))
+    else:
+        print(table_text(solution))
+    for notice in solution.notices:
+        if notice.code == "check-failed":
+            print(f"kinepoly: WARNING: {notice.message}", file=sys.stderr)
+    return 0

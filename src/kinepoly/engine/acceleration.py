@@ -1,0 +1,335 @@
+"""The acceleration polygon, constructed dyad by dyad after the velocity polygon, over rows.
+
+Known terms are laid end to end (normal terms omega^2 r toward the center, Coriolis terms
+2 omega x v_rel), then two direction lines are drawn (tangential: perpendicular to the link;
+sliding: parallel to the slide) and their crossing is the unknown tip. Alpha is read off the
+tangential term. A Coriolis term exists only where a block slides on a guide that can turn.
+
+``Rules`` switch a construction mistake in (the homework checker's diagnoses): the normal term
+laid away from the center, the Coriolis term left out or reversed. The right rules are the default.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinepoly.engine.closures import other_side
+from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
+from kinepoly.engine.position import describe_input
+from kinepoly.engine.steps import Direction, DrawnVector, Step
+from kinepoly.engine.velocity import VelocityResult, lay_driven_slider, link_length, read_rate, slide_direction
+from kinepoly.errors import SceneError
+from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines
+from kinepoly.model.mechanism import Revolute
+from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
+
+__all__ = ["RIGHT", "AccelerationResult", "Rules", "construct_acceleration"]
+
+
+@dataclass(frozen=True)
+class Rules:
+    """How the known terms are laid: ``normal`` -1 toward the center (right), +1 away;
+    ``coriolis`` 1 as it is (right), 0 left out, -1 reversed."""
+
+    normal: float = -1.0
+    coriolis: float = 1.0
+
+
+RIGHT = Rules()
+
+
+@dataclass(frozen=True)
+class AccelerationResult:
+    """The acceleration polygon at every row: tips, alphas, sliding accelerations, Coriolis terms, steps."""
+
+    polygon: Polygon
+    sliding: dict[str, Points]
+    coriolis: dict[str, Points]
+
+    @property
+    def tips(self) -> dict[str, Points]:
+        return self.polygon.tips
+
+    @property
+    def alpha(self) -> dict[str, Reals]:
+        return self.polygon.rate
+
+
+class _Context:
+    """The polygon being built, the velocity polygon it stands on, and the slider terms found."""
+
+    def __init__(self, polygon: Polygon, velocity: VelocityResult, rules: Rules) -> None:
+        self.b = polygon
+        self.v = velocity
+        self.rules = rules
+        self.sliding: dict[str, Points] = {}
+        self.coriolis: dict[str, Points] = {}
+
+    def v_tip(self, link: str, point: str) -> Points:
+        if link == self.b.mechanism.ground:
+            return self.b.zero
+        return self.v.tips[self.b.label(link, point)]
+
+    def normal_line(self, known_link: str, known_point: str, point: str, moving: str,
+                    rigid: bool = True) -> tuple[Line, DrawnVector | None, str]:
+        """a_known + a^n (toward known_point), then the line perpendicular to known_point -> point
+        (``rigid``: both are points of ``moving``, so the direction's length is a link length)."""
+        b = self.b
+        start = b.tip(known_link, known_point)
+        r = b.world(point) - b.world(known_point)
+        w = b.omega_of(moving)
+        end = np.asarray(start + (self.rules.normal * w * w) * r)
+        size = link_length(b.mechanism, moving, known_point, point) if rigid else None
+        vector = DrawnVector(f"a^n_{point}/{known_point}", b.vec(start), b.vec(end), "normal") if b.record else None
+        return (end, np.asarray(1j * r), size), vector, f"a^t_{point}/{known_point} perpendicular to {known_point}{point}"
+
+    def slide_line(self, slider: SliderSpec, other: str, moving: str, point: str) -> tuple[Line, list[DrawnVector]]:
+        """a_point@other (+ the Coriolis term where the guide turns), then the line along the slide."""
+        start = self.b.tip(other, point)
+        end, coriolis = self.lay_coriolis(slider, start, moving, other, point)
+        return (end, slide_direction(self.b.positions, slider), 1.0), coriolis
+
+    def lay_coriolis(self, slider: SliderSpec, start: Points, moving: str, frame: str,
+                     point: str) -> tuple[Points, list[DrawnVector]]:
+        """Lay 2 omega_frame x v_{point of moving}/{point of frame} from ``start``, with its step.
+
+        Nothing is laid where the slider's guide cannot turn: then there is no Coriolis term at all.
+        """
+        b = self.b
+        if not b.mechanism.has_turning_guide(slider) or self.rules.coriolis == 0.0:
+            return start, []
+        w = b.omega_of(frame)
+        v_rel = self.v_tip(moving, point) - self.v_tip(frame, point)
+        term = np.asarray((self.rules.coriolis * 2.0 * w) * (1j * v_rel))
+        end = np.asarray(start + term)
+        if not b.record:
+            return end, []
+        on_moving, on_frame = b.label(moving, point), b.label(frame, point)
+        label = f"a^c_{on_moving}/{on_frame}"
+        vector = DrawnVector(label, b.vec(start), b.vec(end), "coriolis")
+        omega = b.num(w)
+        b.step(Step(polygon="acceleration", kind="coriolis", equation=f"{label} = 2 omega x v_{on_moving}/{on_frame}",
+                    result=label, known=((label, "magnitude and direction"),), vectors=(vector,),
+                    value=b.vec(term), topic="coriolis",
+                    params=(("term", label), ("guide", slider.guide), ("ground", b.ground_name()),
+                            ("omega", abs(omega)), ("relative", f"v_{on_moving}/{on_frame}"),
+                            ("speed", abs(complex(v_rel[0]))), ("magnitude", abs(complex(term[0]))),
+                            ("sense", sense(omega)), ("start", on_frame))))
+        return end, [vector]
+
+    def slide_values(self, slider: SliderSpec, link: str, point: str) -> None:
+        """Sliding acceleration and Coriolis term of the block relative to the guide."""
+        b = self.b
+        other = slider.guide if link == slider.block else slider.block
+        block_side, guide_side = (link, other) if link == slider.block else (other, link)
+        a_block, a_guide = b.tip(block_side, point), b.tip(guide_side, point)
+        v_rel = self.v_tip(block_side, point) - self.v_tip(guide_side, point)
+        coriolis = np.asarray((2.0 * b.omega_of(slider.guide)) * (1j * v_rel))
+        self.coriolis[slider.name] = coriolis
+        self.sliding[slider.name] = np.asarray(a_block - a_guide - coriolis)
+
+
+def _record(ctx: _Context, label: str, equation: str, first: Line, second: Line, labels: tuple[str, str],
+            crossing: Crossing, vectors: list[DrawnVector], directions: tuple[Direction, Direction]) -> None:
+    b = ctx.b
+    known = tuple((v.label, "magnitude and direction") for v in vectors)
+    known += tuple((d.term, "direction") for d in directions)  # the two unknown terms
+    b.step(Step(polygon="acceleration", kind="intersection", equation=equation, result=label.lower(), known=known,
+                vectors=tuple(vectors), lines=(b.step_line(first, labels[0]), b.step_line(second, labels[1])),
+                value=b.vec(crossing.point), topic="intersection", params=(("point", label),),
+                directions=directions))
+
+
+def _along_normal(ctx: _Context, term: str, known_link: str, known_point: str, point: str,
+                  normal: DrawnVector | None) -> Direction:
+    """What ``normal_line`` draws, as data: the tangential term, after the normal one."""
+    return Direction(term, "perpendicular", f"{known_point}{point}", ctx.b.label(known_link, known_point).lower(),
+                     after=normal.label if normal else "")
+
+
+def _along_slide(ctx: _Context, term: str, slider: SliderSpec, other: str, point: str,
+                 laid: list[DrawnVector]) -> Direction:
+    """What ``slide_line`` draws, as data: the sliding term, after the Coriolis term when there is one."""
+    return Direction(term, "parallel", slider.name, ctx.b.label(other, point).lower(),
+                     after=laid[-1].label if laid else "")
+
+
+def _normals_step(ctx: _Context, vectors: list[DrawnVector]) -> None:
+    normals = [v for v in vectors if v.term == "normal"]
+    if normals:
+        ctx.b.step(Step(polygon="acceleration", kind="known", equation=" and ".join(v.label for v in normals),
+                        result=", ".join(v.label for v in normals),
+                        known=tuple((v.label, "magnitude and direction") for v in normals), vectors=tuple(normals),
+                        topic="normals"))
+
+
+def _slide_label(slider: SliderSpec) -> str:
+    return f"sliding term along slider {slider.name}"
+
+
+def _dyad(ctx: _Context, dyad: Dyad) -> None:
+    b, i, j = ctx.b, dyad.first, dyad.second
+    b.where = f"of group {dyad.name} at {describe_input(b.mechanism)}"
+    if dyad.kind in ("RRR", "RRP"):
+        assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
+        p1, p2 = dyad.first_joint.point, dyad.inner.point
+        k1 = other_side(dyad.first_joint, i)
+        line1, n1, label1 = ctx.normal_line(k1, p1, p2, i)
+        vectors = [n1] if n1 else []
+        if isinstance(dyad.second_joint, Revolute):
+            p3 = dyad.second_joint.point
+            k2 = other_side(dyad.second_joint, j)
+            line2, n2, label2 = ctx.normal_line(k2, p3, p2, j)
+            vectors += [n2] if n2 else []
+        else:
+            k2 = other_side(dyad.second_joint, j)
+            line2, laid = ctx.slide_line(dyad.second_joint, k2, j, p2)
+            label2 = _slide_label(dyad.second_joint)
+            vectors += laid
+        if b.record:
+            _normals_step(ctx, vectors)
+        crossing = b.cross_lines(line1, line2, p2, dyad.name, (label1, label2))
+        b.add_tip(i, p2, crossing.point)
+        if b.record:
+            direction1 = _along_normal(ctx, f"a^t_{p2}/{p1}", k1, p1, p2, n1)
+            if isinstance(dyad.second_joint, Revolute):
+                p3 = dyad.second_joint.point
+                direction2 = _along_normal(ctx, f"a^t_{p2}/{p3}", k2, p3, p2, n2)
+                equation = (f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{p3} + a^n_{p2}/{p3} + "
+                            f"a^t_{p2}/{p3}")
+            else:
+                at2 = b.label(k2, p2)
+                direction2 = _along_slide(ctx, f"a_{p2}/{at2}", dyad.second_joint, k2, p2, laid)
+                cor = f" + a^c_{p2}/{at2}" if laid else ""
+                equation = f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{at2}{cor} + a_{p2}/{at2}"
+            _record(ctx, p2, equation, line1, line2, (label1, label2), crossing, vectors, (direction1, direction2))
+        read_rate(b, i, p1, p2, crossing.along_first)
+        if isinstance(dyad.second_joint, Revolute):
+            read_rate(b, j, dyad.second_joint.point, p2, crossing.along_second())
+        else:
+            ctx.slide_values(dyad.second_joint, j, p2)
+    elif dyad.kind == "RPR":
+        r = slide_roles(dyad)
+        q, p = r.guide_pin, r.block_pin
+        line1, n1, label1 = ctx.normal_line(r.guide_known, q, p, r.guide, rigid=False)
+        a_p = b.tip(r.block_known, p)
+        at = b.label(r.guide, p)
+        end, laid = ctx.lay_coriolis(r.slider, a_p, r.guide, r.block, p)
+        vectors = ([n1] if n1 else []) + laid
+        line2 = (end, slide_direction(b.positions, r.slider), 1.0)
+        labels = (label1, _slide_label(r.slider))
+        if b.record:
+            _normals_step(ctx, vectors)
+        crossing = b.cross_lines(line1, line2, at, dyad.name, labels)
+        b.add_tip(r.guide, p, crossing.point)
+        if b.record:
+            cor = f" + a^c_{at}/{p}" if laid else ""
+            _record(ctx, at, f"a_{at} = a_{q} + a^n_{at}/{q} + a^t_{at}/{q} = a_{p}{cor} + a_{at}/{p}", line1, line2,
+                    labels, crossing, vectors,
+                    (_along_normal(ctx, f"a^t_{at}/{q}", r.guide_known, q, p, n1),
+                     _along_slide(ctx, f"a_{at}/{p}", r.slider, r.block_known, p, laid)))
+        read_rate(b, r.guide, q, p, crossing.along_first)
+        ctx.slide_values(r.slider, r.block, p)
+    else:
+        t = two_slide_roles(dyad, b.mechanism)
+        if t.pin is not None and t.pin_known is not None:
+            b.tip(t.pin_known, t.pin)
+        point = t.point
+        line1, v1 = ctx.slide_line(t.first_slider, t.side1, t.moving, point)
+        line2, v2 = ctx.slide_line(t.second_slider, t.side2, j, point)
+        labels = (_slide_label(t.first_slider), _slide_label(t.second_slider))
+        crossing = b.cross_lines(line1, line2, point, dyad.name, labels)
+        b.add_tip(t.moving, point, crossing.point)
+        if b.record:
+            a1, a2 = b.label(t.side1, point), b.label(t.side2, point)
+            side_terms = ["".join(f" + {v.label}" for v in laid) for laid in (v1, v2)]
+            _record(ctx, point, f"a_{point} = a_{a1}{side_terms[0]} + a_{point}/{a1} = a_{a2}{side_terms[1]} + "
+                    f"a_{point}/{a2}", line1, line2, labels, crossing, v1 + v2,
+                    (_along_slide(ctx, f"a_{point}/{a1}", t.first_slider, t.side1, point, v1),
+                     _along_slide(ctx, f"a_{point}/{a2}", t.second_slider, t.side2, point, v2)))
+        ctx.slide_values(t.first_slider, t.first_relative, point)
+        ctx.slide_values(t.second_slider, j, point)
+
+
+def _drive(ctx: _Context) -> None:
+    b = ctx.b
+    mech = b.mechanism
+    inp = mech.scene.input
+    if isinstance(inp, LinkInput):
+        b.set_rate(inp.link, np.full(b.n, inp.alpha))
+        if b.record:
+            b.step(Step(polygon="acceleration", kind="known", equation=f"alpha{mech.ground}{inp.link} given",
+                        result=f"alpha{mech.ground}{inp.link}", value=(inp.alpha,), topic="input-rate",
+                        params=(("link", inp.link), ("ground", mech.ground or ""), ("rate", abs(inp.alpha)),
+                                ("sense", sense(inp.alpha)))))
+    elif isinstance(inp, SliderInput):
+        slider = mech.slider(inp.slider)
+        ctx.sliding[slider.name] = lay_driven_slider(b, slider, inp.s_ddot)
+        ctx.coriolis[slider.name] = b.zero
+    elif isinstance(inp, GivenInput):
+        _given(ctx, inp)
+
+
+def _given(ctx: _Context, given: GivenInput) -> None:
+    b = ctx.b
+    link = b.mechanism.link_names[0]
+    for g in given.points:
+        assert g.acceleration is not None
+        b.add_tip(link, g.name, np.full(b.n, complex(*g.acceleration)))
+        if b.record:
+            b.step(Step(polygon="acceleration", kind="known", equation=f"a_{g.name} given", result=g.name.lower(),
+                        known=((f"a_{g.name}", "magnitude and direction"),),
+                        vectors=(DrawnVector(f"a_{g.name}", (0.0, 0.0), g.acceleration, "absolute"),),
+                        value=g.acceleration, topic="given-point",
+                        params=(("point", g.name), ("magnitude", math.hypot(*g.acceleration)))))
+    first, second = given.points[0], given.points[1]
+    assert first.acceleration is not None and second.acceleration is not None
+    r = complex(b.world(second.name)[0] - b.world(first.name)[0])
+    w = b.num(b.omega_of(link))
+    normal = -w * w * r
+    a_first, a_second = complex(*first.acceleration), complex(*second.acceleration)
+    rel = a_second - a_first
+    along = r / abs(r)
+    misfit = ((rel - normal) * along.conjugate()).real
+    if abs(misfit) > 1e-9 * max(abs(a_first), abs(a_second), abs(normal), 1e-300):
+        raise SceneError(f"{b.mechanism.scene.source}: given.{second.name}.acceleration: along "
+                         f"{first.name}{second.name} the given accelerations differ by "
+                         f"{(rel * along.conjugate()).real:.6g} {b.unit}, but a rigid body turning at omega = "
+                         f"{w:.6g} rad/s needs {(normal * along.conjugate()).real:.6g} (off by {misfit:.6g})")
+    middle = a_first + normal
+    if b.record:
+        b.step(Step(polygon="acceleration", kind="known", equation=f"a^n_{second.name}/{first.name}",
+                    result=f"a^n_{second.name}/{first.name}",
+                    vectors=(DrawnVector(f"a^n_{second.name}/{first.name}", first.acceleration,
+                                         (middle.real, middle.imag), "normal"),
+                             DrawnVector(f"a^t_{second.name}/{first.name}", (middle.real, middle.imag),
+                                         second.acceleration, "tangential")),
+                    topic="given-normal", params=(("point", second.name), ("reference", first.name),
+                                                  ("magnitude", abs(normal)))))
+    read_rate(b, link, first.name, second.name, np.full(b.n, ((a_second - middle) / (1j * r)).real))
+
+
+def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted: tuple[tuple[str, str], ...] = (),
+                           *, unit: str = "mm", record: bool = False, strict: bool = False, rules: Rules = RIGHT,
+                           crossing: CrossLines = cross_lines) -> AccelerationResult:
+    """Construct the acceleration polygon at every row for every group of ``plan``, on top of its velocity polygon."""
+    from kinepoly.engine.group import acceleration_by_linear_solve
+
+    positions = velocity.polygon.positions
+    polygon = Polygon(positions, "acceleration", omega=velocity.omega, unit=unit, record=record, strict=strict,
+                      crossing=crossing)
+    polygon.normal_sign = rules.normal
+    ctx = _Context(polygon, velocity, rules)
+    _drive(ctx)
+    for group in plan.groups:
+        if isinstance(group, Dyad):
+            _dyad(ctx, group)
+        else:
+            acceleration_by_linear_solve(ctx, group)
+    for link, point in wanted:
+        polygon.tip(link, point)
+    return AccelerationResult(polygon, ctx.sliding, ctx.coriolis)

@@ -1,0 +1,238 @@
+"""Assembly policies: which of a group's assemblies each row takes, and what a row that fails means.
+
+Two policies answer the executor (``engine.position``):
+
+- ``NearestGuess``, for a solve (a batch of one row): the assembly whose points lie nearest the
+  ``[guess]``. Where the guessed points of a dyad's own links do not tell its assemblies apart,
+  each assembly is carried through the later groups and the one that puts all guessed points
+  nearest is kept; where nothing tells them apart, the documented default is taken with a
+  ``default-assembly`` warning naming the other assembly and the guess that picks it. A group
+  that does not close raises ``AssemblyError`` (``SingularityError`` at a change point), naming
+  the group, the joint and the inequality. Newton groups start from the ``[guess]``.
+- ``Continuity``, for a sweep: the seed row takes the solve's assembly and every other row
+  follows it continuously (``engine.branches``); rows that do not close are marked, not raised.
+  Newton groups start each row from the rows before it, extrapolated.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from kinepoly.engine.branches import follow_branch
+from kinepoly.engine.closures import Choice, Closure
+from kinepoly.engine.newton import group_size, newton_row, start_poses
+from kinepoly.engine.plan import NewtonGroup, PositionPlan
+from kinepoly.engine.position import Failure, Placement, Positions, describe_input, input_values, solve_positions
+from kinepoly.errors import AssemblyError, SingularityError
+from kinepoly.geom.arrays import Bools
+from kinepoly.model.array_pose import ArrayPose
+from kinepoly.model.mechanism import Mechanism
+from kinepoly.model.pose import LinkPose
+from kinepoly.notice import Notice
+
+__all__ = ["Continuity", "NearestGuess", "position_at_input"]
+
+Vec = tuple[float, float]
+
+
+def _row_poses(poses: Mapping[str, ArrayPose], row: int) -> dict[str, LinkPose]:
+    return {link: LinkPose(*pose.row(row)) for link, pose in poses.items()}
+
+
+def _known_points(mechanism: Mechanism, poses: Mapping[str, LinkPose]) -> dict[str, complex]:
+    return {p.name: complex(*pose.world(p.local)) for link, pose in poses.items()
+            for p in mechanism.scene.link(link).points}
+
+
+@dataclass(frozen=True)
+class NearestGuess:
+    """The solve's policy (row 0 of a batch of one): nearest the ``[guess]``, with look-ahead."""
+
+    guess: Mapping[str, Vec]
+    origin: Vec = (0.0, 0.0)
+    """Where the mechanism's frame origin lies in the user's frame, for messages."""
+
+    def _score(self, mechanism: Mechanism, poses: Mapping[str, ArrayPose]) -> float:
+        total = 0.0
+        for link, pose in poses.items():
+            for point in mechanism.scene.link(link).points:
+                if point.name in self.guess:
+                    at = complex(pose.world(point.local)[0])
+                    g = self.guess[point.name]
+                    d = abs(at - complex(g[0], g[1]))
+                    total += d * d
+        return total
+
+    def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
+        name, where = closure.dyad.name, describe_input(mechanism)
+        if closure.singular[0]:
+            raise SingularityError(f"singular position of group {name} at {where}: {closure.why(0)}")
+        raise AssemblyError(f"cannot assemble joint {closure.joint} of group {name} at {where}: {closure.why(0)}")
+
+    def choose(self, mechanism: Mechanism, closure: Closure, placed: Placement,
+               later: Callable[[int], Placement]) -> Choice | Placement:
+        own = [self._score(mechanism, closure.place(k)) for k in range(2)]
+        tells = [complex(t[0]) for t in closure.telling]
+        size = max(abs(t - tells[0]) for t in tells) + max(max(abs(t.real), abs(t.imag)) for t in tells)
+        if max(own) - min(own) > 1e-12 * size * size:
+            return own.index(min(own))
+        outcomes: list[tuple[float, Placement | None]] = []
+        failure: AssemblyError | None = None
+        for k in range(2):
+            try:
+                full = later(k)
+                outcomes.append((self._score(mechanism, full.poses), full))
+            except AssemblyError as error:
+                failure = error
+                outcomes.append((math.inf, None))
+        scores = [o[0] for o in outcomes]
+        finite = [x for x in scores if math.isfinite(x)]
+        if len(finite) == 2 and max(scores) - min(scores) > 1e-12 * size * size:
+            best = outcomes[scores.index(min(scores))][1]
+            assert best is not None
+            return best
+        if not finite and failure is not None:
+            raise failure
+        if len(finite) == 1 and failure is not None:  # only one assembly lets the rest of the mechanism close
+            best = outcomes[scores.index(finite[0])][1]
+            assert best is not None
+            return best
+        pick = 0 if outcomes[0][1] is not None else 1
+        chosen = outcomes[pick][1]
+        assert chosen is not None
+        notice = self._default_notice(mechanism, closure, pick)
+        before = len(placed.notices)
+        return Placement(chosen.poses, chosen.ok, chosen.failures, chosen.near,
+                         (*chosen.notices[:before], notice, *chosen.notices[before:]))
+
+    def _default_notice(self, mechanism: Mechanism, closure: Closure, pick: int) -> Notice:
+        point, chosen_at, other_at = _telling_point(mechanism, closure, pick)
+        guess_x, guess_y = _coordinate(other_at.real, self.origin[0]), _coordinate(other_at.imag, self.origin[1])
+        chosen_at, other_at = chosen_at + complex(*self.origin), other_at + complex(*self.origin)
+        return Notice(
+            "default-assembly",
+            f"group {closure.dyad.name}: no [guess] tells its assemblies apart, so the default was taken: "
+            f"{closure.labels[pick]}, which puts {point} at ({chosen_at.real:.6g}, {chosen_at.imag:.6g}); "
+            f"the other assembly puts {point} at ({other_at.real:.6g}, {other_at.imag:.6g}) "
+            f"(give [guess] {point} = [{guess_x}, {guess_y}] to take it)")
+
+    def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
+        known = _known_points(mechanism, _row_poses(placed.poses, 0))
+        points = {**{name: complex(x, y) for name, (x, y) in self.guess.items()}, **known}
+        start, missing = start_poses(mechanism, group, points)
+        if start is None:
+            raise AssemblyError(
+                f"group {group.name} is not a dyad and is solved by Newton's method from [guess]; "
+                f"link {missing} has no guessed or known point: add [guess] positions for its points")
+        size = group_size(mechanism, group, points)
+        found, residual = newton_row(mechanism, group, _row_poses({k: placed.poses[k] for k in group.known_links()},
+                                                                    0), start, size)
+        if found is None:
+            raise AssemblyError(
+                f"group {group.name} does not close at {describe_input(mechanism)}: Newton's method stopped with a "
+                f"joint residual of {residual:.3g}; the group cannot be assembled there, or [guess] is far from it")
+        poses = {**placed.poses, **{link: ArrayPose.of_rows([pose]) for link, pose in found.items()}}
+        return Placement(poses, placed.ok, placed.failures, placed.near, placed.notices)
+
+
+def _telling_point(mechanism: Mechanism, closure: Closure, pick: int) -> tuple[str, complex, complex]:
+    """The point whose place differs most between the two assemblies: (name, chosen, other)."""
+    chosen, other = closure.place(pick), closure.place(1 - pick)
+    best = (closure.joint, complex(closure.telling[pick][0]), complex(closure.telling[1 - pick][0]))
+    gap = abs(best[1] - best[2])
+    for link, pose in chosen.items():
+        for p in mechanism.scene.link(link).points:
+            a, b = complex(pose.world(p.local)[0]), complex(other[link].world(p.local)[0])
+            if abs(a - b) > gap * (1 + 1e-9):
+                best, gap = (p.name, a, b), abs(a - b)
+    return best
+
+
+def _coordinate(local: float, origin: float) -> str:
+    """A coordinate to 4 significant digits of the mechanism's own size, wherever the mechanism is."""
+    if origin == 0.0:
+        return f"{local:.4g}"
+    decimals = max(0, 3 - math.floor(math.log10(abs(local)))) if local != 0.0 else 2
+    return f"{local + origin:.{decimals}f}"
+
+
+@dataclass(frozen=True)
+class Continuity:
+    """The sweep's policy: row ``seed_row`` takes the assembly of ``seed``; the others follow it."""
+
+    seed_row: int
+    seed: Mapping[str, LinkPose]
+    periodic: bool
+    progress: Callable[[int, int], None] | None = None
+
+    def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
+        """Rows that do not close are marked by the executor; nothing to raise."""
+
+    def choose(self, mechanism: Mechanism, closure: Closure, placed: Placement,
+               later: Callable[[int], Placement]) -> Choice | Placement:
+        target = closure.telling_at(dict(self.seed))
+        gaps = [abs(complex(t[self.seed_row]) - target) for t in closure.telling]
+        label = gaps.index(min(gaps))
+        labels = follow_branch(closure.telling[0], closure.telling[1], placed.ok, self.seed_row, label,
+                               self.periodic, closure.gap)
+        return labels if isinstance(labels, int) else np.asarray(labels == 0)
+
+    def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
+        """Each row from the group's points one and two rows back, extrapolated, from the seed row
+        forward and then backward; a row that does not close is marked and skipped."""
+        ok = placed.ok
+        n = len(ok)
+        origin = {link: np.zeros(n, np.complex128) for link in group.links}
+        rotation = {link: np.ones(n, np.complex128) for link in group.links}
+        closed = np.zeros(n, np.bool_)
+        known_links = group.known_links()
+        seed = {link: self.seed[link] for link in group.links}
+        points = _known_points(mechanism, seed)
+        size = group_size(mechanism, group, points)
+        done = 0
+        for order in (range(self.seed_row, n), range(self.seed_row - 1, -1, -1)):
+            history: list[dict[str, complex]] = [points]
+            for row in order:
+                done += 1
+                if self.progress is not None and done % 64 == 0:
+                    self.progress(done, n)
+                if not ok[row]:
+                    continue
+                if row == self.seed_row:
+                    found: dict[str, LinkPose] | None = seed
+                else:
+                    last = history[-1]
+                    guess = last if len(history) == 1 else {k: 2.0 * v - history[-2][k] for k, v in last.items()}
+                    known = _row_poses({k: placed.poses[k] for k in known_links}, row)
+                    start, _ = start_poses(mechanism, group, {**guess, **_known_points(mechanism, known)})
+                    found = None if start is None else newton_row(mechanism, group, known, start, size)[0]
+                if found is None:
+                    continue
+                for link, pose in found.items():
+                    origin[link][row] = complex(pose.x, pose.y)
+                    rotation[link][row] = complex(math.cos(pose.theta), math.sin(pose.theta))
+                closed[row] = True
+                history = [*history[-1:], _known_points(mechanism, found)]
+        if self.progress is not None:
+            self.progress(n, n)
+        poses = {**placed.poses, **{link: ArrayPose(origin[link], rotation[link]) for link in group.links}}
+        failures = placed.failures
+        if not closed[ok].all():
+            failures = (*failures, Failure(group.name, "", ok & ~closed, lambda _: (
+                f"Newton's method does not close group {group.name} from the rows before it "
+                "(the group cannot be assembled there)")))
+        return Placement(poses, ok & closed, failures, placed.near, placed.notices)
+
+
+def position_at_input(mechanism: Mechanism, plan: PositionPlan, origin: Vec = (0.0, 0.0)) -> Positions:
+    """The positions at the scene's own input (a batch of one row), the assembly nearest the ``[guess]``.
+
+    ``origin``: where the mechanism's frame origin lies in the user's frame, for messages.
+    """
+    with np.errstate(all="ignore"):  # a row that does not close raises by name
+        return solve_positions(mechanism, plan, input_values(mechanism), NearestGuess(dict(mechanism.scene.guess),
+                                                                                      origin))

@@ -1,0 +1,178 @@
+"""Velocities and accelerations of a group that is not a dyad, over rows: one linear solve per row.
+
+Such a group (a triad, say) has no two-line construction of a dyad: its tips come from one
+linear solve of the joint equations, and the step says so. Unknowns per link k: the velocity
+(acceleration) of its frame origin and omega_k (alpha_k). A pin at P of links i and j:
+v_i(P) = v_j(P). A slider: omega_b = omega_g, and the block's point moves relative to the
+guide only along the slide (for accelerations after taking off the Coriolis term).
+All rows are solved by one stacked ``numpy.linalg.solve``; a row whose equations (made
+dimensionless) have a condition number above ``SINGULAR_CONDITION`` is singular.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from kinepoly.engine.plan import NewtonGroup
+from kinepoly.engine.polygon import JointSolve, Polygon
+from kinepoly.engine.position import describe_input
+from kinepoly.engine.steps import Step
+from kinepoly.errors import SingularityError
+from kinepoly.geom.arrays import Points, Reals, turn
+from kinepoly.model.mechanism import Revolute
+from kinepoly.scene.spec import SliderSpec
+
+if TYPE_CHECKING:
+    from kinepoly.engine.acceleration import _Context
+
+__all__ = ["NEAR_SINGULAR_CONDITION", "SINGULAR_CONDITION", "acceleration_by_linear_solve",
+           "velocity_by_linear_solve"]
+
+SINGULAR_CONDITION = 1e12
+"""Above this condition number the joint equations of a group are singular (a change point)."""
+NEAR_SINGULAR_CONDITION = 1e8
+"""Above this a row is near-singular (relative error about condition x u). A sound triad's
+scaled joint equations have condition numbers near 1e4."""
+
+
+def _joint_links(joint: Revolute | SliderSpec) -> tuple[str, str]:
+    return joint.links if isinstance(joint, Revolute) else (joint.block, joint.guide)
+
+
+def _origin(polygon: Polygon, link: str) -> Points:
+    return polygon.positions.poses[link].origin
+
+
+def _system(polygon: Polygon, group: NewtonGroup, extra: dict[tuple[str, str], Points]) -> tuple[Reals, Reals]:
+    """The joint equations M u = rhs, one system per row: (N, m, n), (N, m)."""
+    links = group.links
+    n, size = polygon.n, 3 * len(links)
+    rows: list[Reals] = []
+    rhs: list[Reals] = []
+
+    def term(link: str, point: str, sign: float, row_x: Reals, row_y: Reals) -> Points:
+        """Add sign * tip(link, point) to the two rows; return its known part."""
+        if link in links:
+            k = 3 * links.index(link)
+            r = polygon.world(point) - _origin(polygon, link)
+            row_x[:, k] += sign
+            row_y[:, k + 1] += sign
+            row_x[:, k + 2] -= sign * r.imag
+            row_y[:, k + 2] += sign * r.real
+            return np.asarray(sign * extra.get((link, point), polygon.zero))
+        return np.asarray(sign * polygon.tip(link, point))
+
+    for joint in group.joints:
+        row_x, row_y = np.zeros((n, size)), np.zeros((n, size))
+        if isinstance(joint, Revolute):
+            known = term(joint.links[0], joint.point, 1.0, row_x, row_y) + term(joint.links[1], joint.point, -1.0,
+                                                                                 row_x, row_y)
+            rows += [row_x, row_y]
+            rhs += [-known.real, -known.imag]
+            continue
+        rate_row = np.zeros((n, size))
+        known_rate = np.zeros(n)
+        for link, sign in ((joint.block, 1.0), (joint.guide, -1.0)):
+            if link in links:
+                rate_row[:, 3 * links.index(link) + 2] += sign
+            else:
+                value = polygon.rate_of(link)
+                if value is not None:
+                    known_rate = known_rate + sign * value
+        rows.append(rate_row)
+        rhs.append(-known_rate)
+        known = term(joint.block, joint.point, 1.0, row_x, row_y) + term(joint.guide, joint.point, -1.0, row_x, row_y)
+        normal = 1j * (polygon.positions.poses[joint.guide].rotation * turn(joint.angle_rad))
+        known = known + extra.get(("slide", joint.name), polygon.zero)
+        rows.append(normal.real[:, None] * row_x + normal.imag[:, None] * row_y)
+        rhs.append(-(normal.real * known.real + normal.imag * known.imag))
+    return np.stack(rows, axis=1), np.stack(rhs, axis=1)
+
+
+def _condition(matrix: Reals) -> Reals:
+    """The condition number of each row's equations made dimensionless: the rate columns hold arms
+    (lengths) and are divided by the row's largest arm L; the rows that hold only rates (a block
+    turning with its guide) are multiplied by L. It does not change when the mechanism is scaled."""
+    scaled = matrix.copy()
+    not_rate = np.arange(matrix.shape[2]) % 3 != 2
+    has_length = np.any(matrix[:, :, not_rate] != 0, axis=2)
+    arms = np.where(has_length[:, :, None], np.abs(matrix[:, :, 2::3]), 0.0)
+    length = np.max(arms.reshape(len(matrix), -1), axis=1, initial=0.0)
+    length = np.where(length > 0.0, length, 1.0)
+    scaled[:, :, 2::3] /= length[:, None, None]
+    scaled *= np.where(has_length, 1.0, length[:, None])[:, :, None]
+    return np.asarray(np.linalg.cond(scaled))
+
+
+def _solve(polygon: Polygon, group: NewtonGroup, matrix: Reals, rhs: Reals) -> Reals:
+    """Every row's system solved at once; rows whose scaled matrix is singular are flagged (raised when strict)."""
+    if matrix.shape[1] != matrix.shape[2]:
+        raise SingularityError(f"the {polygon.kind} equations of group {group.name} are not square")
+    matrix = np.where(np.isfinite(matrix), matrix, 0.0)
+    rhs = np.where(np.isfinite(rhs), rhs, 0.0)
+    condition = _condition(matrix)
+    singular = ~(condition <= SINGULAR_CONDITION)
+    if polygon.strict and singular[0]:
+        joints = ", ".join(j.name for j in group.joints)
+        raise SingularityError(
+            f"singular position at {describe_input(polygon.mechanism)}: the {polygon.kind} equations of group "
+            f"{group.name} (joints {joints}) have condition number {float(condition[0]):.3g}, above "
+            f"{SINGULAR_CONDITION:.0e}: its links can move with the input held (a change point), so their "
+            f"{polygon.kind}s are not determined")
+    polygon.crossings.append(JointSolve(polygon.kind, group.name, np.where(singular, np.inf, condition)))
+    matrix[singular] = np.eye(matrix.shape[1])
+    return np.asarray(np.linalg.solve(matrix, rhs[:, :, None])[:, :, 0])
+
+
+def _store(polygon: Polygon, group: NewtonGroup, u: Reals, extra: dict[tuple[str, str], Points]) -> list[str]:
+    for k, link in enumerate(group.links):
+        polygon.set_rate(link, u[:, 3 * k + 2])
+    found = []
+    for joint in group.joints:
+        for link in _joint_links(joint):
+            if link in group.links and polygon.label(link, joint.point) not in polygon.tips:
+                k = 3 * group.links.index(link)
+                r = polygon.world(joint.point) - _origin(polygon, link)
+                tip = u[:, k] + 1j * u[:, k + 1] + u[:, k + 2] * (1j * r) + extra.get((link, joint.point),
+                                                                                        polygon.zero)
+                found.append(polygon.add_tip(link, joint.point, np.asarray(tip)))
+    return found
+
+
+def _record(polygon: Polygon, group: NewtonGroup, found: list[str]) -> None:
+    if polygon.record:
+        tips = ", ".join(f.lower() for f in found)
+        polygon.step(Step(polygon=polygon.kind, kind="linear-solve", equation=f"joint equations of group {group.name}",
+                          result=tips, params=(("group", group.name), ("links", ", ".join(group.links)),
+                                               ("tips", tips))))
+
+
+def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict[str, Points]) -> None:
+    matrix, rhs = _system(polygon, group, {})
+    _record(polygon, group, _store(polygon, group, _solve(polygon, group, matrix, rhs), {}))
+    for joint in group.joints:
+        if isinstance(joint, SliderSpec):
+            sliding[joint.name] = np.asarray(polygon.tip(joint.block, joint.point) - polygon.tip(joint.guide,
+                                                                                                  joint.point))
+
+
+def acceleration_by_linear_solve(ctx: _Context, group: NewtonGroup) -> None:
+    polygon = ctx.b
+    extra: dict[tuple[str, str], Points] = {}
+    for joint in group.joints:
+        for link in _joint_links(joint):
+            if link in group.links:
+                r = polygon.world(joint.point) - _origin(polygon, link)
+                w = polygon.omega_of(link)
+                extra[(link, joint.point)] = np.asarray((ctx.rules.normal * w * w) * r)
+        if isinstance(joint, SliderSpec):
+            v_rel = ctx.v_tip(joint.block, joint.point) - ctx.v_tip(joint.guide, joint.point)
+            w = polygon.omega_of(joint.guide)
+            extra[("slide", joint.name)] = np.asarray(-(ctx.rules.coriolis * 2.0 * w) * (1j * v_rel))
+    matrix, rhs = _system(polygon, group, extra)
+    _record(polygon, group, _store(polygon, group, _solve(polygon, group, matrix, rhs), extra))
+    for joint in group.joints:
+        if isinstance(joint, SliderSpec):
+            ctx.slide_values(joint, joint.block, joint.point)

@@ -1,0 +1,157 @@
+"""Damped Newton for a group of links that is not a dyad: the one position solver of such groups.
+
+Unknowns are the poses (x, y, theta) of the group's links; equations are the joints that touch
+the group (a pin: two equations; a slider: the block turns with its guide, and its point lies on
+the guide's line). The Jacobian is in closed form; the step is a least-squares solve, halved
+until the residual falls, and the iteration goes on to the rounding level (until no step lowers
+the residual). A row that cannot close makes the residual stall at its least-squares floor:
+after three steps in a row that do not halve it, far from closing, the row is given up.
+
+Where each row starts is the assembly policy's business (``engine.assembly``): from the
+``[guess]`` for a solve, from the rows before it for a sweep. This module solves one row.
+"""
+
+from __future__ import annotations
+
+import cmath
+import math
+from collections.abc import Mapping
+
+import numpy as np
+
+from kinepoly.engine.plan import NewtonGroup
+from kinepoly.geom.arrays import Reals
+from kinepoly.model.mechanism import Mechanism, Revolute
+from kinepoly.model.pose import LinkPose
+from kinepoly.scene.spec import SliderSpec
+
+__all__ = ["CLOSED_REL", "group_size", "newton_row", "start_poses"]
+
+CLOSED_REL = 1e-9
+"""A group is closed when its joint residual is at most this times the group's size."""
+_MAX_STEPS = 100
+
+
+class _RowSystem:
+    """The joint equations of the group at one row, with their Jacobian in closed form.
+
+    A pin at P: world_a(P) - world_b(P) = 0. A slider: theta_block - theta_guide - angle = 0
+    (wrapped, in lengths: times the group's size), and the distance of the block's point from
+    the guide's line, n . (s - t) = 0.
+    """
+
+    def __init__(self, mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], size: float) -> None:
+        self.known = known
+        self.index = {link: 3 * k for k, link in enumerate(group.links)}
+        self.size = 3 * len(group.links)
+        self.scale = size
+        self.pins: list[tuple[str, tuple[float, float], str, tuple[float, float]]] = []
+        self.slides: list[tuple[SliderSpec, tuple[float, float]]] = []
+        for joint in group.joints:
+            if isinstance(joint, Revolute):
+                a, b = joint.links
+                self.pins.append((a, mechanism.local(a, joint.point), b, mechanism.local(b, joint.point)))
+            else:
+                self.slides.append((joint, mechanism.local(joint.block, joint.point)))
+        self.count = 2 * (len(self.pins) + len(self.slides))
+
+    def _point(self, q: Reals, link: str, local: tuple[float, float]) -> tuple[float, float, float, float, float]:
+        """World point of ``local`` on ``link``, its lever r = R local, and the link's theta."""
+        k = self.index.get(link)
+        if k is None:
+            pose = self.known[link]
+            x, y, theta = pose.x, pose.y, pose.theta
+        else:
+            x, y, theta = float(q[k]), float(q[k + 1]), float(q[k + 2])
+        c, s = math.cos(theta), math.sin(theta)
+        rx, ry = c * local[0] - s * local[1], s * local[0] + c * local[1]
+        return x + rx, y + ry, rx, ry, theta
+
+    def evaluate(self, q: Reals) -> tuple[Reals, Reals]:
+        out = np.zeros(self.count)
+        jac = np.zeros((self.count, self.size))
+        row = 0
+        for a, local_a, b, local_b in self.pins:
+            ax, ay, arx, ary, _ = self._point(q, a, local_a)
+            bx, by, brx, bry, _ = self._point(q, b, local_b)
+            out[row], out[row + 1] = ax - bx, ay - by
+            for link, sign, rx, ry in ((a, 1.0, arx, ary), (b, -1.0, brx, bry)):
+                k = self.index.get(link)
+                if k is not None:
+                    jac[row, k] += sign
+                    jac[row + 1, k + 1] += sign
+                    jac[row, k + 2] -= sign * ry
+                    jac[row + 1, k + 2] += sign * rx
+            row += 2
+        for joint, local in self.slides:
+            sx, sy, bx, by, theta_b = self._point(q, joint.block, local)
+            tx, ty, lx, ly, theta_g = self._point(q, joint.guide, joint.through)
+            turn_rel = theta_b - theta_g - joint.angle_rad
+            ex, ey = math.cos(theta_g + joint.angle_rad), math.sin(theta_g + joint.angle_rad)
+            nx, ny = -ey, ex
+            out[row] = self.scale * math.atan2(math.sin(turn_rel), math.cos(turn_rel))
+            out[row + 1] = nx * (sx - tx) + ny * (sy - ty)
+            k = self.index.get(joint.block)
+            if k is not None:
+                jac[row, k + 2] += self.scale
+                jac[row + 1, k:k + 3] += (nx, ny, -nx * by + ny * bx)
+            k = self.index.get(joint.guide)
+            if k is not None:
+                jac[row, k + 2] -= self.scale
+                jac[row + 1, k:k + 3] += (-nx, -ny, -(ex * (sx - tx) + ey * (sy - ty)) + nx * ly - ny * lx)
+            row += 2
+        return out, jac
+
+
+def group_size(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex]) -> float:
+    """The group's length scale: its links' local coordinates and the known or guessed points."""
+    size = max((abs(v) for link in group.links for p in mechanism.scene.link(link).points for v in p.local),
+               default=0.0)
+    size = max(size, *(max(abs(z.real), abs(z.imag)) for z in points.values())) if points else size
+    return size if size > 0.0 and math.isfinite(size) else 1.0
+
+
+def start_poses(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex]) -> tuple[
+        Reals | None, str]:
+    """The group's starting poses from known or guessed points (the first two points of each link
+    that have one); None and the link's name when a link has none."""
+    q: list[float] = []
+    for link in group.links:
+        pts = [(complex(*p.local), points[p.name]) for p in mechanism.scene.link(link).points if p.name in points]
+        if not pts:
+            return None, link
+        (la, wa), (lb, wb) = pts[0], pts[1] if len(pts) > 1 else pts[0]
+        theta = cmath.phase(wb - wa) - cmath.phase(lb - la) if len(pts) > 1 else 0.0
+        origin = wa - la * complex(math.cos(theta), math.sin(theta))
+        q += [origin.real, origin.imag, theta]
+    return np.array(q), ""
+
+
+def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], start: Reals,
+               size: float) -> tuple[dict[str, LinkPose] | None, float]:
+    """Close the group at one row from ``start``: the poses (None where it does not close) and the
+    final joint residual."""
+    system = _RowSystem(mechanism, group, known, size)
+    q = start
+    r, jac = system.evaluate(q)
+    norm_r = float(np.linalg.norm(r))
+    stalled = 0
+    for _ in range(_MAX_STEPS):
+        if not norm_r > 0.0 or (stalled >= 3 and norm_r > CLOSED_REL * size):
+            break
+        step = np.linalg.lstsq(jac, -r, rcond=None)[0]
+        t = 1.0
+        while t > 1e-6:
+            trial, trial_jac = system.evaluate(q + t * step)
+            norm_trial = float(np.linalg.norm(trial))
+            if norm_trial < norm_r:
+                stalled = stalled + 1 if norm_trial > 0.5 * norm_r else 0
+                q, r, jac, norm_r = q + t * step, trial, trial_jac, norm_trial
+                break
+            t /= 2
+        else:
+            break
+    if not norm_r <= CLOSED_REL * size:
+        return None, norm_r
+    return {link: LinkPose(float(q[3 * k]), float(q[3 * k + 1]), float(q[3 * k + 2]))
+            for k, link in enumerate(group.links)}, norm_r

@@ -1,0 +1,361 @@
+"""A velocity or acceleration polygon under construction over rows, and its steps recorded on demand.
+
+Tips are complex arrays (one value per row), pole at 0. Points of an already-known link get
+their tips lazily, when a later step needs them:
+
+- a point of the frame is the pole;
+- with two tips known on the link, by Mehmke's image: the lines from the two known tips at the
+  angles of the link's triangle are crossed (a flat triangle by proportional division of the
+  known side; tips that coincide give the same tip);
+- with one tip and the link's rate known, by laying the relative vector.
+
+Every crossing of two direction lines is kept with the sine of their angle, so that a sweep can
+mark singular and near-singular rows; a *strict* polygon (a solve) raises ``SingularityError``
+at a parallel pair instead. With ``record`` the polygon records the steps of row 0 as data
+(``engine.steps``): a sweep records nothing.
+"""
+
+from __future__ import annotations
+
+import cmath
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from kinepoly.engine.position import Positions
+from kinepoly.engine.steps import Direction, DrawnVector, Step
+from kinepoly.errors import SingularityError
+from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross, cross_lines
+from kinepoly.geom.lines import Line as StepLine
+from kinepoly.geom.tolerances import COLLINEAR_SIN, PARALLEL_SIN
+from kinepoly.model.mechanism import Mechanism, point_label
+
+__all__ = ["CrossLines", "JointSolve", "Line", "LineCrossing", "Polygon", "sense"]
+
+Kind = Literal["velocity", "acceleration"]
+Line = tuple[Points, PointsLike, float | None]
+"""A direction line: through, direction, and the direction's length where it is a constant of the scene."""
+CrossLines = Callable[[PointsLike, PointsLike, PointsLike, PointsLike, float | None, float | None], Crossing]
+"""How two families of direction lines are crossed: ``geom.arrays.cross_lines`` (the bench swaps in others)."""
+Vec = tuple[float, float]
+
+
+def sense(rate: float) -> str:
+    return "ccw" if rate > 0 else ("cw" if rate < 0 else "zero")
+
+
+@dataclass(frozen=True)
+class LineCrossing:
+    """Two direction lines crossed at every row: the group, the tip found, the sine of their angle,
+    and how far along the first line they cross (every later value of the polygon is a sum of
+    products of these, so where it is finite, they are)."""
+
+    kind: Kind
+    group: str
+    what: str
+    sin_angle: Reals
+    along: Reals
+
+
+@dataclass(frozen=True)
+class JointSolve:
+    """A group's joint equations solved at every row (no two lines): the condition number of each row."""
+
+    kind: Kind
+    group: str
+    condition: Reals
+
+
+@dataclass(frozen=True)
+class Member:
+    """A known tip of a link: its label, where the point is at every row, whether it is fixed on the link."""
+
+    label: str
+    at: Points
+    fixed: bool
+
+
+class Polygon:
+    """Mutable while one polygon is constructed over all rows; ``tips``, ``rate``, ``crossings`` and
+    ``steps`` are its output."""
+
+    def __init__(self, positions: Positions, kind: Kind, omega: dict[str, Reals] | None = None, *,
+                 unit: str = "mm", record: bool = False, strict: bool = False, where: str = "",
+                 crossing: CrossLines = cross_lines) -> None:
+        self.mechanism: Mechanism = positions.mechanism
+        self.positions = positions
+        self.kind = kind
+        self.symbol = "v" if kind == "velocity" else "a"
+        self.unit = f"{unit}/s" if kind == "velocity" else f"{unit}/s^2"
+        self.n = positions.n
+        self.zero = np.zeros(self.n, np.complex128)
+        self.omega = omega if omega is not None else {}
+        self.normal_sign = -1.0
+        """-1: a normal term points from the point toward the center (``Rules.normal`` may switch it)."""
+        self.rate: dict[str, Reals] = {}
+        self.tips: dict[str, Points] = {}
+        self.members: dict[str, list[Member]] = {}
+        self.crossings: list[LineCrossing | JointSolve] = []
+        self.record = record
+        self.strict = strict
+        self.where = where
+        self.crossing = crossing
+        self.steps: list[Step] = []
+        mech = self.mechanism
+        if mech.ground is not None:
+            self.set_rate(mech.ground, np.zeros(self.n))  # and every link that slides on it without turning
+            for p in mech.scene.link(mech.ground).points:
+                self._register(p.name, self.zero, p.name, list(mech.links_of_point(p.name)))
+
+    # -- row 0 as plain values, for the steps -------------------------------------------------------
+    @staticmethod
+    def vec(z: PointsLike) -> Vec:
+        c = complex(z if isinstance(z, complex) else z[0])
+        return (c.real, c.imag)
+
+    @staticmethod
+    def num(x: Reals) -> float:
+        return float(x[0])
+
+    def step(self, step: Step) -> None:
+        self.steps.append(step)
+
+    # -- where points are ---------------------------------------------------------------------------
+    def world(self, point: str) -> Points:
+        return self.positions.point(point)
+
+    def label(self, link: str, point: str) -> str:
+        return point if self.mechanism.has_point(link, point) else point_label(point, link)
+
+    @staticmethod
+    def tip_name(label: str) -> str:
+        return label.lower()
+
+    def ground_name(self) -> str:
+        return self.mechanism.ground or ""
+
+    # -- rates (omega or alpha) ---------------------------------------------------------------------
+    def rate_of(self, link: str) -> Reals | None:
+        return self.mechanism.class_rate(self.rate, link)
+
+    def set_rate(self, link: str, value: Reals) -> None:
+        for other in self.mechanism.turning_together(link):
+            self.rate[other] = value
+
+    def omega_of(self, link: str) -> Reals:
+        omega = self.mechanism.class_rate(self.omega, link)
+        return np.zeros(self.n) if omega is None else omega
+
+    # -- tips -----------------------------------------------------------------------------------------
+    def _register(self, label: str, value: Points, point: str, links: list[str]) -> None:
+        self.tips[label] = value
+        at = self.world(point)
+        for link in links:
+            entries = self.members.setdefault(link, [])
+            if all(m.label != label for m in entries):
+                entries.append(Member(label, at, self.mechanism.has_point(link, point)))
+
+    def add_tip(self, link: str, point: str, value: Points) -> str:
+        """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
+        label = self.label(link, point)
+        links = list(self.mechanism.links_of_point(point)) if label == point else [link]
+        self._register(label, value, point, links)
+        return label
+
+    def tip(self, link: str, point: str) -> Points:
+        """The tip of ``point`` as a point of ``link``, constructing it when it is not known yet."""
+        label = self.label(link, point)
+        if label in self.tips:
+            return self.tips[label]
+        if link == self.mechanism.ground:
+            self.add_tip(link, point, self.zero)
+            return self.zero
+        members = self.members.get(link, [])
+        if len(members) >= 2:
+            value = self._image(link, point, label, members)
+        elif len(members) == 1 and self.rate_of(link) is not None:
+            value = self._relative(link, point, label, members[0])
+        else:
+            raise SingularityError(f"the {self.kind} of {label} cannot be constructed: link {link} has "
+                                   f"{len(members)} known tip(s) and no known angular rate")
+        self.add_tip(link, point, value)
+        return value
+
+    def _relative(self, link: str, point: str, label: str, member: Member) -> Points:
+        r = self.world(point) - member.at
+        start = self.tips[member.label]
+        rate = self.rate_of(link)
+        assert rate is not None
+        if self.kind == "velocity":
+            end = np.asarray(start + rate * (1j * r))
+            if self.record:
+                self._record_relative_velocity(link, label, member.label, r, start, end, rate)
+            return end
+        w = self.omega_of(link)
+        middle = np.asarray(start + (self.normal_sign * w * w) * r)
+        end = np.asarray(middle + rate * (1j * r))
+        if self.record:
+            self._record_relative_acceleration(link, label, member.label, r, start, middle, end, w, rate)
+        return end
+
+    def _record_relative_velocity(self, link: str, label: str, ref: str, r: Points, start: Points, end: Points,
+                                  rate: Reals) -> None:
+        name = f"{label}/{ref}"
+        w, length = self.num(rate), abs(complex(r[0]))
+        size = abs(complex(end[0]) - complex(start[0]))
+        self.step(Step(polygon="velocity", kind="known", equation=f"v_{label} = v_{ref} + v_{name}",
+                       result=self.tip_name(label),
+                       known=((f"v_{ref}", "magnitude and direction"), (f"v_{name}", "magnitude and direction")),
+                       vectors=(DrawnVector(f"v_{name}", self.vec(start), self.vec(end), "relative"),),
+                       value=self.vec(end), topic="relative",
+                       params=(("point", label), ("reference", ref), ("link", link), ("ground", self.ground_name()),
+                               ("length", length), ("magnitude", size), ("rate", abs(w)), ("sense", sense(w)))))
+
+    def _record_relative_acceleration(self, link: str, label: str, ref: str, r: Points, start: Points,
+                                      middle: Points, end: Points, omega: Reals, rate: Reals) -> None:
+        name = f"{label}/{ref}"
+        w, alpha, length = self.num(omega), self.num(rate), abs(complex(r[0]))
+        a, m, e = complex(start[0]), complex(middle[0]), complex(end[0])
+        self.step(Step(polygon="acceleration", kind="known", equation=f"a_{label} = a_{ref} + a_{name}",
+                       result=self.tip_name(label),
+                       known=((f"a_{ref}", "magnitude and direction"), (f"a^n_{name}", "magnitude and direction"),
+                              (f"a^t_{name}", "magnitude and direction")),
+                       vectors=(DrawnVector(f"a^n_{name}", self.vec(start), self.vec(middle), "normal"),
+                                DrawnVector(f"a^t_{name}", self.vec(middle), self.vec(end), "tangential")),
+                       value=self.vec(end), topic="relative",
+                       params=(("point", label), ("reference", ref), ("link", link), ("ground", self.ground_name()),
+                               ("length", length), ("magnitude", abs(e - a)), ("rate", abs(alpha)),
+                               ("sense", sense(alpha)), ("omega", abs(w)), ("normal", abs(m - a)),
+                               ("tangential", abs(e - m)))))
+
+    # -- Mehmke's image ---------------------------------------------------------------------------------
+    def _image(self, link: str, point: str, label: str, members: list[Member]) -> Points:
+        at = self.world(point)
+        pairs = [(m, k) for i, m in enumerate(members) for k in members[i + 1:]]
+        if self.mechanism.has_point(link, point) and all(m.fixed for m in members):
+            local = {m.label: self._local(link, m.label) for m in members}
+            here = self._local(link, label)
+            first, second = max(pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
+            a, b = self.tips[first.label], self.tips[second.label]
+            value = np.asarray(a + (b - a) * _similar(local[first.label], local[second.label], here, label, link))
+        else:
+            keys = np.stack([np.asarray(_key(m.at, k.at, at)) for m, k in pairs])
+            best = np.argmax(keys, axis=0)
+            value = self.zero
+            for index, (m, k) in enumerate(pairs):
+                if np.any(best == index):
+                    image = self._image_of(m, k, at)
+                    value = image if len(pairs) == 1 else np.where(best == index, image, value)
+            first, second = pairs[int(best[0])]
+        if self.record:
+            self._record_image(link, label, first, second, at, value)
+        return value
+
+    def _local(self, link: str, label: str) -> complex:
+        x, y = self.mechanism.local(link, label.partition("@")[0])
+        return complex(x, y)
+
+    def _image_of(self, first: Member, second: Member, at: Points) -> Points:
+        """Mehmke, row by row (a triangle whose corner slides on the link changes from row to row)."""
+        wa, wb = first.at, second.at
+        side = wb - wa
+        a, b = self.tips[first.label], self.tips[second.label]
+        polygon_side = b - a
+        ratio_a = (at - wa) / side
+        ratio_b = (at - wb) / (wa - wb)
+        turn_a, turn_b = np.exp(1j * np.angle(ratio_a)), np.exp(1j * np.angle(ratio_b))
+        flat_value = a + polygon_side * ratio_a  # proportional division: the foot, then the height
+        sin_lines = np.abs(np.sin(np.angle(turn_b) - np.angle(turn_a)))
+        crossing = self.crossing(a, polygon_side * turn_a, b, -polygon_side * turn_b, None, None).point
+        value = np.where(sin_lines >= COLLINEAR_SIN, crossing, flat_value)
+        return np.asarray(np.where(polygon_side == 0.0, a, value))
+
+    def _record_image(self, link: str, label: str, first: Member, second: Member, at_rows: Points,
+                      value: Points) -> None:
+        la, lb = first.label, second.label
+        wa, wb, at = complex(first.at[0]), complex(second.at[0]), complex(at_rows[0])
+        a, b = complex(self.tips[la][0]), complex(self.tips[lb][0])
+        side, polygon_side = wb - wa, b - a
+        if side == 0:
+            raise SingularityError(f"image of {label}: the known points {la} and {lb} of link {link} coincide")
+        equation = f"triangle {la.lower()}{lb.lower()}{label.lower()} ~ triangle {la}{lb}{label} (same sense)"
+        common = (("link", link), ("point", label), ("first", la), ("second", lb))
+        if polygon_side == 0:
+            self.step(Step(polygon=self.kind, kind="image", equation=equation, result=self.tip_name(label),
+                           value=self.vec(value), topic="image-translating", params=common))
+            return
+        angle_a = cmath.phase(at - wa) - cmath.phase(side)
+        angle_b = cmath.phase(at - wb) - cmath.phase(-side)
+        line_a = StepLine(self.vec(a), self.vec(polygon_side * cmath.exp(1j * angle_a)),
+                          f"from {la.lower()} at angle {lb}{la}{label}")
+        line_b = StepLine(self.vec(b), self.vec(-polygon_side * cmath.exp(1j * angle_b)),
+                          f"from {lb.lower()} at angle {la}{lb}{label}")
+        if abs(math.sin(angle_b - angle_a)) >= COLLINEAR_SIN:
+            first_deg = math.degrees(math.remainder(angle_a, 2.0 * math.pi))
+            second_deg = math.degrees(math.remainder(angle_b, 2.0 * math.pi))
+            self.step(Step(polygon=self.kind, kind="image", equation=equation, result=self.tip_name(label),
+                           lines=(line_a, line_b), value=self.vec(value), topic="image",
+                           params=(*common, ("angle_first", first_deg), ("angle_second", second_deg)),
+                           directions=(Direction("", "at-angle", f"{la}{lb}".lower(), la.lower(), angle_deg=first_deg),
+                                       Direction("", "at-angle", f"{lb}{la}".lower(), lb.lower(),
+                                                 angle_deg=second_deg))))
+            return
+        ratio = ((at - wa) / side).real
+        height = ((at - wa) / side).imag
+        self.step(Step(polygon=self.kind, kind="proportional", equation=equation, result=self.tip_name(label),
+                       lines=(StepLine(self.vec(a), self.vec(polygon_side), f"{la.lower()}{lb.lower()}"),),
+                       value=self.vec(value), topic="proportional",
+                       params=(*common, ("ratio", ratio), ("height", height)),
+                       directions=(Direction("", "along", f"{la}{lb}".lower(), la.lower()),)))
+
+    # -- the crossing of two direction lines -------------------------------------------------------------
+    def cross_lines(self, first: Line, second: Line, what: str, group: str,
+                    labels: tuple[str, str] = ("", "")) -> Crossing:
+        """Cross two direction lines (through, direction, the direction's length if known) and keep
+        how well they cross; a strict polygon raises ``SingularityError`` where they are parallel."""
+        crossing = self.crossing(first[0], first[1], second[0], second[1], first[2], second[2])
+        self.crossings.append(LineCrossing(self.kind, group, what, crossing.sin_angle, crossing.along_first))
+        if self.strict and not abs(float(crossing.sin_angle[0])) > PARALLEL_SIN:
+            lengths = [abs(complex(d if isinstance(d, complex) else d[0])) for d in (first[1], second[1])]
+            if min(lengths) == 0.0:
+                raise SingularityError(
+                    f"singular position {self.where}: at joint {what} the {self.kind} construction fails because "
+                    "a direction line has no direction; two joints of one link are at the same place")
+            raise SingularityError(
+                f"singular position {self.where}: at joint {what} the {self.kind} direction lines ({labels[0]}; "
+                f"{labels[1]}) are parallel: the links that meet there are in line, or square to a slide (a "
+                f"dead centre or change point), so the {self.kind} of {what} is not determined by the input")
+        return crossing
+
+    def step_line(self, line: Line, label: str) -> StepLine:
+        """Row 0 of a direction line, for a step."""
+        return StepLine(self.vec(line[0]), self.vec(line[1]), label)
+
+
+def _similar(wa: complex, wb: complex, at: complex, label: str, link: str) -> complex:
+    """Where Mehmke's two lines cross for a polygon side of 1 from a to b: the image is a + (b - a) k.
+
+    The line from a at the triangle's angle at A and the line from b at its angle at B are
+    crossed for a = 0, b = 1; the image of a link is similar to it, so for any a and b they
+    cross at a + (b - a) k. A flat triangle (lines at a sine below ``COLLINEAR_SIN``) takes k
+    from proportional division instead: the foot's ratio along AB and the height over |AB|.
+    """
+    side = wb - wa
+    if side == 0:
+        raise SingularityError(f"image of {label}: two known points of link {link} coincide")
+    ratio = (at - wa) / side
+    ratio_b = (at - wb) / (wa - wb)
+    turn_a, turn_b = cmath.exp(1j * cmath.phase(ratio)), cmath.exp(1j * cmath.phase(ratio_b))  # 1 at a corner
+    crossing = cross_lines(np.zeros(1, np.complex128), np.array([turn_a]), 1.0 + 0j, np.array([-turn_b]))
+    if not abs(float(crossing.sin_angle[0])) >= COLLINEAR_SIN:
+        return ratio
+    return complex(crossing.point[0])
+
+
+def _key(wa: PointsLike, wb: PointsLike, at: PointsLike) -> Reals | float:
+    """Which two known tips build an image: the pair with the largest |ab| + |ab x a->point|."""
+    side = wb - wa
+    return np.abs(side) + np.abs(cross(side, at - wa))

@@ -1,0 +1,190 @@
+"""Execute the position plan over an array of inputs: the driver, then each group in order.
+
+Each dyad is closed in its closed form (``engine.closures``), a group that is not a dyad by
+Newton's method (``engine.newton``). Which assembly each row takes, where a Newton row starts,
+and whether a row that does not close is an error (a solve) or a marked row (a sweep) is the
+assembly policy's decision (``engine.assembly``): this module only executes.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from kinepoly.engine.closures import Choice, Closure, close_dyad
+from kinepoly.engine.plan import Group, NewtonGroup, PositionPlan
+from kinepoly.geom.arrays import Bools, Points, Reals, turn
+from kinepoly.model.array_pose import ArrayPose, pose_from_point, still_pose
+from kinepoly.model.mechanism import Mechanism
+from kinepoly.model.pose import LinkPose
+from kinepoly.notice import Notice
+from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
+
+__all__ = ["Failure", "Placement", "Policy", "Positions", "describe_input", "driver_poses", "input_values", "place_groups", "solve_positions"]
+
+
+@dataclass(frozen=True)
+class Failure:
+    """Rows where one group cannot be assembled (rows where an earlier group failed are not among them)."""
+
+    group: str
+    joint: str
+    rows: Bools
+    why: Callable[[int], str]
+
+
+@dataclass(frozen=True)
+class Placement:
+    """What placing some groups gave: poses, the rows that closed, failures, rough rows, warnings."""
+
+    poses: dict[str, ArrayPose]
+    ok: Bools
+    failures: tuple[Failure, ...] = ()
+    near: tuple[Failure, ...] = ()
+    notices: tuple[Notice, ...] = ()
+
+
+@dataclass
+class Positions:
+    """Poses of every link of the plan at every row; ``ok`` where all of them could be placed."""
+
+    mechanism: Mechanism
+    poses: dict[str, ArrayPose]
+    ok: Bools
+    failures: tuple[Failure, ...] = ()
+    near: tuple[Failure, ...] = ()
+    notices: tuple[Notice, ...] = ()
+    _points: dict[str, Points] = field(default_factory=dict)
+
+    @property
+    def n(self) -> int:
+        return len(self.ok)
+
+    def point(self, name: str) -> Points:
+        """World position of a named point (through the first solved link that has it)."""
+        found = self._points.get(name)
+        if found is None:
+            owner = next(link for link in self.mechanism.links_of_point(name) if link in self.poses)
+            found = self.poses[owner].world(self.mechanism.local(owner, name))
+            self._points[name] = found
+        return found
+
+    def world(self, link: str, point: str) -> Points:
+        return self.poses[link].world(self.mechanism.local(link, point))
+
+    def row(self, k: int) -> dict[str, LinkPose]:
+        """The poses of row k as scalar values."""
+        return {link: LinkPose(*pose.row(k)) for link, pose in self.poses.items()}
+
+
+def describe_input(mechanism: Mechanism) -> str:
+    """The input as a textbook names it: ``theta12 = 60 deg`` or ``s14 = 130 mm``."""
+    scene = mechanism.scene
+    inp = scene.input
+    if isinstance(inp, LinkInput):
+        value = math.degrees(inp.angle_rad) if scene.units.angle == "deg" else inp.angle_rad
+        return f"theta{scene.ground}{inp.link} = {value:.15g} {scene.units.angle}"
+    if isinstance(inp, SliderInput):
+        return f"s{inp.slider} = {inp.s:.15g} {scene.units.length}"
+    return "the given motion"
+
+
+def input_values(mechanism: Mechanism) -> Reals:
+    """The scene's own input as a batch of one row: theta (rad) or s (length); 0 for a [given] body."""
+    inp = mechanism.scene.input
+    value = inp.angle_rad if isinstance(inp, LinkInput) else inp.s if isinstance(inp, SliderInput) else 0.0
+    return np.array([value], np.float64)
+
+
+def driver_poses(mechanism: Mechanism, inputs: Reals) -> dict[str, ArrayPose]:
+    """The frame and the input link at every row; ``inputs`` are theta (rad) or s (length)."""
+    n = len(inputs)
+    ground = mechanism.ground
+    if ground is None:  # a [given] body: its own frame is the frame
+        return {mechanism.link_names[0]: still_pose(n)}
+    poses = {ground: still_pose(n)}
+    inp = mechanism.scene.input
+    if isinstance(inp, LinkInput):
+        pivot = mechanism.input_pivot().point
+        x, y = mechanism.local(ground, pivot)
+        rotation = np.empty(n, np.complex128)
+        rotation.real = np.cos(inputs)
+        rotation.imag = np.sin(inputs)
+        poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), np.full(n, complex(x, y)), rotation)
+    elif isinstance(inp, SliderInput):
+        slider = mechanism.slider(inp.slider)
+        direction = turn(slider.angle_rad)
+        along = np.asarray(complex(*slider.through) + inputs * direction, np.complex128)
+        if slider.guide == ground:
+            poses[slider.block] = pose_from_point(mechanism.local(slider.block, slider.point), along,
+                                                  np.full(n, direction))
+        else:  # the block is the frame: place the guide so that the frame's point sits at s
+            block_point = np.full(n, complex(*mechanism.local(ground, slider.point)))
+            poses[slider.guide] = ArrayPose(block_point - np.conjugate(direction) * along,
+                                            np.full(n, np.conjugate(direction)))
+    return poses
+
+
+class Policy(Protocol):
+    """What the executor asks an assembly policy (``engine.assembly`` has the two policies)."""
+
+    def choose(self, mechanism: Mechanism, closure: Closure, placed: Placement,
+               later: Callable[[int], Placement]) -> Choice | Placement:
+        """The assembly each row takes, or, having carried the assemblies through the later groups
+        with ``later``, the whole placement."""
+
+    def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
+        """Place a group that is not a dyad, starting each row where the policy says."""
+
+    def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
+        """Rows where a dyad does not close: a solve raises here, a sweep marks them."""
+
+
+def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placement, policy: Policy) -> Placement:
+    """Place ``groups`` in order on top of ``placed``."""
+    for index, group in enumerate(groups):
+        if isinstance(group, NewtonGroup):
+            placed = policy.newton(mechanism, group, placed)
+            continue
+        closure = close_dyad(mechanism, placed.poses, group)
+        failures, ok = placed.failures, placed.ok
+        near = placed.near
+        if closure.near is not None:
+            near = (*near, Failure(group.name, closure.joint, closure.near[0], closure.near[1]))
+        if not closure.ok.all():
+            bad = ok & ~closure.ok
+            policy.failed(mechanism, closure, bad)
+            failures = (*failures, Failure(group.name, closure.joint, bad, closure.why))
+            ok = ok & closure.ok
+        placed = Placement(placed.poses, ok, failures, near, placed.notices)
+        choice: Choice = 0
+        if len(closure.telling) == 2:
+            rest = groups[index + 1:]
+            base = placed
+
+            def later(label: int, base: Placement = base, rest: tuple[Group, ...] = rest,
+                      closure: Closure = closure) -> Placement:
+                step = Placement({**base.poses, **closure.place(label)}, base.ok, base.failures, base.near,
+                                 base.notices)
+                return place_groups(mechanism, rest, step, policy)
+
+            chosen = policy.choose(mechanism, closure, placed, later)
+            if isinstance(chosen, Placement):
+                return chosen
+            choice = chosen
+        placed = Placement({**placed.poses, **closure.place(choice)}, placed.ok, placed.failures, placed.near,
+                           placed.notices)
+    return placed
+
+
+def solve_positions(mechanism: Mechanism, plan: PositionPlan, inputs: Reals, policy: Policy) -> Positions:
+    """Poses of the driven links and of every group in the plan at each input, as ``policy`` chooses."""
+    start = Placement(driver_poses(mechanism, inputs), np.ones(len(inputs), np.bool_))
+    if isinstance(mechanism.scene.input, GivenInput):
+        return Positions(mechanism, start.poses, start.ok)
+    placed = place_groups(mechanism, plan.groups, start, policy)
+    return Positions(mechanism, placed.poses, placed.ok, placed.failures, placed.near, placed.notices)

@@ -1,0 +1,228 @@
+"""What ``kinepoly solve`` prints: the contract's JSON, a readable table, the steps. Pure functions.
+
+The instant centers' part is ``present.centers``; the polygon scales ``present.scales``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from kinepoly.engine.steps import Step
+from kinepoly.geom.vec import Vec, norm, unit
+from kinepoly.present.centers import centers_json, centers_steps_text, centers_table, kennedy_steps_json
+from kinepoly.present.phrasing import Context, english, step_sentence
+from kinepoly.present.scales import polygon_scales
+from kinepoly.scene.spec import LinkInput, SliderInput
+from kinepoly.solution import Solution
+
+__all__ = ["input_text", "steps_text", "table_text", "to_json"]
+
+
+def _pair(v: Vec) -> list[float]:
+    return [float(v[0]) + 0.0, float(v[1]) + 0.0]  # + 0.0 turns -0.0 into 0.0
+
+
+def _angle(solution: Solution, radians: float) -> float:
+    return math.degrees(radians) if solution.scene.units.angle == "deg" else radians
+
+
+def _shown_tips(solution: Solution, kind: str) -> dict[str, Vec]:
+    polygon = solution.velocity if kind == "velocity" else solution.acceleration
+    assert polygon is not None
+    ground = solution.mechanism.ground
+    ground_points = set(solution.mechanism.scene.link(ground).point_names) if ground else set()
+    asked = {p for p in (solution.scene.find.velocity if kind == "velocity" else solution.scene.find.acceleration)}
+    return {label: tip for label, tip in polygon.tips.items() if label not in ground_points or label in asked}
+
+
+def _step_json(step: Step, k: float, context: Context) -> dict[str, Any]:
+    return {
+        "polygon": step.polygon,
+        "kind": step.kind,
+        "equation": step.equation,
+        "text": step_sentence(step, english(), context),
+        "result": step.result,
+        "known": [{"term": t, "known": what} for t, what in step.known],
+        "lines": [{"through": _pair((k * ln.through[0], k * ln.through[1])),
+                   "direction": _pair(unit(ln.direction)) if norm(ln.direction) > 0 else [0.0, 0.0],
+                   "label": ln.label} for ln in step.lines],
+        "vectors": [{"label": v.label, "term": v.term, "from": _pair((k * v.start[0], k * v.start[1])),
+                     "to": _pair((k * v.end[0], k * v.end[1]))} for v in step.vectors],
+    }
+
+
+def to_json(solution: Solution) -> dict[str, Any]:
+    """The result object of the contract (``kinepoly solve --json``)."""
+    scene, asked = solution.scene, solution.asked
+    out: dict[str, Any] = {"title": scene.title, "units": {"length": scene.units.length, "angle": scene.units.angle}}
+    links: dict[str, dict[str, float]] = {}
+    for name in dict.fromkeys((*asked.omega, *asked.alpha)):
+        link_entry = links.setdefault(name, {"angle": _angle(solution, solution.angle(name))})
+        if name in asked.omega and solution.velocity is not None:
+            link_entry["omega"] = solution.velocity.omega[name]
+        if name in asked.alpha and solution.acceleration is not None:
+            link_entry["alpha"] = solution.acceleration.alpha[name]
+    if links:
+        out["links"] = links
+    points: dict[str, dict[str, list[float]]] = {}
+    for label in dict.fromkeys((*scene.find.velocity, *scene.find.acceleration)):
+        points[label] = {"position": _pair(solution.position(label))}
+    for label in scene.find.velocity:
+        assert solution.velocity is not None
+        points[label]["velocity"] = _pair(solution.velocity.tips[label])
+    for label in scene.find.acceleration:
+        assert solution.acceleration is not None
+        points[label]["acceleration"] = _pair(solution.acceleration.tips[label])
+    if points:
+        out["points"] = points
+    if asked.sliders:
+        sliders: dict[str, dict[str, Any]] = {}
+        for name in asked.sliders:
+            values = solution.slider(name)
+            entry: dict[str, Any] = {"s": values.s}
+            if values.s_dot is not None:
+                entry["s_dot"] = values.s_dot
+            if values.s_ddot is not None and values.coriolis is not None:
+                entry["s_ddot"] = values.s_ddot
+                entry["coriolis"] = _pair(values.coriolis)
+            sliders[name] = entry
+        out["sliders"] = sliders
+    scales = polygon_scales(solution)
+    polygons: dict[str, Any] = {}
+    for kind, k in scales.items():
+        tips: dict[str, list[float]] = {"o": [0.0, 0.0]}
+        tips.update({label.lower(): _pair((k * v[0], k * v[1])) for label, v in _shown_tips(solution, kind).items()})
+        polygons[kind] = {"scale": k, "points": tips}
+    if polygons:
+        out["polygons"] = polygons
+    if solution.centers is not None:
+        out["instant_centers"] = centers_json(solution.centers)
+    context = Context(solution, scales)
+    out["steps"] = [_step_json(s, scales.get(s.polygon, 1.0), context) for s in solution.steps]
+    out["steps"] += kennedy_steps_json(solution.centers, context) if solution.centers is not None else []
+    check = solution.check
+    out["check"] = {
+        "reference": "analytic",
+        "max_rel_error": check.max_rel_error,
+        "relative": dict(check.relative),
+        "condition_number": check.condition_number,
+        "differences": {q.key: q.difference for q in check.quantities},
+    }
+    if solution.accuracy is not None:
+        out["check"].update(_accuracy_json(solution))
+    out["plan"] = solution.plan.describe()
+    out["timing"] = dict(solution.timing)
+    out["warnings"] = [{"code": n.code, "message": n.message} for n in solution.notices]
+    return out
+
+
+def _value_json(value: float | tuple[float, float]) -> float | list[float]:
+    return _pair(value) if isinstance(value, tuple) else float(value)
+
+
+def _accuracy_json(solution: Solution) -> dict[str, Any]:
+    """Per kind: normwise, componentwise and estimated relative errors; per quantity: both values and more."""
+    accuracy = solution.accuracy
+    assert accuracy is not None
+    return {
+        "estimate": accuracy.estimated,
+        "normwise": dict(accuracy.normwise),
+        "componentwise": dict(accuracy.componentwise),
+        "quantities": {q.key: {"kind": q.kind, "construction": _value_json(q.construction),
+                               "analytic": _value_json(q.analytic), "difference": q.difference,
+                               "estimate": q.estimate, "normwise": q.normwise, "componentwise": q.componentwise}
+                       for q in accuracy.quantities},
+    }
+
+
+def _accuracy_rows(solution: Solution) -> list[str]:
+    accuracy = solution.accuracy
+    if accuracy is None or not accuracy.normwise:
+        return []
+    rows = [[kind, f"{accuracy.normwise[kind]:.2g}",
+             "undefined" if accuracy.componentwise[kind] is None else f"{accuracy.componentwise[kind]:.2g}",
+             f"{accuracy.estimated.get(kind, 0.0):.2g}"] for kind in accuracy.normwise]
+    return _rows(["quantity", "normwise error", "componentwise error", "error estimate"], rows) + [""]
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.6g}"
+
+
+def input_text(solution: Solution) -> str:
+    inp, ground = solution.scene.input, solution.mechanism.ground
+    if isinstance(inp, LinkInput):
+        return (f"theta{ground}{inp.link} = {_fmt(_angle(solution, inp.angle_rad))} {solution.scene.units.angle}, "
+                f"omega{ground}{inp.link} = {_fmt(inp.omega)} rad/s, alpha{ground}{inp.link} = {_fmt(inp.alpha)} rad/s^2")
+    if isinstance(inp, SliderInput):
+        u = solution.scene.units.length
+        return f"s{inp.slider} = {_fmt(inp.s)} {u}, s_dot = {_fmt(inp.s_dot)} {u}/s, s_ddot = {_fmt(inp.s_ddot)} {u}/s^2"
+    return "given motion of " + ", ".join(p.name for p in inp.points)
+
+
+def _rows(header: list[str], rows: list[list[str]]) -> list[str]:
+    widths = [max(len(r[c]) for r in [header, *rows]) for c in range(len(header))]
+
+    def line(row: list[str]) -> str:
+        return "  ".join(v.rjust(w) if k else v.ljust(w) for k, (v, w) in enumerate(zip(row, widths, strict=True)))
+
+    return [line(header), "  ".join("-" * w for w in widths), *(line(r) for r in rows)]
+
+
+def table_text(solution: Solution) -> str:
+    """A readable summary: links, points, sliders, scales, warnings, and the cross-check footer."""
+    data = to_json(solution)
+    u, au = solution.scene.units.length, solution.scene.units.angle
+    out = [solution.scene.title, f"input: {input_text(solution)}", ""]
+    if "links" in data:
+        rows = [[name, _fmt(v["angle"]), _fmt(v["omega"]) if "omega" in v else "",
+                 _fmt(v["alpha"]) if "alpha" in v else ""] for name, v in data["links"].items()]
+        out += _rows(["link", f"angle ({au})", "omega (rad/s)", "alpha (rad/s^2)"], rows) + [""]
+    if "points" in data:
+        rows = []
+        for label, v in data["points"].items():
+            vel, acc = v.get("velocity"), v.get("acceleration")
+            rows.append([label, f"({_fmt(v['position'][0])}, {_fmt(v['position'][1])})",
+                         f"({_fmt(vel[0])}, {_fmt(vel[1])})" if vel else "", _fmt(math.hypot(*vel)) if vel else "",
+                         f"({_fmt(acc[0])}, {_fmt(acc[1])})" if acc else "", _fmt(math.hypot(*acc)) if acc else ""])
+        out += _rows(["point", f"position ({u})", f"velocity ({u}/s)", "|v|", f"acceleration ({u}/s^2)", "|a|"],
+                     rows) + [""]
+    if "sliders" in data:
+        rows = [[name, _fmt(v["s"]), _fmt(v["s_dot"]) if "s_dot" in v else "",
+                 _fmt(v["s_ddot"]) if "s_ddot" in v else "",
+                 f"({_fmt(v['coriolis'][0])}, {_fmt(v['coriolis'][1])})" if "coriolis" in v else ""]
+                for name, v in data["sliders"].items()]
+        out += _rows(["slider", f"s ({u})", f"s_dot ({u}/s)", f"s_ddot ({u}/s^2)", "coriolis"], rows) + [""]
+    if solution.centers is not None:
+        out += centers_table(solution.centers, u, data["check"]["relative"].get("instant_center")) + [""]
+    for kind, poly in data.get("polygons", {}).items():
+        per = f"{u}/s" if kind == "velocity" else f"{u}/s^2"
+        symbol = "kv" if kind == "velocity" else "ka"
+        out.append(f"{kind} polygon: {symbol} = {poly['scale']:g} mm of paper per {per}")
+    for w in data["warnings"]:
+        out.append(f"warning [{w['code']}]: {w['message']}")
+    out += _accuracy_rows(solution)
+    err = data["check"]["max_rel_error"]
+    verdict = "ok" if err <= 1e-9 else "DISAGREES"
+    t = data["timing"]
+    out.append(f"cross-check against the analytic solution: max relative error {err:.2g} ({verdict}); "
+               f"run time {1e3 * t['total_s']:.3g} ms (load {1e3 * t['load_s']:.2g}, position "
+               f"{1e3 * t['position_s']:.2g}, construction {1e3 * t['construction_s']:.2g}, check "
+               f"{1e3 * t['check_s']:.2g})")
+    return "\n".join(out)
+
+
+def steps_text(solution: Solution) -> str:
+    """The construction, one numbered step after another (the sentences from ``present.phrasing``, in English)."""
+    context = Context(solution, polygon_scales(solution))
+    out = [f"{solution.scene.title}: the construction, step by step", ""]
+    out += [f"position: {line}" for line in solution.plan.describe()] + [""]
+    for n, step in enumerate(solution.steps, 1):
+        out.append(f"{n:>2}. [{step.polygon}, {step.kind}] {step.equation}")
+        out.append(f"    {step_sentence(step, english(), context)}")
+        if step.known:
+            out.append("    known: " + "; ".join(f"{t} ({what})" for t, what in step.known))
+    if solution.centers is not None:
+        out += centers_steps_text(solution.centers, len(solution.steps) + 1, context)
+    return "\n".join(out)

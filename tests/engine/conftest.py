@@ -1,0 +1,4 @@
+"""Tests of the engine: the construction, the instant centers, the examples' closed forms, stability.
+
+Shared support for every layer is at tests/ (scenes.py: the examples and random mechanisms).
+"""

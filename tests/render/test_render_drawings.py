@@ -1,0 +1,40 @@
+"""drawings/ holds the current drawing of every example: a test fails when one is stale or missing.
+
+Regenerate with ``python3 tools/regenerate_drawings.py`` from the repository's root.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from tests.scenes import EXAMPLES
+from tools.compare_drawings import PNG_RMS_TOLERANCE, canonical_dxf, canonical_svg, png_rms
+from tools.regenerate_drawings import DRAWN_FORMATS, draw_example, stale
+
+DRAWINGS = EXAMPLES.parent / "drawings"
+
+
+def test_committed_drawings_are_current() -> None:
+    problems = stale(EXAMPLES, DRAWINGS)
+    assert not problems, "stale drawings; run python3 tools/regenerate_drawings.py:\n" + "\n".join(problems)
+
+
+def test_every_example_has_its_three_drawings() -> None:
+    for scene in EXAMPLES.glob("*.toml"):
+        for fmt in DRAWN_FORMATS:
+            assert (DRAWINGS / f"{scene.stem}.{fmt}").is_file()
+
+
+def test_the_comparison_sees_a_changed_drawing(tmp_path: Path) -> None:
+    """The canonical comparisons are not blind: a drawing of another scene differs in every format."""
+    draw_example(EXAMPLES / "four-bar.toml", tmp_path)
+    moved = tmp_path / "other"
+    moved.mkdir()
+    text = (EXAMPLES / "four-bar.toml").read_text().replace("angle = 60", "angle = 61")
+    (moved / "four-bar.toml").write_text(text)
+    draw_example(moved / "four-bar.toml", moved)
+    assert canonical_svg((tmp_path / "four-bar.svg").read_text()) != canonical_svg((moved / "four-bar.svg").read_text())
+    assert canonical_dxf(tmp_path / "four-bar.dxf") != canonical_dxf(moved / "four-bar.dxf")
+    assert png_rms(tmp_path / "four-bar.png", moved / "four-bar.png") > PNG_RMS_TOLERANCE
+    assert png_rms(tmp_path / "four-bar.png", tmp_path / "four-bar.png") == pytest.approx(0.0)
