@@ -6,6 +6,9 @@ A notebook needs four names::
     scene = kinepoly.load_scene("examples/four-bar.toml")   # or kinepoly.loads_scene(text)
     solution = kinepoly.solve(scene)
     kinepoly.to_json(solution)["links"]["3"]["omega"]
+
+``solution`` shows as its drawing in a notebook; ``kinepoly.draw(solution, part="velocity-polygon")``
+is SVG text; ``kinepoly.animate(scene, "four-bar.gif")`` is ``kinepoly animate`` (docs/python.md).
 """
 
 from kinepoly.errors import (
@@ -18,6 +21,7 @@ from kinepoly.errors import (
     SceneError,
     SingularityError,
 )
+from kinepoly.motion.api import animate, draw
 from kinepoly.present.report import steps_text, table_text, to_json
 from kinepoly.scene.loader import load_scene, loads_scene
 from kinepoly.scene.spec import Scene
@@ -34,6 +38,8 @@ __all__ = [
     "SceneError",
     "SingularityError",
     "Solution",
+    "animate",
+    "draw",
     "load_scene",
     "loads_scene",
     "solve",

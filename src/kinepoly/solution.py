@@ -19,7 +19,6 @@ from kinepoly.check import (
     localize,
     near_singular_notice,
     singular_position_error,
-    transmission_angles,
     transmission_notices,
 )
 from kinepoly.check.analytic import AnalyticSolution, solve_analytic
@@ -31,8 +30,10 @@ from kinepoly.engine.plan import PositionPlan, make_plan
 from kinepoly.engine.position import describe_input
 from kinepoly.engine.row import AccelerationPolygon, VelocityPolygon, acceleration_row, pose_row, velocity_row
 from kinepoly.engine.steps import Step
+from kinepoly.engine.transmission import transmission_angles
 from kinepoly.engine.velocity import construct_velocity
 from kinepoly.errors import SingularityError
+from kinepoly.geom.hull import diameter
 from kinepoly.geom.tolerances import LOUD_ERROR
 from kinepoly.geom.vec import Vec, dot, rotate, sub
 from kinepoly.model.mechanism import Mechanism, build_mechanism
@@ -100,6 +101,12 @@ class Solution:
     inside: Inside | None = None
     accuracy: AccuracyReport | None = None
     centers: InstantCenters | None = None
+
+    def _repr_svg_(self) -> str:
+        """A notebook shows the solution as its drawing."""
+        from kinepoly.motion.api import draw
+
+        return draw(self)
 
     @property
     def steps(self) -> tuple[Step, ...]:
@@ -183,13 +190,19 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     centers = find_instant_centers(inner, pose, center_plan, frame.origin) if center_plan else None
     t2 = time.perf_counter()
     where = describe_input(inner)
-    transmissions = transmission_angles(inner, pose, plan)
+    transmissions = transmission_angles(positions, plan)
     draft = Solution(frame.scene, inner, asked, plan, pose, velocity, acceleration, compare([], 1.0), (),
                      centers=centers)
     try:
-        analytic = solve_analytic(inner, dict(pose.links), with_acceleration=asked.needs_acceleration)
+        with np.errstate(all="ignore"):  # rates beyond double precision are reported by name just below
+            analytic = solve_analytic(inner, dict(pose.links), with_acceleration=asked.needs_acceleration)
     except SingularityError as error:
         raise singular_position_error(where, transmissions, draft.steps, str(error)) from error
+    rates = [*analytic.omega.values(), *(analytic.alpha.values() if analytic.alpha else ())]
+    rates += [c.omega for c in centers.omegas] if centers else []
+    if not all(math.isfinite(x) for x in rates):
+        raise SingularityError(f"the velocities at {where} overflowed: they are beyond the range of double "
+                               "precision (reduce the input's rates)")
     check = compare(_quantities(draft, analytic), analytic.condition_number, _natural_scales(draft))
     kennedy = {"instant_center": max((s.relative_error for s in centers.steps), default=0.0)} if centers else None
     estimate = estimate_errors(analytic.condition_number, draft.steps, check.relative, kennedy)
@@ -275,7 +288,7 @@ def _center_quantities(sol: Solution, analytic: AnalyticSolution) -> list[Quanti
 def _natural_scales(sol: Solution) -> dict[str, float]:
     """Each kind's size in the whole solution: every tip and rate, and what the other kinds imply."""
     points = [sol.pose.links[k].world(p.local) for k in sol.pose.links for p in sol.scene.link(k).points]
-    size = max((math.hypot(x - u, y - w) for (x, y) in points for (u, w) in points), default=0.0)
+    size = diameter(points)
     omega = max((abs(w) for w in sol.velocity.omega.values()), default=0.0) if sol.velocity else 0.0
     alpha = max((abs(a) for a in sol.acceleration.alpha.values()), default=0.0) if sol.acceleration else 0.0
     speed = max((math.hypot(*t) for t in sol.velocity.tips.values()), default=0.0) if sol.velocity else 0.0

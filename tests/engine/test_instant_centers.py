@@ -16,11 +16,11 @@ from pathlib import Path
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+from tests.cli_support import run
 from tests.scenes import EXAMPLES, four_bar, slider_crank, slotted_lever
 
 import kinepoly
 from kinepoly.check.analytic import AnalyticSolution, solve_analytic
-from kinepoly.cli import main
 from kinepoly.engine.centers import InstantCenter
 from kinepoly.engine.circle_diagram import edge, pair_name, plan_kennedy
 from kinepoly.errors import AssemblyError, SingularityError
@@ -363,12 +363,6 @@ def test_canonical_direction_and_offset() -> None:
 # ----------------------------------------------------------------------------------------------
 # What the user sees: JSON, table, steps, errors
 # ----------------------------------------------------------------------------------------------
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_json_keys_as_asked_and_kennedy_steps(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:

@@ -1,34 +1,28 @@
 """The handout's web page in a real browser (Debian's chromium, headless): it steps through the construction.
 
-Driven over the DevTools protocol (``tests/browser.py``): the address's ``#page-N`` opens a page,
-the arrow keys, Home and End, the buttons (real mouse clicks) and the slider (focused, moved
-with a key) change it, and the page shown is always the one the address and the label name.
-Skipped where chromium is not installed, except on CI (CI set), where that is a failure.
+Driven by playwright (``tests/chromium.py``): the address's ``#page-N`` opens a page, the arrow
+keys, Home and End, the buttons (real mouse clicks) and the slider (focused, moved with a key)
+change it, and the page shown is always the one the address and the label name. Skipped where
+chromium is not installed, except on CI (CI set), where that is a failure.
 """
 
 from __future__ import annotations
 
-import os
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
-from tests.browser import Browser, chromium
+from tests.chromium import browser_page
 from tests.scenes import EXAMPLES
 
 from kinepoly.cli import main
 
 
 @pytest.fixture(scope="module")
-def browser() -> Iterator[Browser]:
-    executable = chromium()
-    if executable is None:
-        if os.environ.get("CI"):
-            pytest.fail("chromium is not installed; CI must install it (apt-get install chromium, see .ci/run)")
-        pytest.skip("chromium is not installed")
-    opened = Browser(executable)
-    yield opened
-    opened.close()
+def browser() -> Iterator[Any]:
+    with browser_page() as page:
+        yield page
 
 
 @pytest.fixture(scope="module")
@@ -38,7 +32,13 @@ def page(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return target
 
 
-def _state(browser: Browser) -> tuple[int, str, str, str]:
+def _go(browser: Any, url: str) -> None:
+    """Load ``url`` afresh (by way of about:blank, so that a change of the hash alone loads it too)."""
+    browser.goto("about:blank")
+    browser.goto(url)
+
+
+def _state(browser: Any) -> tuple[int, str, str, str]:
     """(page number shown, the address's hash, the id of the one section shown, the label)."""
     shown = browser.evaluate("Array.from(document.querySelectorAll('section.page')).filter(s => !s.hidden)"
                              ".map(s => s.id)")
@@ -47,40 +47,39 @@ def _state(browser: Browser) -> tuple[int, str, str, str]:
             browser.evaluate("document.getElementById('where').textContent"))
 
 
-def test_the_page_steps_through_the_construction(browser: Browser, page: Path, tmp_path: Path) -> None:
-    browser.go(page.as_uri() + "#page-3")
+def test_the_page_steps_through_the_construction(browser: Any, page: Path, tmp_path: Path) -> None:
+    _go(browser, page.as_uri() + "#page-3")
     count = browser.evaluate("document.querySelectorAll('section.page').length")
     assert count == 15
     number, where, shown, label = _state(browser)
     assert (number, where, shown) == (3, "#page-3", "page-3") and label.startswith("Adım 2 / 13")
-    browser.screenshot(tmp_path / "page-3.png")
-    browser.press("ArrowRight")
+    browser.screenshot(path=str(tmp_path / "page-3.png"))
+    browser.keyboard.press("ArrowRight")
     assert _state(browser)[:3] == (4, "#page-4", "page-4")
     browser.click("#next")
     assert _state(browser)[:3] == (5, "#page-5", "page-5")
     browser.click("#previous")
     browser.click("#previous")
     assert _state(browser)[:3] == (3, "#page-3", "page-3")
-    browser.press("End")
+    browser.keyboard.press("End")
     assert _state(browser)[:3] == (15, "#page-15", "page-15")
     assert browser.evaluate("document.getElementById('next').disabled") is True
-    browser.press("ArrowRight")  # past the end: stays
+    browser.keyboard.press("ArrowRight")  # past the end: stays
     assert _state(browser)[0] == 15
-    browser.press("Home")
+    browser.keyboard.press("Home")
     number, _, _, label = _state(browser)
     assert number == 1 and label == "Soru" and browser.evaluate("document.getElementById('previous').disabled")
-    browser.evaluate("document.getElementById('slider').focus()")
-    browser.press("ArrowRight")  # the slider's own key: one page on, not two
+    browser.focus("#slider")
+    browser.keyboard.press("ArrowRight")  # the slider's own key: one page on, not two
     assert _state(browser)[:3] == (2, "#page-2", "page-2")
     assert browser.evaluate("document.getElementById('slider').value") == "2"
-    browser.screenshot(tmp_path / "page-2.png")
+    browser.screenshot(path=str(tmp_path / "page-2.png"))
     assert (tmp_path / "page-2.png").read_bytes().startswith(b"\x89PNG")
-    errors = [e for e in browser.events if e.get("method") == "Runtime.exceptionThrown"]
-    assert errors == []
+    assert browser.errors == []
 
 
-def test_each_section_shows_its_drawing_and_its_equation(browser: Browser, page: Path) -> None:
-    browser.go(page.as_uri() + "#page-11")
+def test_each_section_shows_its_drawing_and_its_equation(browser: Any, page: Path) -> None:
+    _go(browser, page.as_uri() + "#page-11")
     shown = browser.evaluate("(() => { const s = document.querySelector('section.page:not([hidden])');"
                              " const r = s.querySelector('svg').getBoundingClientRect();"
                              " return [s.dataset.equation, s.querySelector('.equation').textContent, r.width, r.height];"
@@ -89,3 +88,4 @@ def test_each_section_shows_its_drawing_and_its_equation(browser: Browser, page:
     assert equation.startswith("a_B = a_A + a^n_B/A") and written.replace(" ", "") == \
         equation.replace("_", "").replace("^", "").replace(" ", "")
     assert width > 400 and height > 200  # the drawing is laid out, not collapsed
+    assert browser.errors == []

@@ -8,10 +8,10 @@ import json
 from pathlib import Path
 
 import pytest
+from tests.cli_support import run
 from tests.scenes import EXAMPLES, four_bar
 
 import kinepoly
-from kinepoly.cli import main
 
 SLOTTED = str(EXAMPLES / "slotted-lever.toml")
 RIGHT = """student = "Ana Pop"
@@ -22,12 +22,6 @@ v_A = [-346.4, 200]
 a_A = { magnitude = 4000, angle = 240 }
 "a_A@4" = [-1377, -2612]
 """
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def write(folder: Path, name: str, text: str) -> str:

@@ -7,17 +7,11 @@ import math
 from pathlib import Path
 
 import pytest
+from tests.cli_support import run
 from tests.scenes import EXAMPLES, four_bar
 
 import kinepoly
-from kinepoly.cli import main
 from kinepoly.homework import Variant, default_ranges, make_variants
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def make(capsys: pytest.CaptureFixture[str], folder: Path, scene: Path | str, *options: str) -> list[Path]:

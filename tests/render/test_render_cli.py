@@ -7,18 +7,12 @@ import sys
 from pathlib import Path
 
 import pytest
+from tests.cli_support import run
 from tests.scenes import EXAMPLES
 
 import kinepoly
-from kinepoly.cli import main
 
 FOUR_BAR = str(EXAMPLES / "four-bar.toml")
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.mark.parametrize("ext, magic", [("svg", b"<?xml"), ("dxf", b"  0\nSECTION"), ("png", b"\x89PNG"),

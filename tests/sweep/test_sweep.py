@@ -9,23 +9,17 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from tests.cli_support import run
 from tests.scenes import EXAMPLES, four_bar, slider_crank
 from tests.sweep_support import ask_everything, compare_row
 
 import kinepoly
 import kinepoly.sweep
-from kinepoly.cli import main
 from kinepoly.sweep import prepare_sweep, run_sweep, sweep
 from kinepoly.sweep.plots import plot_figure, plot_png
 from kinepoly.sweep.table import csv_text
 
 EXAMPLE_NAMES = ["four-bar", "slider-crank", "slotted-lever", "shaper", "centers-six-bar", "triad"]
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    code = main(list(argv))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.mark.parametrize("name", EXAMPLE_NAMES)

@@ -29,10 +29,8 @@ if TYPE_CHECKING:
     from kinepoly.check.conditions import (
         MIN_TRANSMISSION_DEG,
         NEAR_SINGULAR_ERROR,
-        Transmission,
         near_singular_notice,
         singular_position_error,
-        transmission_angles,
         transmission_notices,
     )
     from kinepoly.check.estimate import ErrorEstimate, componentwise_error, estimate_errors, normwise_error
@@ -42,9 +40,8 @@ if TYPE_CHECKING:
 _HOME = {
     "AnalyticSolution": "analytic", "solve_analytic": "analytic",
     "CheckReport": "compare", "Quantity": "compare",
-    "MIN_TRANSMISSION_DEG": "conditions", "NEAR_SINGULAR_ERROR": "conditions", "Transmission": "conditions",
-    "near_singular_notice": "conditions", "singular_position_error": "conditions",
-    "transmission_angles": "conditions", "transmission_notices": "conditions",
+    "MIN_TRANSMISSION_DEG": "conditions", "NEAR_SINGULAR_ERROR": "conditions",
+    "near_singular_notice": "conditions", "singular_position_error": "conditions", "transmission_notices": "conditions",
     "ErrorEstimate": "estimate", "componentwise_error": "estimate", "estimate_errors": "estimate",
     "normwise_error": "estimate",
     "LocalFrame": "frame", "localize": "frame",
@@ -61,7 +58,6 @@ __all__ = [
     "LocalFrame",
     "Quantity",
     "QuantityError",
-    "Transmission",
     "assess",
     "componentwise_error",
     "estimate_errors",
@@ -70,7 +66,6 @@ __all__ = [
     "normwise_error",
     "singular_position_error",
     "solve_analytic",
-    "transmission_angles",
     "transmission_notices",
 ]
 

@@ -30,8 +30,8 @@ from kinepoly.check.given import RIGID_REL_TOL, solve_given
 from kinepoly.check.newton import (
     NEWTON_REL_TOL,
     SINGULAR_CONDITION,
+    IndexedLayout,
     System,
-    condition_number,
     newton,
     singular_error,
     solve_scaled,
@@ -183,7 +183,7 @@ def solve_analytic(mechanism: Mechanism, start: dict[str, LinkPose], *, with_acc
         return _given_solution(mechanism, with_acceleration=with_acceleration)
     ground = mechanism.ground
     moving = tuple(name for name in mechanism.link_names if name != ground)
-    layout = Layout(moving, ground, mechanism_size(mechanism))
+    layout = IndexedLayout(moving, ground, mechanism_size(mechanism))
     system = System(tuple(constraints_of(mechanism)), layout, _where(mechanism), mechanism.scene.source)
     if len(system.row_scale) != layout.n:
         raise SceneError(
@@ -196,7 +196,7 @@ def solve_analytic(mechanism: Mechanism, start: dict[str, LinkPose], *, with_acc
     q, residual = newton(system, q0)
 
     jac = system.scaled_jacobian(q)
-    condition = condition_number(jac)
+    condition = system.condition(jac)  # each group's own, block by block (linear in the number of groups)
     if condition > SINGULAR_CONDITION:
         raise singular_error(system, condition)
     q_dot = solve_scaled(system, jac, system.nu())

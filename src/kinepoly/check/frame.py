@@ -14,9 +14,9 @@ its coordinates exceed ``FAR_FACTOR`` times its own extent.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
+from kinepoly.geom.hull import diameter
 from kinepoly.geom.vec import Vec, rotate
 from kinepoly.model.pose import LinkPose, Pose
 from kinepoly.scene.spec import LinkSpec, PointSpec, Scene, SliderSpec
@@ -63,7 +63,7 @@ class LocalFrame:
 def _extent(points: list[Vec]) -> tuple[float, float]:
     """(largest coordinate, largest distance between two points)."""
     far = max((max(abs(x), abs(y)) for x, y in points), default=0.0)
-    spread = max((math.hypot(a[0] - b[0], a[1] - b[1]) for a in points for b in points), default=0.0)
+    spread = diameter(points)
     return far, spread
 
 

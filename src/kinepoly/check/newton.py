@@ -7,11 +7,14 @@ multiplied by the mechanism's size L (theta * L is a length) and the angle rows 
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from kinepoly.check.blocks import SparseMatrix, block_condition, solve_blocks, window_condition
 from kinepoly.check.constraints import Constraint
 from kinepoly.check.coordinates import Body, Layout, bodies
 from kinepoly.errors import AssemblyError, SingularityError
@@ -19,6 +22,7 @@ from kinepoly.errors import AssemblyError, SingularityError
 __all__ = [
     "NEWTON_REL_TOL",
     "SINGULAR_CONDITION",
+    "IndexedLayout",
     "System",
     "condition_number",
     "newton",
@@ -39,6 +43,10 @@ NEWTON_REL_TOL = 1e-12
 """Newton stops when every residual is below this times the mechanism's size (lengths)."""
 
 _MAX_NEWTON_STEPS = 100
+
+WINDOW = 60
+"""Unknowns (20 moving links) up to which the Jacobian's condition is the whole system's; beyond, a group's
+with the groups next to it (``check.blocks.window_condition``): linear in a chain's length."""
 
 
 @dataclass(frozen=True)
@@ -74,12 +82,42 @@ class System:
         """Phi with angle rows in lengths (times L)."""
         return np.asarray(self.row_scale * self.phi(q), dtype=float)
 
-    def jacobian(self, q: np.ndarray) -> np.ndarray:
-        b = self.bodies(q)
-        return np.vstack([c.jacobian(b, self.layout) for c in self.constraints])
+    @functools.cached_property
+    def _columns(self) -> dict[str, int]:
+        """Each moving link's first column in q."""
+        return {link: 3 * k for k, link in enumerate(self.layout.moving)}
 
-    def scaled_jacobian(self, q: np.ndarray) -> np.ndarray:
-        return np.asarray(self.row_scale[:, None] * self.jacobian(q) * self.col_scale[None, :], dtype=float)
+    def jacobian(self, q: np.ndarray) -> SparseMatrix:
+        """Phi_q as a sparse matrix: each constraint's rows, derived over only the links it joins."""
+        b = self.bodies(q)
+        rows: list[np.ndarray] = []
+        cols: list[np.ndarray] = []
+        values: list[np.ndarray] = []
+        first = 0
+        columns = self._columns
+        for c in self.constraints:
+            links = _links_of(c, columns)
+            part = np.asarray(c.jacobian(b, Layout(links, self.layout.ground, self.layout.size)), dtype=float)
+            where = np.array([columns[link] + k for link in links for k in range(3)], dtype=int)
+            r, k = np.nonzero(part)
+            rows.append(r + first)
+            cols.append(where[k])
+            values.append(part[r, k])
+            first += part.shape[0]
+        n = self.layout.n
+        if not rows:
+            return SparseMatrix.of((first, n), np.zeros(0), np.zeros(0), np.zeros(0))
+        return SparseMatrix.of((first, n), np.concatenate(rows), np.concatenate(cols), np.concatenate(values))
+
+    def scaled_jacobian(self, q: np.ndarray) -> SparseMatrix:
+        return self.jacobian(q).scaled(self.row_scale, self.col_scale)
+
+    def condition(self, scaled_jac: SparseMatrix) -> float:
+        """The condition of the scaled Jacobian as each group sees it (``check.blocks.window_condition``): the
+        whole system's 2-norm condition up to WINDOW unknowns, beyond that each group's with its neighbours."""
+        angle_rows = np.array([f for c in self.constraints for f in c.angle_rows], dtype=bool)
+        angle_columns = np.tile([False, False, True], len(self.layout.moving))
+        return window_condition(scaled_jac, WINDOW, angle_columns=angle_columns, angle_rows=angle_rows)
 
     def nu(self) -> np.ndarray:
         return np.concatenate([c.nu() for c in self.constraints])
@@ -89,14 +127,42 @@ class System:
         return np.concatenate([c.gamma(b) for c in self.constraints])
 
 
+@dataclass(frozen=True)
+class IndexedLayout(Layout):
+    """A Layout whose columns are looked up in a table (``Layout.column`` scans the links: quadratic in a chain)."""
+
+    @functools.cached_property
+    def _columns(self) -> dict[str, int]:
+        return {link: 3 * k for k, link in enumerate(self.moving)}
+
+    def column(self, link: str) -> int | None:
+        return None if link == self.ground else self._columns[link]
+
+
+def _links_of(constraint: Constraint, moving: dict[str, int]) -> tuple[str, ...]:
+    """The moving links a constraint joins: its fields that name a moving link."""
+    names = [getattr(constraint, f.name) for f in dataclasses.fields(constraint)]  # type: ignore[arg-type]
+    return tuple(dict.fromkeys(n for n in names if isinstance(n, str) and n in moving))
+
 
 # --------------------------------------------------------------------------------------------
 # Linear solves, each checked for its condition first
 # --------------------------------------------------------------------------------------------
 
 
-def condition_number(matrix: np.ndarray) -> float:
-    """2-norm condition number by SVD (inf when singular)."""
+def condition_number(matrix: np.ndarray | SparseMatrix) -> float:
+    """2-norm condition number by SVD (inf when singular); a sparse matrix is judged block by block.
+
+    A ``SparseMatrix`` (the Jacobian) is put in block triangular form (``check.blocks``) and the
+    largest condition number of its diagonal blocks is returned: the matrix is singular exactly
+    when one of them is, and each group's conditioning is judged on its own, in time linear in
+    the number of groups, instead of by one dense SVD whose condition also grows with the length
+    of a chain of healthy loops.
+    """
+    if isinstance(matrix, SparseMatrix):
+        return block_condition(matrix)
+    if matrix.size == 0:
+        return 1.0
     sv = np.linalg.svd(matrix, compute_uv=False)
     return math.inf if sv[-1] == 0.0 else float(sv[0] / sv[-1])
 
@@ -110,10 +176,17 @@ def singular_error(system: System, condition: float) -> SingularityError:
     )
 
 
-def solve_scaled(system: System, scaled_jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+def solve_scaled(system: System, scaled_jac: np.ndarray | SparseMatrix, rhs: np.ndarray) -> np.ndarray:
     """Solve Phi_q x = rhs through the scaled system (its condition checked by the caller)."""
-    y = np.linalg.solve(scaled_jac, system.row_scale * rhs)
-    return system.col_scale * y
+    y = _solve(scaled_jac, system.row_scale * rhs)
+    return np.asarray(system.col_scale * y, dtype=float)
+
+
+def _solve(matrix: np.ndarray | SparseMatrix, rhs: np.ndarray) -> np.ndarray:
+    """matrix y = rhs; the Jacobian block by block (linear in the number of groups)."""
+    if isinstance(matrix, SparseMatrix):
+        return solve_blocks(matrix, np.asarray(rhs, dtype=float))
+    return np.asarray(np.linalg.solve(matrix, rhs), dtype=float)
 
 
 # --------------------------------------------------------------------------------------------
@@ -137,7 +210,7 @@ def newton(system: System, q0: np.ndarray) -> tuple[np.ndarray, float]:
     for _ in range(_MAX_NEWTON_STEPS):
         if norm == 0.0:
             break
-        step = system.col_scale * _newton_step(system.scaled_jacobian(q), f)
+        step = system.col_scale * _newton_step(system, system.scaled_jacobian(q), f)
         # converged already: only a full step may polish the last digits; halving it would spend
         # forty residual evaluations to move q by less than its rounding
         improved = _line_search(system, q, step, norm, halvings=0 if norm <= tol else 40)
@@ -153,11 +226,11 @@ def newton(system: System, q0: np.ndarray) -> tuple[np.ndarray, float]:
     return q, norm
 
 
-def _newton_step(jac: np.ndarray, f: np.ndarray) -> np.ndarray:
+def _newton_step(system: System, jac: SparseMatrix, f: np.ndarray) -> np.ndarray:
     """Solve jac y = -f, by least squares where jac is singular (its condition checked first)."""
-    if condition_number(jac) <= SINGULAR_CONDITION:
-        return np.linalg.solve(jac, -f)
-    return np.asarray(np.linalg.lstsq(jac, -f, rcond=None)[0], dtype=float)
+    if block_condition(jac) <= SINGULAR_CONDITION:  # singular exactly when a diagonal block is
+        return _solve(jac, -f)
+    return np.asarray(np.linalg.lstsq(jac.toarray(), -f, rcond=None)[0], dtype=float)
 
 
 def _line_search(

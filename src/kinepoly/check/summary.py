@@ -34,10 +34,6 @@ class QuantityError:
     normwise: float
     componentwise: float | None
 
-    @property
-    def is_within_estimate(self) -> bool:
-        return self.difference <= self.estimate
-
 
 @dataclass(frozen=True)
 class AccuracyReport:

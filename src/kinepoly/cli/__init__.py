@@ -1,12 +1,12 @@
 """The command line: the only place that prints or writes files. ``main(argv) -> int`` so tests call it in-process.
 
 One module per command, each with ``add_arguments(parser)`` and ``run(args) -> int`` (the exit
-status): ``solve``, ``draw``, ``check``, ``variants``, ``bench``, ``sweep``, ``handout``. The
+status): ``solve``, ``draw``, ``check``, ``variants``, ``bench``, ``sweep``, ``handout``, ``animate``. The
 modules import their heavy dependencies inside ``run``, so building the parser stays cheap;
 ``files`` writes a file whole or not at all.
 
 Exit status: 0 solved; 1 an answer was wrong (``check``); 2 the scene or the command is wrong;
-3 the mechanism cannot be assembled or is singular at that input; 70 an internal error.
+3 the mechanism cannot be assembled or is singular at that input; 70 an internal error; 130 interrupted (Ctrl-C).
 """
 
 from __future__ import annotations
@@ -16,12 +16,14 @@ import os
 import sys
 from collections.abc import Callable, Sequence
 
-from kinepoly.cli import bench, check, draw, handout, solve, sweep, variants
+from kinepoly.cli import animate, bench, check, draw, handout, solve, sweep, variants
 from kinepoly.errors import EXIT_SCENE, KinepolyError
 
-__all__ = ["EXIT_INTERNAL", "main", "main_exit"]
+__all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "main", "main_exit"]
 
 EXIT_INTERNAL = 70
+EXIT_INTERRUPTED = 130
+"""Ctrl-C, as a shell reports a process stopped by SIGINT (128 + 2)."""
 
 _COMMANDS: tuple[tuple[str, str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]],
                  ...] = (
@@ -36,6 +38,8 @@ _COMMANDS: tuple[tuple[str, str, Callable[[argparse.ArgumentParser], None], Call
      sweep.add_arguments, sweep.run),
     ("handout", ("a teaching handout: the problem, the construction step by step, the answers; PDF or one web "
                  "page; en, tr, ro or your own"), handout.add_arguments, handout.run),
+    ("animate", ("the mechanism moving over a sweep with its polygons at fixed scales: GIF, MP4 (ffmpeg) or one "
+                 "web page"), animate.add_arguments, animate.run),
 )
 
 
@@ -73,6 +77,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KinepolyError as error:
         print(f"kinepoly: error: {error}", file=sys.stderr)
         return error.exit_code
+    except KeyboardInterrupt:  # Ctrl-C: no traceback; every file is written whole or not at all, so none is half
+        print("kinepoly: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except BrokenPipeError:  # the reader (``| head``) left early: what it read is all it wanted
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())

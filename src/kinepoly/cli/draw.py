@@ -9,6 +9,8 @@ never leaves half a file. A path that cannot be written is an ``OutputError`` (e
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -34,8 +36,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _targets(output: str, stem: str) -> list[tuple[Path, str]]:
     path = Path(output)
-    if output.endswith(("/", "\\")) or path.is_dir():
-        _make_folder(path, "-o")
+    if output.endswith(("/", "\\")) or path.is_dir():  # made once the drawing is (a failed run leaves none)
+        _check_folder(path, "-o")
         return [(path / f"{stem}.{fmt}", fmt) for fmt in FORMATS]
     fmt = path.suffix.lower().lstrip(".")
     if fmt not in FORMATS:
@@ -44,6 +46,16 @@ def _targets(output: str, stem: str) -> list[tuple[Path, str]]:
     if not path.parent.is_dir():
         raise OutputError(f"-o {output}: the folder {str(path.parent)!r} does not exist; create it or choose another")
     return [(path, fmt)]
+
+
+def _check_folder(path: Path, option: str) -> None:
+    """Refuse, before solving, a folder that could not be made: it or a parent of it is a file."""
+    for part in (path, *path.parents):
+        if part.exists():
+            if not part.is_dir():
+                raise OutputError(f"{option} {path}: cannot create the folder ({str(part)!r} is a file); choose "
+                                  "another")
+            return
 
 
 def _make_folder(path: Path, option: str) -> None:
@@ -71,12 +83,32 @@ def _writer(fmt: str, sheet: Any, dpi: int) -> tuple[Callable[[IO[Any]], None], 
     return (lambda stream: write_pdf(sheet, stream)), True
 
 
-def _write(path: Path, fmt: str, sheet: Any, dpi: int) -> None:
+def _render(path: Path, fmt: str, sheet: Any, dpi: int) -> tuple[str | bytes, bool]:
+    """The file's whole content, made in memory: a multi-file output is written only once every file is made."""
     write, binary = _writer(fmt, sheet, dpi)
+    stream: io.BytesIO | io.StringIO = io.BytesIO() if binary else io.StringIO()
     try:
-        write_atomically(path, write, binary=binary)
+        write(stream)
     except OSError as error:
         raise OutputError(f"cannot write {path}: {error.strerror or error}") from error
+    return stream.getvalue(), binary
+
+
+def _write_all(files: list[tuple[Path, str | bytes, bool]]) -> None:
+    """Write every file (each whole, by rename); when one cannot be written, remove those this run wrote."""
+    done: list[Path] = []
+    for path, content, binary in files:
+        def write(stream: IO[Any], content: str | bytes = content) -> None:
+            stream.write(content)
+
+        try:
+            write_atomically(path, write, binary=binary)
+        except OSError as error:
+            for written in done:
+                with contextlib.suppress(OSError):
+                    written.unlink()
+            raise OutputError(f"cannot write {path}: {error.strerror or error}") from error
+        done.append(path)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -103,21 +135,35 @@ def _draw(args: argparse.Namespace) -> list[str]:
         raise OutputError(str(error)) from error
     targets = _targets(args.output, Path(args.scene).stem) if args.output else []
     if args.steps:
-        _make_folder(Path(args.steps), "--steps")
+        _check_folder(Path(args.steps), "--steps")
     t0 = time.perf_counter()
     solution = solve(load_scene(args.scene), load_s=0.0)
     layout = layout_sheet(solution, paper)
-    lines = []
+    lines: list[str] = []
+    files: list[tuple[Path, str | bytes, bool]] = []
     if targets:
         sheet = build_sheet(solution, paper, layout=layout)
         for path, fmt in targets:
-            _write(path, fmt, sheet, args.dpi)
+            files.append((path, *_render(path, fmt, sheet, args.dpi)))
             lines.append(f"wrote {path}")
+    total = len(solution.steps) if args.steps else 0
+    for number in range(1, total + 1):
+        path = Path(args.steps) / f"step-{number:0{max(2, len(str(total)))}d}.svg"
+        files.append((path, *_render(path, "svg", build_sheet(solution, paper, step=number, layout=layout), args.dpi)))
+    made: list[Path] = []
+    try:
+        for folder, option in sorted({(p.parent, "--steps" if args.steps and p.parent == Path(args.steps) else "-o")
+                                      for p, _, _ in files}):
+            if not folder.is_dir():
+                _make_folder(folder, option)
+                made.append(folder)
+        _write_all(files)
+    except OutputError:
+        for folder in reversed(made):  # nothing left behind: the folders this run made, empty again
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        raise
     if args.steps:
-        total = len(solution.steps)
-        for number in range(1, total + 1):
-            path = Path(args.steps) / f"step-{number:0{max(2, len(str(total)))}d}.svg"
-            _write(path, "svg", build_sheet(solution, paper, step=number, layout=layout), args.dpi)
         lines.append(f"wrote {total} step drawings to {args.steps}")
     lines.append(f"drawn in {1e3 * (time.perf_counter() - t0):.0f} ms")
     return lines

@@ -8,6 +8,8 @@ leaves no half file. Bad options are an ``OutputError`` (exit 2) with what to ch
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -78,21 +80,37 @@ def _handout(args: argparse.Namespace) -> list[str]:
     t0 = time.perf_counter()
     solution = solve(load_scene(args.scene))
     lines = []
+    files: list[tuple[Path, bytes | str, bool]] = []  # made in memory first: both files or neither
     if pdf is not None:
         from kinepoly.handout.build import handout_sheets
         from kinepoly.render.mpl import write_pdf_pages
 
         handout, sheets = handout_sheets(solution, say, paper)
-        _write(pdf, lambda stream: write_pdf_pages(sheets, stream, handout.title), True)
+        buffer = io.BytesIO()
+        try:
+            write_pdf_pages(sheets, buffer, handout.title)
+        except OSError as error:
+            raise OutputError(f"cannot write {pdf}: {error.strerror or error}") from error
+        files.append((pdf, buffer.getvalue(), True))
         lines.append(f"wrote {pdf} ({len(sheets)} pages, {say.language})")
     if page is not None:
         from kinepoly.handout.html import handout_html
 
         handout, text = handout_html(solution, say, paper)
-        def write_text(stream: IO[Any]) -> None:
-            stream.write(text)
-
-        _write(page, write_text, False)
+        files.append((page, text, False))
         lines.append(f"wrote {page} ({len(handout.pages)} pages, {say.language})")
+    written: list[Path] = []
+    for path, content, binary in files:
+        def write(stream: IO[Any], content: bytes | str = content) -> None:
+            stream.write(content)
+
+        try:
+            _write(path, write, binary)
+        except OutputError:
+            for done in written:
+                with contextlib.suppress(OSError):
+                    done.unlink()
+            raise
+        written.append(path)
     lines.append(f"made in {1e3 * (time.perf_counter() - t0):.0f} ms")
     return lines

@@ -82,7 +82,8 @@ class _Context:
         start = b.tip(known_link, known_point)
         r = b.world(point) - b.world(known_point)
         w = b.omega_of(moving)
-        end = np.asarray(start + (self.rules.normal * w * w) * r)
+        normal = (w * w) * r
+        end = np.asarray(start - normal if self.rules.normal < 0.0 else start + normal)
         size = link_length(b.mechanism, moving, known_point, point) if rigid else None
         vector = DrawnVector(f"a^n_{point}/{known_point}", b.vec(start), b.vec(end), "normal") if b.record else None
         return (end, np.asarray(1j * r), size), vector, f"a^t_{point}/{known_point} perpendicular to {known_point}{point}"
@@ -122,13 +123,14 @@ class _Context:
         return end, [vector]
 
     def slide_values(self, slider: SliderSpec, link: str, point: str) -> None:
-        """Sliding acceleration and Coriolis term of the block relative to the guide."""
+        """Sliding acceleration and Coriolis term of the block relative to the guide (the Coriolis term as
+        the rules lay it: the sliding term is what remains of the relative acceleration)."""
         b = self.b
         other = slider.guide if link == slider.block else slider.block
         block_side, guide_side = (link, other) if link == slider.block else (other, link)
         a_block, a_guide = b.tip(block_side, point), b.tip(guide_side, point)
         v_rel = self.v_tip(block_side, point) - self.v_tip(guide_side, point)
-        coriolis = np.asarray((2.0 * b.omega_of(slider.guide)) * (1j * v_rel))
+        coriolis = np.asarray((self.rules.coriolis * 2.0 * b.omega_of(slider.guide)) * (1j * v_rel))
         self.coriolis[slider.name] = coriolis
         self.sliding[slider.name] = np.asarray(a_block - a_guide - coriolis)
 
@@ -173,7 +175,8 @@ def _slide_label(slider: SliderSpec) -> str:
 
 def _dyad(ctx: _Context, dyad: Dyad) -> None:
     b, i, j = ctx.b, dyad.first, dyad.second
-    b.where = f"of group {dyad.name} at {describe_input(b.mechanism)}"
+    if b.strict:
+        b.where = f"of group {dyad.name} at {describe_input(b.mechanism)}"
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point

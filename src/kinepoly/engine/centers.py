@@ -30,7 +30,7 @@ from kinepoly.engine.kennedy import derive_centers
 from kinepoly.engine.plan import make_plan
 from kinepoly.errors import SceneError
 from kinepoly.geom.vec import Vec
-from kinepoly.model.mechanism import Joint, Mechanism, joint_links
+from kinepoly.model.mechanism import Joint, Mechanism, Revolute, joint_links
 from kinepoly.model.pose import Pose
 
 __all__ = [
@@ -52,11 +52,18 @@ def _asked_edge(source: str, key: str, links: tuple[str, ...]) -> Edge:
 
 
 def _joints(mechanism: Mechanism) -> dict[Edge, Joint]:
+    """Each primary center's joint: a pin is the center of every two links it joins (a compound
+    hinge of k links gives k (k - 1) / 2 of them), a slider the center of its block and guide."""
     links = mechanism.link_names
     out: dict[Edge, Joint] = {}
     for joint in mechanism.joints:
         a, b = joint_links(joint)
         out.setdefault(edge(a, b, links), joint)
+        if isinstance(joint, Revolute):
+            for other in mechanism.links_of_point(joint.point):
+                for link in (a, b):
+                    if other not in (a, b):
+                        out.setdefault(edge(link, other, links), Revolute(joint.point, (link, other)))
     return out
 
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -51,8 +51,8 @@ class Closure:
     ``telling``: each assembly's telling point at every row; ``labels``: each assembly in words
     (for the default-assembly warning); ``ok``: rows where the dyad closes; ``singular``: rows
     where it is at a change point (a subset of ``~ok``); ``gap``: the distance between the two
-    assemblies' telling points where it is known in closed form; ``place``: the links' poses for
-    a choice; ``why``: why a row does not close; ``joint``: the joint named in messages;
+    assemblies' telling points where it is known in closed form; ``place_rows``: the links' poses
+    for a choice; ``why``: why a row does not close; ``joint``: the joint named in messages;
     ``telling_at``: the telling point of the dyad placed by scalar poses (which assembly they are);
     ``near``: rows that close but are placed only roughly, with why.
     """
@@ -63,11 +63,21 @@ class Closure:
     ok: Bools
     singular: Bools
     gap: Reals | None
-    place: Callable[[Choice], dict[str, ArrayPose]]
+    place_rows: Callable[[Choice], dict[str, ArrayPose]]
     why: Callable[[int], str]
     joint: str
     telling_at: Callable[[dict[str, LinkPose]], complex]
     near: tuple[Bools, Callable[[int], str]] | None = None
+    _placed: dict[int, dict[str, ArrayPose]] = field(default_factory=dict, repr=False, compare=False)
+
+    def place(self, choice: Choice) -> dict[str, ArrayPose]:
+        """The links' poses for ``choice``; one assembly for every row is placed once (a policy that
+        weighs both assemblies, and the executor that then places the chosen one, share it)."""
+        if not isinstance(choice, int):
+            return self.place_rows(choice)
+        if choice not in self._placed:
+            self._placed[choice] = self.place_rows(choice)
+        return self._placed[choice]
 
 
 def other_side(joint: Joint, link: str) -> str:

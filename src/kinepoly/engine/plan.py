@@ -229,7 +229,3 @@ def make_plan(mechanism: Mechanism, needed_links: set[str] | None = None) -> Pos
         wanted.add(id(group))
         stack.extend(solver_of[k] for k in group.known_links() if k in solver_of)
     return PositionPlan(driven, tuple(g for g in groups if id(g) in wanted))
-
-
-def slider_between(joint: Joint) -> SliderSpec | None:
-    return joint if isinstance(joint, SliderSpec) else None

@@ -195,7 +195,8 @@ class Polygon:
                 self._record_relative_velocity(link, label, member.label, r, start, end, rate)
             return end
         w = self.omega_of(link)
-        middle = np.asarray(start + (self.normal_sign * w * w) * r)
+        normal = (w * w) * r
+        middle = np.asarray(start - normal if self.normal_sign < 0.0 else start + normal)
         end = np.asarray(middle + rate * (1j * r))
         if self.record:
             self._record_relative_acceleration(link, label, member.label, r, start, middle, end, w, rate)

@@ -193,7 +193,8 @@ def _known_pairs(*terms: tuple[str, str]) -> tuple[tuple[str, str], ...]:
 
 def _dyad(polygon: Polygon, dyad: Dyad, sliding: dict[str, Points], sines: dict[str, Reals]) -> None:
     mech, i, j = polygon.mechanism, dyad.first, dyad.second
-    polygon.where = f"of group {dyad.name} at {describe_input(mech)}"
+    if polygon.strict:
+        polygon.where = f"of group {dyad.name} at {describe_input(mech)}"
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point

@@ -7,8 +7,6 @@ from kinepoly.geom.lines import (
     Intersection,
     Line,
     ParallelLinesError,
-    circle_circle,
-    circle_line,
     intersect,
 )
 from kinepoly.geom.vec import angle_of, cross, dot, norm, perp, rotate, unit
@@ -18,8 +16,6 @@ __all__ = [
     "Line",
     "ParallelLinesError",
     "angle_of",
-    "circle_circle",
-    "circle_line",
     "cross",
     "dot",
     "intersect",

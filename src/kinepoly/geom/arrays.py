@@ -110,7 +110,7 @@ def circle_circle(c1: PointsLike, r1: float, c2: PointsLike, r2: float) -> tuple
 
     Returns (left, right, slack, d, h): slack < 0 where they do not meet (the points are then the
     foot on c1c2), d = |c1 c2|, h the half chord. Coincident centres give a slack that is not
-    a number (``geom.circle_circle`` gives -1): either way the row does not close.
+    a number: the row does not close.
     """
     d_vec = c2 - c1
     d = length(d_vec)

@@ -140,10 +140,6 @@ class LocalFrame:
                     self.offset[1] + (self.origin[1] + self.size * y / w))
         return Place(position, None, p.error * (1.0 + r * r) / max(1.0, r))
 
-    def world_point(self, p: Projective) -> Triple:
-        """p as world homogeneous coordinates: (x, y, 1) or (ux, uy, 0)."""
-        return self.place(p).homogeneous
-
     def line(self, line: Projective) -> tuple[Vec, Vec] | None:
         """A world line as (a point on it, its unit direction); None for the line at infinity."""
         a, b, c = line.vector

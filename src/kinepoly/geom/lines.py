@@ -7,13 +7,12 @@ is a direction, not NaN.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
-from kinepoly.geom.tolerances import PARALLEL_SIN, UNIT_ROUNDOFF
-from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, scale, sub, unit
+from kinepoly.geom.tolerances import PARALLEL_SIN
+from kinepoly.geom.vec import Vec, cross, norm, sub, unit
 
-__all__ = ["Intersection", "Line", "ParallelLinesError", "circle_circle", "circle_line", "intersect"]
+__all__ = ["Intersection", "Line", "ParallelLinesError", "intersect"]
 
 
 class ParallelLinesError(ArithmeticError):
@@ -33,8 +32,8 @@ class Line:
 class Intersection:
     """Where two lines cross: homogeneous (x, y, w) relative to ``origin``.
 
-    ``sin_angle`` is the sine of the angle between the lines; ``error_bound`` the estimated
-    relative error of the point, about 4u / |sin|.
+    ``sin_angle`` is the sine of the angle between the lines: the point's relative error is
+    about 4u / |sin|.
     """
 
     origin: Vec
@@ -58,10 +57,6 @@ class Intersection:
         x, y, _ = self.homogeneous
         return unit((x, y))
 
-    @property
-    def error_bound(self) -> float:
-        return 4.0 * UNIT_ROUNDOFF / max(abs(self.sin_angle), 1e-300)
-
 
 def intersect(first: Line, second: Line) -> Intersection:
     """Cross two lines. Homogeneous lines l = (a, b, c) relative to first.through; p = l1 x l2."""
@@ -81,36 +76,3 @@ def intersect(first: Line, second: Line) -> Intersection:
     w = a1 * b2 - b1 * a2
     sin_angle = cross(d1, d2)
     return Intersection(origin=first.through, homogeneous=(x, y, w), sin_angle=sin_angle)
-
-
-def circle_line(center: Vec, radius: float, line: Line) -> tuple[Vec, Vec, float]:
-    """The two points where a circle meets a line, the one further along the direction first.
-
-    Returns (ahead, behind, slack) with slack = r^2 - h^2 (h the distance of the center from the
-    line); slack < 0 means they do not meet and the points are the foot of the perpendicular.
-    """
-    u = unit(line.direction)
-    rel = sub(center, line.through)
-    along = dot(rel, u)
-    h = cross(u, rel)
-    foot = add(line.through, scale(along, u))
-    slack = (radius - abs(h)) * (radius + abs(h))
-    half = math.sqrt(slack) if slack > 0.0 else 0.0
-    return add(foot, scale(half, u)), sub(foot, scale(half, u)), slack
-
-
-def circle_circle(c1: Vec, r1: float, c2: Vec, r2: float) -> tuple[Vec, Vec, float]:
-    """The two points where two circles meet: the one left of c1->c2 first.
-
-    Returns (left, right, slack), slack = h^2 (negative when they do not meet).
-    """
-    d_vec = sub(c2, c1)
-    d = norm(d_vec)
-    if d == 0.0:
-        return c1, c1, -1.0
-    e = scale(1.0 / d, d_vec)
-    a = (d * d + (r1 - r2) * (r1 + r2)) / (2.0 * d)
-    slack = (r1 - a) * (r1 + a)
-    h = math.sqrt(slack) if slack > 0.0 else 0.0
-    base = add(c1, scale(a, e))
-    return add(base, scale(h, perp(e))), sub(base, scale(h, perp(e))), slack

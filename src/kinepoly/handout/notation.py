@@ -17,6 +17,7 @@ from __future__ import annotations
 import functools
 import html
 import re
+import unicodedata
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
@@ -52,7 +53,10 @@ def _advance_em(ch: str, bold: bool) -> float:
 
     loaded: Any = vars(ft2font)
     flags = loaded["LoadFlags"].NO_HINTING if "LoadFlags" in loaded else loaded["LOAD_NO_HINTING"]  # before 3.10
-    glyph = _font(bold).load_char(ord(ch), flags=flags)
+    font = _font(bold)
+    if font.get_char_index(ord(ch)) == 0:  # no glyph in DejaVu Sans: drawn as the font's box, or wide
+        return 0.0 if unicodedata.combining(ch) else 1.0 if unicodedata.east_asian_width(ch) in "WF" else 0.6
+    glyph = font.load_char(ord(ch), flags=flags)
     return float(glyph.linearHoriAdvance) / 65536.0 / 72.0
 
 

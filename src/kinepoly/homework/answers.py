@@ -35,6 +35,7 @@ from typing import Literal, NoReturn
 from kinepoly.errors import SceneError
 from kinepoly.scene.loader import ProblemReport, parse_located, read_quantity, show_value, suggest
 from kinepoly.scene.spec import GivenInput, Scene, Units
+from kinepoly.scene.values import read_finite
 
 __all__ = [
     "DEFAULT_TOLERANCE",
@@ -223,24 +224,13 @@ def _target_problem(kind: Kind, target: str, scene: Scene) -> str | None:
 # Values
 
 
-def _finite(report: ProblemReport, path: KeyPath, value: object, expected: str) -> float | None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        report.add(path, f"expected {expected}, got {show_value(value)}")
-        return None
-    number = float(value)
-    if not math.isfinite(number):
-        report.add(path, f"{show_value(value)} is not a finite number; expected {expected}")
-        return None
-    return number
-
-
 def _rate(report: ProblemReport, path: KeyPath, value: object, kind: Literal["omega", "alpha"],
           units: Units) -> float | None:
     """omega or alpha: a number (ccw positive) or "1.70 cw", "1.70 rad/s ccw", "-1.70 rad/s"."""
     unit = "rad/s" if kind == "omega" else "rad/s^2"
     expected = f'a number in {unit} (ccw positive) or a string like "1.70 cw" or "1.70 {unit} ccw"'
     if not isinstance(value, str):
-        return _finite(report, path, value, expected)
+        return read_finite(report, path, value, expected)
     match = _SENSE.fullmatch(value)
     if match is None:
         report.add(path, f"expected {expected}, got {show_value(value)}")
@@ -300,8 +290,8 @@ def _center(report: ProblemReport, path: KeyPath, value: object, units: Units) -
     if not isinstance(direction, list) or len(direction) != 2:
         report.add(path + ("direction",), f"expected [x, y], got {show_value(direction)}")
         return None
-    x = _finite(report, path + ("direction", "x"), direction[0], "a number")
-    y = _finite(report, path + ("direction", "y"), direction[1], "a number")
+    x = read_finite(report, path + ("direction", "x"), direction[0], "a number")
+    y = read_finite(report, path + ("direction", "y"), direction[1], "a number")
     if x is None or y is None:
         return None
     length = math.hypot(x, y)
@@ -349,7 +339,7 @@ def _tolerance(report: ProblemReport, value: object) -> Tolerance:
 
 
 def _bounded(report: ProblemReport, path: KeyPath, value: object, upper: float, expected: str) -> float | None:
-    number = _finite(report, path, value, expected)
+    number = read_finite(report, path, value, expected)
     if number is not None and not 0.0 < number < upper:
         report.add(path, f"{show_value(value)} is out of range; expected {expected}")
         return None

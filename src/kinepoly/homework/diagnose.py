@@ -15,8 +15,8 @@ The mistakes tried, each with a stable code:
 ``other-point``            the right value of another point
 ``other-link``             the right value of another link (or slider, or instant center)
 
-The construction mistakes are recomputed honestly: the polygons' equations are solved again
-with the term left out, reversed or turned (kinepoly.homework.mistakes); the input mistakes
+The construction mistakes are recomputed honestly: the acceleration polygon is constructed again
+with the term left out, reversed or turned (``engine.acceleration.Rules``); the input mistakes
 solve the scene again at the mistaken input; only the reading mistakes (kv, ka, a unit) and the
 sign act on the right answer itself. An answer matches a mistake when it is within the answers
 file's tolerance of the recomputed value; the closest match wins (of matches equally close to
@@ -30,24 +30,31 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from kinepoly.engine.acceleration import Rules
 from kinepoly.errors import KinepolyError
 from kinepoly.homework.answers import AnswerKey, Direction, Tolerance, Value
 from kinepoly.homework.compare import compare
-from kinepoly.homework.mistakes import RIGHT, Construction, student_solution
-from kinepoly.homework.reference import Reference, Values, asked_keys, fixed_angles, solve_for, value_in
+from kinepoly.homework.reference import (
+    Reference,
+    Values,
+    asked_keys,
+    fixed_angles,
+    solve_for,
+    student_solution,
+    value_in,
+)
 from kinepoly.scene.spec import LinkInput, Scene
 
 __all__ = ["Candidate", "Diagnosis", "Recomputed", "candidates", "diagnose", "recompute"]
 
 _CONSTRUCTIONS = (
     ("coriolis-left-out", "the Coriolis term 2 omega x v_rel left out of the acceleration polygon",
-     Construction(coriolis_factor=0.0)),
+     Rules(coriolis=0.0)),
     ("coriolis-reversed", "the Coriolis term 2 omega x v_rel laid the wrong way round",
-     Construction(coriolis_factor=-1.0)),
+     Rules(coriolis=-1.0)),
     ("normal-reversed", "the normal terms omega^2 r drawn away from the center instead of toward it",
-     Construction(normal_sign=1.0)),
+     Rules(normal=1.0)),
 )
-_AGREEMENT = 1e-9  # the student equations done right must reproduce the reference this closely
 _TIE = 1e-9  # matches this much closer (relative) than another are a tie: the earlier candidate wins
 _VELOCITY_LEVEL = ("velocity", "s_dot", "omega")
 _ACCELERATION_LEVEL = ("acceleration", "s_ddot", "alpha")
@@ -92,35 +99,10 @@ class Diagnosis:
 # The problem recomputed with each mistake, once per scene
 
 
-def _agrees(reference: Reference, values: Values) -> bool:
-    """The student equations done right reproduce every rate, velocity and acceleration of the reference."""
-    for key, expected in reference.values.items():
-        if key.kind not in ("omega", "alpha", "velocity", "acceleration"):
-            continue
-        got = values.get(key)
-        if isinstance(expected, tuple) and isinstance(got, tuple):
-            off = math.dist(expected, got)
-        elif isinstance(expected, float) and isinstance(got, float):
-            off = abs(expected - got)
-        else:
-            return False
-        if off > _AGREEMENT * reference.scales[key.kind]:
-            return False
-    return True
-
-
 def _construction_mistakes(reference: Reference) -> list[Recomputed]:
     if not any(key.kind == "alpha" for key in reference.values):
         return []  # no accelerations in this problem
-    right = student_solution(reference.solution, RIGHT)
-    if right is None or not _agrees(reference, right):
-        return []  # never diagnose from equations that do not reproduce the right answer
-    out = []
-    for code, text, how in _CONSTRUCTIONS:
-        values = student_solution(reference.solution, how)
-        if values is not None:
-            out.append(Recomputed(code, text, values))
-    return out
+    return [Recomputed(code, text, student_solution(reference.solution, rules)) for code, text, rules in _CONSTRUCTIONS]
 
 
 def _resolved(scene: Scene, reference: Reference, code: str, text: str, changed: LinkInput) -> list[Recomputed]:

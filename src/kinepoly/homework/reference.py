@@ -5,6 +5,10 @@ A key the scene's own ``[find]`` does not ask for is answered by solving a copy 
 compares a wrong answer with the values of the other points and links); when that wider copy
 cannot be solved (a group the question never needed does not assemble) only what is asked or
 answered is solved. The values are read off the :class:`~kinepoly.solution.Solution` itself.
+
+A student's answers with a construction mistake (:func:`student_solution`) are the engine's
+acceleration polygon constructed again with that mistake switched in (``engine.acceleration.Rules``)
+on the reference's positions and velocity polygon: velocities are not affected by these mistakes.
 """
 
 from __future__ import annotations
@@ -15,6 +19,12 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Literal
 
+import numpy as np
+
+from kinepoly.engine.acceleration import Rules, construct_acceleration
+from kinepoly.engine.assembly import position_at_input
+from kinepoly.engine.row import acceleration_row
+from kinepoly.engine.velocity import construct_velocity
 from kinepoly.errors import KinepolyError
 from kinepoly.geom.vec import Vec
 from kinepoly.homework.answers import AnswerKey, Direction, Value
@@ -23,7 +33,7 @@ from kinepoly.scene.spec import FindSpec, GivenInput, Scene
 from kinepoly.solution import Solution, solve
 
 __all__ = ["FLOOR_FRACTION", "Reference", "Values", "asked_keys", "fixed_angles", "prepare", "solve_for",
-           "value_in", "values_of"]
+           "student_solution", "value_in", "values_of"]
 
 FLOOR_FRACTION = 0.01
 """A value is judged against at least this fraction of the largest value of its kind in the mechanism."""
@@ -214,6 +224,19 @@ def _with_fixed_links(scene: Scene, values: Values) -> dict[AnswerKey, Value]:
 def solve_for(scene: Scene, keys: Iterable[AnswerKey], *, everything: bool = True) -> dict[AnswerKey, Value]:
     """The values of ``scene`` solved with a [find] that asks for ``keys`` (and every point and link)."""
     return _with_fixed_links(scene, values_of(_solved_for(scene, tuple(keys), everything=everything)))
+
+
+def student_solution(solution: Solution, rules: Rules) -> dict[AnswerKey, Value]:
+    """The answers of a student who lays the acceleration polygon's known terms as ``rules`` say, at the
+    positions and velocities of ``solution``: what :func:`values_of` gives, and the links that never turn."""
+    inside, plan, asked, unit = solution.inside, solution.plan, solution.asked, solution.scene.units.length
+    if solution.acceleration is not None and inside is not None:
+        with np.errstate(all="ignore"):  # as in the solve: the right construction went through at this row
+            velocity = construct_velocity(position_at_input(inside.mechanism, plan, inside.frame.origin), plan,
+                                          asked.velocity, unit=unit)
+            acceleration = construct_acceleration(velocity, plan, asked.acceleration, unit=unit, rules=rules)
+        solution = dataclasses.replace(solution, acceleration=acceleration_row(acceleration))
+    return _with_fixed_links(solution.scene, values_of(solution))
 
 
 def _scales(solution: Solution, values: Values) -> dict[ScaleKind, float]:

@@ -1,6 +1,7 @@
 """The mechanism: links with points in their own frames, revolute joints, sliders, mobility.
 
-A revolute joint is implied by a point name that two links share. A slider's block turns
+A revolute joint is implied by a point name that two links share; a point of k links is a
+compound hinge, k - 1 revolute joints. A slider's block turns
 with its guide, so links joined by sliders form a *rotation class*: they share omega and
 alpha. A block that slides on a guide of another rotation class than the frame's needs a
 Coriolis term; that is the test ``has_turning_guide``.
@@ -191,20 +192,13 @@ class Mechanism:
 
 
 def _revolutes(scene: Scene) -> tuple[Revolute, ...]:
+    """The pins implied by shared point names. A point of k links is a compound hinge: k - 1 pins,
+    each joining the first of those links (in scene order) to one of the others."""
     owners: dict[str, list[str]] = {}
     for link in scene.links:
         for name in link.point_names:
             owners.setdefault(name, []).append(link.name)
-    pins = []
-    for point, links in owners.items():
-        if len(links) > 2:
-            raise SceneError(
-                f"{scene.source}: links: point {point} is in links {', '.join(links)}; "
-                "a point name may join at most two links (rename one to make two joints)"
-            )
-        if len(links) == 2:
-            pins.append(Revolute(point, (links[0], links[1])))
-    return tuple(pins)
+    return tuple(Revolute(point, (links[0], other)) for point, links in owners.items() for other in links[1:])
 
 
 def build_mechanism(scene: Scene) -> Mechanism:
@@ -225,11 +219,17 @@ def build_mechanism(scene: Scene) -> Mechanism:
         raise MobilityError(
             f"{scene.source}: links: Gruebler's count gives mobility 3(n - 1) - 2j = 3*({n} - 1) - 2*{j} = "
             f"{mobility} for n = {n} links and j = {j} joints ({len(mechanism.revolutes)} revolute, "
-            f"{len(scene.sliders)} sliding); kinepoly needs mobility 1 "
+            f"{len(scene.sliders)} sliding{_compound_text(mechanism)}); kinepoly needs mobility 1 "
             + ("(add a link or remove a joint)" if mobility < 1 else "(add a joint or a link with two joints)")
         )
     _check_connected(mechanism)
     return mechanism
+
+
+def _compound_text(mechanism: Mechanism) -> str:
+    """The compound hinges, as Gruebler counts them: a pin of k links is k - 1 joints."""
+    hinges = [(point, links) for point, links in mechanism._links_of.items() if len(links) > 2]
+    return "".join(f"; pin {point} joins links {', '.join(links)}: {len(links) - 1} joints" for point, links in hinges)
 
 
 def _check_connected(mechanism: Mechanism) -> None:

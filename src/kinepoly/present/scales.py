@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from kinepoly.errors import SceneError
+from kinepoly.geom.hull import diameter
 from kinepoly.geom.vec import Vec
 
 if TYPE_CHECKING:
@@ -29,16 +31,21 @@ def nice_scale(extent: float, target_mm: float = 100.0) -> float:
 
 
 def _extent(tips: dict[str, Vec]) -> float:
-    pts = [(0.0, 0.0), *tips.values()]
-    return max((math.hypot(a[0] - b[0], a[1] - b[1]) for a in pts for b in pts), default=0.0)
+    """The polygon's size: the largest distance between two of its tips or the pole."""
+    return diameter([(0.0, 0.0), *tips.values()])
 
 
 def polygon_scales(solution: Solution) -> dict[str, float]:
     """kv and ka as used: from ``[draw]``, else a round number for a polygon about 100 mm across."""
     scales = {}
     draw = solution.scene.draw
-    if solution.velocity is not None:
-        scales["velocity"] = draw.kv if draw.kv is not None else nice_scale(_extent(solution.velocity.tips))
-    if solution.acceleration is not None:
-        scales["acceleration"] = draw.ka if draw.ka is not None else nice_scale(_extent(solution.acceleration.tips))
+    for kind, polygon, given, symbol in (("velocity", solution.velocity, draw.kv, "kv"),
+                                         ("acceleration", solution.acceleration, draw.ka, "ka")):
+        if polygon is None:
+            continue
+        extent = _extent(polygon.tips)
+        if given is not None and not math.isfinite(given * extent):
+            raise SceneError(f"[draw] {symbol} = {given:g} draws the {kind} polygon beyond any paper (its size "
+                             f"overflows); expected a smaller scale like {nice_scale(extent):g}, or \"auto\"")
+        scales[kind] = given if given is not None else nice_scale(extent)
     return scales

@@ -58,7 +58,15 @@ def paper_size(spec: str) -> tuple[float, float]:
 
 
 def nice_floor(x: float) -> float:
-    """The largest round number (1, 2, 2.5 or 5 times a power of ten) not above ``x`` (> 0)."""
+    """The largest round number (1, 2, 2.5 or 5 times a power of ten) not above ``x`` (> 0).
+
+    Beyond double precision's normal range (a denormal or zero ``x``, an infinite one) it gives
+    the smallest (1e-300) or the largest (1e300) round number kept.
+    """
+    if not x >= 1e-300:
+        return 1e-300
+    if x >= 1e300:
+        return 1e300
     exponent = math.floor(math.log10(x))
     best = 10.0 ** (exponent - 1) * 5.0
     for e in (exponent - 1, exponent, exponent + 1):
@@ -208,11 +216,33 @@ def arrange(contents: Sequence[Content], area: Box) -> list[Panel]:
             score = _score(panels, contents, area)
             if best_score is None or score > best_score:
                 best, best_score = panels, score
-    if best is None:  # nothing fits even far down: everything in one row at the smallest tried scales
-        scales = {k: _step_down(contents[k].wanted or 1.0, 12) for k in fixed}
-        best = _try(contents, area, [[k] for k in range(len(contents))], scales)
-        assert best is not None, "the page is too small for the drawing"
+    if best is None:  # nothing fits a few steps down: everything in one row, each polygon at the scale that fits
+        best = _one_row(contents, area, fixed)
     return best
+
+
+def _one_row(contents: Sequence[Content], area: Box, fixed: Sequence[int]) -> list[Panel]:
+    """Every content in a cell of its own, side by side, the polygons at the round scale that fits their cell.
+
+    Never fails: where even that does not fit (a page smaller than the paddings), the cells are
+    laid out as they are and the drawing overflows them rather than the command failing.
+    """
+    x0, y0, x1, y1 = area
+    cell_w, cell_h = max(x1 - x0, 0.0) / len(contents), max(y1 - y0, 0.0)
+    scales = {}
+    for k in fixed:
+        fit = contents[k].fit(cell_w, cell_h) * (1.0 - 1e-9)
+        scales[k] = nice_floor(fit) if math.isfinite(fit) else (contents[k].wanted or 1.0)
+    panels = _try(contents, area, [[k] for k in range(len(contents))], scales)
+    if panels is not None:
+        return panels
+    out = []
+    for k, content in enumerate(contents):
+        rect = (x0 + k * cell_w, y0, x0 + (k + 1) * cell_w, max(y1, y0))
+        fit = content.fit(cell_w, cell_h) * (1.0 - 1e-9)
+        scale = scales.get(k, nice_floor(fit) if math.isfinite(fit) else 1.0)
+        out.append(_panel(content, rect, scale))
+    return out
 
 
 def _levels(count: int) -> list[tuple[int, ...]]:

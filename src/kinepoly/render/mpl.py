@@ -6,7 +6,9 @@ page in millimetres.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import contextlib
+import warnings
+from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 from kinepoly.render.primitives import Arrow, Circle, Path, Sheet, Stroke, Text
@@ -60,7 +62,7 @@ def _draw(ax: Axes, item: Path | Circle | Arrow | Text, zorder: float) -> None:
         for run in item.runs:
             ax.text(item.x + run.dx, item.y + run.dy, run.text, fontsize=run.size * _PT_PER_MM,
                     family="DejaVu Sans", weight="bold" if item.bold else "normal", color=item.color,
-                    ha="left", va="baseline", zorder=zorder)
+                    ha="left", va="baseline", zorder=zorder, parse_math=False)  # "$x$" as written
 
 
 def figure_of(sheet: Sheet) -> Figure:
@@ -86,10 +88,18 @@ _RC: dict[Any, Any] = {"lines.scale_dashes": False, "pdf.fonttype": 42, "svg.has
 """matplotlib settings of every file: dashes in mm as given, TrueType fonts embedded whole, fixed ids."""
 
 
+@contextlib.contextmanager
+def _quiet_warnings() -> Iterator[None]:
+    """No "Glyph ... missing from font" warning on standard error: such a letter is drawn as the font's box."""
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=r"Glyph \d+ .*missing from font", category=UserWarning)
+        yield
+
+
 def _save(sheet: Sheet, target: Any, fmt: str, dpi: int) -> None:
     import matplotlib
 
-    with matplotlib.rc_context(_RC):
+    with matplotlib.rc_context(_RC), _quiet_warnings():
         fig = figure_of(sheet)
         if fmt == "png":
             fig.savefig(target, format="png", dpi=dpi, metadata={"Software": None})
@@ -114,6 +124,6 @@ def write_pdf_pages(sheets: Sequence[Sheet], target: Any, title: str) -> None:
     from matplotlib.backends.backend_pdf import PdfPages
 
     metadata = {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "kinepoly", "Title": title}
-    with matplotlib.rc_context(_RC), PdfPages(target, metadata=metadata) as pages:
+    with matplotlib.rc_context(_RC), _quiet_warnings(), PdfPages(target, metadata=metadata) as pages:
         for sheet in sheets:
             pages.savefig(figure_of(sheet))

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from kinepoly.engine.steps import Step, Term
+from kinepoly.geom.hull import diameter
 from kinepoly.geom.lines import Line
 from kinepoly.geom.vec import Vec, norm, sub
 from kinepoly.render.labels import Request
@@ -324,7 +325,7 @@ def _area(points: tuple[Point, ...]) -> float:
 
 
 def _span(points: tuple[Point, ...]) -> float:
-    return max(math.hypot(a[0] - b[0], a[1] - b[1]) for a in points for b in points)
+    return diameter(points)
 
 
 def _joined_tip_runs(labels: list[str], prime: bool) -> tuple[Run, ...]:

@@ -15,6 +15,7 @@ from kinepoly.render.primitives import Arrow, Circle, Path, Sheet, Stroke, Text
 __all__ = ["FONT_FAMILY", "number", "svg_text", "write_svg"]
 
 FONT_FAMILY = "DejaVu Sans, Verdana, Arial, sans-serif"
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")  # what XML 1.0 cannot hold
 
 
 def number(x: float) -> str:
@@ -79,6 +80,7 @@ def svg_text(sheet: Sheet) -> str:
         dwg.add(group)
     # one element per line for readable diffs, but nothing between a text's runs (it would be drawn)
     body = re.sub(r"><(?!tspan|/text)", ">\n<", dwg.tostring())
+    body = _NOT_XML.sub("\ufffd", body)  # the scene refuses them; any other text is still well-formed XML
     return '<?xml version="1.0" encoding="utf-8" ?>\n' + body + "\n"
 
 

@@ -20,7 +20,6 @@ __all__ = ["STEP_TEXT_MM", "Block", "block_items", "flow", "flow_height", "forma
            "legend_block", "space_scale_text", "step_block", "title_blocks"]
 
 Point = tuple[float, float]
-_ROW_MM = 1.45 * SMALL_MM
 _GAP_MM = 6.0
 _PAD_MM = 2.5
 _UNIT_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}

@@ -8,6 +8,7 @@ the key path written or open on it. Problems are then placed at ``FILE:LINE``.
 
 from __future__ import annotations
 
+import json
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -223,4 +224,5 @@ def _decode_key(raw: str) -> str:
 
 
 def dotted(path: KeyPath) -> str:
-    return ".".join(path) if path else "(file)"
+    """The key path as written in a message; a key with a character that cannot be printed is quoted and escaped."""
+    return ".".join(part if part.isprintable() else json.dumps(part) for part in path) if path else "(file)"

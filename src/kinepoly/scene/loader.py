@@ -36,7 +36,7 @@ from kinepoly.scene.request_tables import RequestTables
 from kinepoly.scene.source import Table, decode_text, fail, parse_toml, read_bytes
 from kinepoly.scene.spec import Scene, Units
 from kinepoly.scene.units import ANGLE_UNITS, LENGTH_UNITS, kinds_for, quantity
-from kinepoly.scene.values import check_keys, read_table
+from kinepoly.scene.values import check_keys, check_showable, read_table
 
 __all__ = ["ProblemReport", "load_scene", "loads_scene", "parse_located", "read_quantity", "show_value", "suggest"]
 
@@ -118,7 +118,7 @@ class _SceneReader(MechanismTables, InputTables, RequestTables):
         if value is None:
             return _default_title(self.report.source)
         if isinstance(value, str):
-            return value
+            return value if check_showable(self.report, ("title",), value, "the title") else ""
         self.report.add(("title",), f'expected a string like "Offset slider-crank", got {show_value(value)}')
         return ""
 

@@ -15,7 +15,7 @@ from kinepoly.scene.reader_state import ReaderState
 from kinepoly.scene.source import Table
 from kinepoly.scene.spec import LinkSpec, PointSpec, SliderSpec
 from kinepoly.scene.units import quantity, quantity_pair
-from kinepoly.scene.values import Vector, check_keys, pair_name, read_name, read_table, require
+from kinepoly.scene.values import Vector, check_keys, check_showable, pair_name, read_name, read_table, require
 
 __all__ = ["MechanismTables"]
 
@@ -66,6 +66,8 @@ class MechanismTables(ReaderState):
         line = self.report.line(path)
         if not name:
             self.report.add(path, 'empty link name; expected a name like "2"')
+        else:
+            check_showable(self.report, path, name, "the link name")
         table = read_table(self.report, path, body, "{ points = { NAME = [x, y], ... } }")
         if table is None:
             return LinkSpec(name, (), line)
@@ -87,6 +89,8 @@ class MechanismTables(ReaderState):
         line = self.report.line(path)
         if not name or "@" in name:
             self.report.add(path, 'bad point name; expected a name without "@" (kept for coincident points)')
+        else:
+            check_showable(self.report, path, name, "the point name")
         local = self.read_point_value(path, value)
         return PointSpec(name, _NOWHERE if local is None else local, line)
 
@@ -114,12 +118,6 @@ class MechanismTables(ReaderState):
         for link in (self.links or {}).values():
             for point in link.points:
                 owners.setdefault(point.name, []).append(link.name)
-        for point_name, names in owners.items():
-            if len(names) > 2:
-                self.report.add(
-                    ("links", names[2], "points", point_name),
-                    f'point "{point_name}" is in links {quoted(names)}; a point name joins at most two links',
-                )
         slider_points = {slider.point for slider in self.sliders}
         for link in (self.links or {}).values():
             joints = [p for p in link.points if len(owners[p.name]) > 1 or p.name in slider_points]

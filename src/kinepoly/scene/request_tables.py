@@ -20,6 +20,8 @@ __all__ = ["RequestTables"]
 
 _FIND_KEYS = ("velocity", "acceleration", "omega", "alpha", "sliders", "instant_centers")
 _DRAW_KEYS = ("kv", "ka")
+_SCALE_RANGE = (1e-30, 1e30)
+"""kv and ka a drawing can use: a polygon drawn smaller than an atom or larger than the sky is a typing error."""
 
 
 class RequestTables(ReaderState):
@@ -91,6 +93,10 @@ class RequestTables(ReaderState):
             ok = False
         if at and link not in self.links:
             self.report.add(path, f'in "{name}": {no_such("link", link, self.links)}')
+            ok = False
+        elif at and point in self.links[link].point_names:
+            self.report.add(path, f'"{name}": {point} is a point of link "{link}" itself; expected "{point}" (a name '
+                            'like "A@4" is the point of link 4 that is at A, for a point of another link)')
             ok = False
         return ok
 
@@ -173,5 +179,9 @@ class RequestTables(ReaderState):
         number = read_finite(self.report, path, value, expected)
         if number is not None and number <= 0:
             self.report.add(path, f"{show_value(value)} is not positive; expected {expected}")
+            return None
+        if number is not None and not _SCALE_RANGE[0] <= number <= _SCALE_RANGE[1]:
+            self.report.add(path, f"{show_value(value)} is out of range; expected a scale between "
+                            f"{_SCALE_RANGE[0]:g} and {_SCALE_RANGE[1]:g} (drawing mm per unit) or \"auto\"")
             return None
         return number

@@ -7,6 +7,7 @@ later stages can still point a user at the right place.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -165,7 +166,12 @@ class Scene:
     source: str = "<scene>"
 
     def link(self, name: str) -> LinkSpec:
+        return self._links_by_name[name]  # KeyError for an unknown name
+
+    @functools.cached_property
+    def _links_by_name(self) -> dict[str, LinkSpec]:
+        """The links by name, indexed once (a scan per lookup made long mechanisms quadratic)."""
+        out: dict[str, LinkSpec] = {}
         for link in self.links:
-            if link.name == name:
-                return link
-        raise KeyError(name)
+            out.setdefault(link.name, link)
+        return out

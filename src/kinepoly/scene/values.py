@@ -7,6 +7,7 @@ the value; it returns the value in its strict type, or None after reporting what
 from __future__ import annotations
 
 import math
+import unicodedata
 from collections.abc import Collection
 from typing import cast
 
@@ -14,7 +15,8 @@ from kinepoly.scene.lines import KeyPath
 from kinepoly.scene.problems import ProblemReport, show_value, suggest
 from kinepoly.scene.source import Table
 
-__all__ = ["Vector", "check_keys", "pair_name", "read_finite", "read_name", "read_table", "require"]
+__all__ = ["Vector", "check_keys", "check_showable", "pair_name", "read_finite", "read_name", "read_table", "require",
+           "unshowable"]
 
 Vector = tuple[float, float]
 
@@ -35,10 +37,35 @@ def read_finite(report: ProblemReport, path: KeyPath, value: object, expected: s
     return number
 
 
+def unshowable(text: str) -> str | None:
+    """The first character of ``text`` no drawing can show as written, or None.
+
+    Control characters (U+0000..U+001F, U+007F..U+009F: not allowed in XML 1.0 or not printable),
+    lone surrogates, private-use characters and the noncharacters (U+FFFE, U+FFFF, U+FDD0..U+FDEF,
+    ...) are refused; a title or name with one would make an SVG that is not well-formed XML or
+    a page whose fonts have no glyph for it.
+    """
+    for ch in text:
+        code = ord(ch)
+        if unicodedata.category(ch) in ("Cc", "Cs", "Co") or 0xFDD0 <= code <= 0xFDEF or (code & 0xFFFE) == 0xFFFE:
+            return ch
+    return None
+
+
+def check_showable(report: ProblemReport, path: KeyPath, text: str, what: str) -> bool:
+    """Report ``text`` (a title or a name) when it has a character no drawing can show; True when it is fine."""
+    bad = unshowable(text)
+    if bad is None:
+        return True
+    report.add(path, f"{what} has the character U+{ord(bad):04X}, which cannot be shown in a drawing or a page; "
+               "expected printable text (letters, digits, punctuation, spaces)")
+    return False
+
+
 def read_name(report: ProblemReport, path: KeyPath, value: object, what: str, example: str) -> str | None:
-    """A non-empty string naming something."""
+    """A non-empty string naming something, every character of it showable."""
     if isinstance(value, str) and value:
-        return value
+        return value if check_showable(report, path, value, what) else None
     report.add(path, f'expected {what} as a string like "{example}", got {show_value(value)}')
     return None
 

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinepoly.engine.assembly import Continuity
+from kinepoly.engine.centrode import mechanism_size
 from kinepoly.engine.plan import NewtonGroup, PositionPlan
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
@@ -194,11 +195,6 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
     return ends[0], ends[1], False, notices
 
 
-def _size(mechanism: Mechanism, seed: dict[str, LinkPose]) -> float:
-    points = [complex(*pose.world(p.local)) for link, pose in seed.items() for p in mechanism.scene.link(link).points]
-    return max((abs(a - b) for a in points for b in points), default=1.0) or 1.0
-
-
 def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
     """A full turn of the input link in ``steps`` rows (None for a slider input)."""
     full = _full_turn(mechanism)
@@ -222,7 +218,7 @@ def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPos
     full = _full_turn(mechanism)
     notices: list[Notice] = []
     if start is None or stop is None:
-        start, stop, periodic, notices = _default_range(mechanism, plan, seed, _size(mechanism, seed))
+        start, stop, periodic, notices = _default_range(mechanism, plan, seed, mechanism_size(mechanism, seed))
     else:
         periodic = False
     if periodic:

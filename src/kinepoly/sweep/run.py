@@ -29,10 +29,13 @@ import numpy.typing as npt
 
 from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
 from kinepoly.engine.assembly import Continuity, position_at_input
+from kinepoly.engine.centrode import frame_centrodes
+from kinepoly.engine.circle_diagram import pair_name
 from kinepoly.engine.group import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
 from kinepoly.engine.plan import NewtonGroup, PositionPlan, make_plan
 from kinepoly.engine.polygon import JointSolve, LineCrossing
 from kinepoly.engine.position import Failure, Positions, solve_positions
+from kinepoly.engine.transmission import transmission_angles
 from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
 from kinepoly.errors import AssemblyError, SceneError, SingularityError
 from kinepoly.geom.arrays import Bools, Points, Reals, dot
@@ -43,7 +46,6 @@ from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
 from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
-from kinepoly.sweep.transmission import transmission_angles
 
 __all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]
 
@@ -93,6 +95,12 @@ class SweepResult:
     """The link poses at every row computed (shown or not), read by ``kinepoly.sweep.rows``."""
     shown: Bools | None = field(default=None, repr=False, compare=False)
     """Which of the rows computed are shown (the rows of ``input`` and ``columns``)."""
+
+    def _repr_png_(self) -> bytes:
+        """A notebook shows a sweep as its plots."""
+        from kinepoly.sweep.plots import plot_png
+
+        return plot_png(self)
 
     def column(self, name: str) -> Column:
         for col in (self.input, *self.columns):
@@ -209,7 +217,14 @@ class _Builder:
 
 
 def _overflow_flags(flags: _Flags, ok: Bools, out: _Builder) -> None:
-    """Rows where a value is not a number (rates whose squares overflow): singular, never printed."""
+    """Rows where a value is not a number (rates whose squares overflow): singular, never printed.
+
+    Every value of a higher order is computed from those of the lower ones, so a non-finite value
+    anywhere shows in the highest order's columns: when their sums are finite, nothing is to mark.
+    """
+    top = max((_ORDER[kind] for _, kind, _, _ in out.raw), default=0)
+    if all(math.isfinite(float(np.add.reduce(values))) for _, kind, values, _ in out.raw if _ORDER[kind] == top):
+        return
     for name, kind, values, extra in out.raw:
         rows = ok & ~np.isfinite(values) & (True if extra is None else extra)
         if rows.any():
@@ -228,10 +243,6 @@ def _angle_unit(scene: Scene, radians: Reals) -> Reals:
 
 def _position(positions: Positions, label: str) -> Points:
     return positions.point(label.partition("@")[0])
-
-
-def _label(mechanism: Mechanism, link: str, point: str) -> str:
-    return point if mechanism.has_point(link, point) else f"{point}@{link}"
 
 
 def _columns(out: _Builder, asked: Asked, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
@@ -264,20 +275,15 @@ def _columns(out: _Builder, asked: Asked, velocity: VelocityResult | None, accel
             out.pair(f"coriolis_{name}", "coriolis", acceleration.coriolis[name])
 
 
-def _centrode(out: _Builder, link: str, velocity: VelocityResult, size: float,
+def _centrode(out: _Builder, link: str, velocity: VelocityResult, seed_row: int,
               level: npt.NDArray[np.int8]) -> list[Notice]:
-    """The instant center of ``link`` with the frame: the point of the link whose velocity image is the pole."""
-    mech, positions = out.mechanism, out.positions
-    point = mech.scene.link(link).points[0].name
-    v = velocity.polygon.tip(link, point)
-    omega = velocity.polygon.rate_of(link)
-    assert omega is not None
-    finite = np.abs(omega) * 1e9 * size > np.abs(v)
-    center = positions.point(point) + (1j * v) / np.where(finite, omega, 1.0)
-    name = f"I_{mech.ground}{link}" if len(link) == 1 and len(mech.ground or "") == 1 else f"I_{mech.ground}-{link}"
-    out.pair(name, "centrode", center, finite)
-    out.pair(f"{name}_local", "centrode-local", positions.poses[link].to_local(center), finite)
-    if not (finite | (level > _NEAR)).any():
+    """The columns of the instant center of ``link`` with the frame, in the frame and in the link."""
+    ground = out.mechanism.ground or ""
+    found = frame_centrodes(velocity, link, seed_row)
+    name = f"I_{pair_name((ground, link))}"
+    out.pair(name, "centrode", found.fixed, found.finite)
+    out.pair(f"{name}_local", "centrode-local", found.moving, found.finite)
+    if not (found.finite | (level > _NEAR)).any():
         return [Notice("centrode-at-infinity", f"link {link} does not turn, so its instant center with the "
                        "frame is at infinity at every row: it has no centrodes")]
     return []
@@ -398,10 +404,10 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     _columns(out, asked, velocity, acceleration, name)
     notices = list(grid.notices)
     if centrode is not None and velocity is not None:
-        notices += _centrode(out, centrode, velocity, _size(positions, grid.seed_row), flags.level)
+        notices += _centrode(out, centrode, velocity, grid.seed_row, flags.level)
     sines = velocity.line_sines if velocity is not None else None
-    for dyad_point, mu in transmission_angles(positions, plan, sines).items():
-        out.add(f"mu_{dyad_point}", "transmission", _angle_unit(scene, mu))
+    for transmission in transmission_angles(positions, plan, sines):
+        out.add(f"mu_{transmission.point}", "transmission", _angle_unit(scene, transmission.angle))
     unit = scene.units.angle if isinstance(scene.input, LinkInput) else scene.units.length
     notices += _gap_notices(grid, ok, name, unit)
     _overflow_flags(flags, ok, out)
@@ -423,10 +429,3 @@ def _failure_text(failure: Failure) -> object:
     def text(row: int) -> str:
         return f"cannot assemble {joint}group {failure.group}: {failure.why(row)}"
     return text
-
-
-def _size(positions: Positions, row: int) -> float:
-    poses = positions.row(row)
-    mech = positions.mechanism
-    points = [complex(*pose.world(p.local)) for link, pose in poses.items() for p in mech.scene.link(link).points]
-    return max((abs(a - b) for a in points for b in points), default=1.0) or 1.0

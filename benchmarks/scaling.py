@@ -1,0 +1,134 @@
+"""How does the cost grow with the mechanism? Chains of 1 to 800 four-bar loops (``kinepoly.bench.chain``).
+
+For each chain length N (2N + 2 links) it times, in-process and best of a few runs:
+
+- ``solve``: the whole pipeline with its analytic cross-check (``kinepoly.solution.solve``);
+- ``sweep``: 36 positions over 10 degrees of the crank;
+- ``draw``: the sheet and its SVG (smaller chains only: ``--draw-max``);
+- ``handout``: the PDF's sheets and the HTML page (smaller chains only: ``--handout-max``);
+
+then fits time = c N^p by least squares on log-log over the lengths of at least 10 loops, and
+prints each growth exponent p (1 is linear). The issue's targets: the solve of 400 loops under
+2 s and at most 6 times that of 100; the 10-loop handout at most 14 times the 1-loop one.
+
+    python benchmarks/scaling.py [--quick] [--sizes 1,10,100,400,800] [--draw-max 40] [--handout-max 10]
+"""
+
+from __future__ import annotations
+
+import argparse
+import io
+import math
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from kinepoly.bench.chain import chain_text
+from kinepoly.scene.loader import loads_scene
+from kinepoly.solution import solve
+
+
+def _best(work: Callable[[], object], repeat: int) -> float:
+    best = math.inf
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        work()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def _solve(n: int) -> Callable[[], object]:
+    scene = loads_scene(chain_text(n), f"chain-{n}.toml")
+    return lambda: solve(scene)
+
+
+def _sweep(n: int) -> Callable[[], object]:
+    from kinepoly.sweep.run import sweep
+
+    scene = loads_scene(chain_text(n), f"chain-{n}.toml")
+    return lambda: sweep(scene, steps=36, start=55.0, stop=65.0)
+
+
+def _draw(n: int) -> Callable[[], object]:
+    from kinepoly.render.sheet import build_sheet
+    from kinepoly.render.svg import write_svg
+
+    solution = solve(loads_scene(chain_text(n, find=""), f"chain-{n}.toml"))
+    return lambda: write_svg(build_sheet(solution, "A4"), io.StringIO())
+
+
+def _handout(n: int) -> Callable[[], object]:
+    from kinepoly.handout.build import handout_sheets
+    from kinepoly.handout.html import handout_html
+    from kinepoly.present.catalogue import load_catalogue
+    from kinepoly.render.mpl import write_pdf_pages
+
+    solution = solve(loads_scene(chain_text(n), f"chain-{n}.toml"))
+    say = load_catalogue("en")
+
+    def work() -> None:
+        from kinepoly.errors import HandoutError
+
+        for paper in ("A4", "A3", "A2", "A1", "A0"):  # the handout does not choose a larger paper by itself yet
+            try:
+                handout, sheets = handout_sheets(solution, say, paper)
+            except HandoutError:
+                continue
+            write_pdf_pages(sheets, io.BytesIO(), handout.title)
+            handout_html(solution, say, paper)
+            return
+        raise RuntimeError(f"no paper up to A0 holds the handout of {n} loops")
+
+    return work
+
+
+def exponent(sizes: list[int], times: list[float]) -> float:
+    """p of the least-squares fit time = c N^p over the sizes of at least 10 loops (all of them when fewer than two)."""
+    pairs = [(n, t) for n, t in zip(sizes, times, strict=True) if n >= 10] or list(zip(sizes, times, strict=True))
+    if len(pairs) < 2:
+        return math.nan
+    x = np.log([n for n, _ in pairs])
+    y = np.log([t for _, t in pairs])
+    return float(np.polyfit(x, y, 1)[0])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="chains of 1, 10, 100 and 400 loops, one run each")
+    parser.add_argument("--sizes", help="comma-separated chain lengths (default 1,3,10,30,100,200,400,800)")
+    parser.add_argument("--draw-max", type=int, default=40, help="the longest chain drawn (default 40)")
+    parser.add_argument("--handout-max", type=int, default=10, help="the longest chain made a handout (default 10)")
+    args = parser.parse_args()
+    sizes = [int(s) for s in args.sizes.split(",")] if args.sizes else \
+        ([1, 10, 100, 400] if args.quick else [1, 3, 10, 30, 100, 200, 400, 800])
+    repeat = 1 if args.quick else 3
+    tasks: list[tuple[str, Callable[[int], Callable[[], object]], int]] = [
+        ("solve", _solve, max(sizes)), ("sweep", _sweep, max(sizes)), ("draw", _draw, args.draw_max),
+        ("handout", _handout, args.handout_max)]
+    results: dict[str, tuple[list[int], list[float]]] = {}
+    for name, make, limit in tasks:
+        ns = [n for n in sizes if n <= limit] or sizes[:1]
+        if name == "handout":
+            ns = sorted({*ns, 1, min(10, limit)})
+        times = []
+        for n in ns:
+            work = make(n)
+            times.append(_best(work, repeat if n <= 100 else 1))
+            print(f"{name:8s} N = {n:4d}: {1e3 * times[-1]:10.1f} ms", flush=True)
+        results[name] = (ns, times)
+    print("\ngrowth exponents (time ~ N^p, fitted over N >= 10):")
+    for name, (ns, times) in results.items():
+        print(f"  {name:8s} p = {exponent(ns, times):.2f}   (N = {', '.join(map(str, ns))})")
+    solve_ns, solve_t = results["solve"]
+    by_n = dict(zip(solve_ns, solve_t, strict=True))
+    if 100 in by_n and 400 in by_n:
+        print(f"  solve: 400 loops in {by_n[400]:.2f} s, {by_n[400] / by_n[100]:.1f} times 100 loops "
+              "(targets: under 2 s, at most 6 times)")
+    hand = dict(zip(*results["handout"], strict=True))
+    if 1 in hand and 10 in hand:
+        print(f"  handout: 10 loops {hand[10] / hand[1]:.1f} times 1 loop (target: at most 14 times)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,318 @@
+"""A sweep as frames: what every drawing of the motion shows, at scales fixed for the whole cycle. Pure.
+
+``make_frames(result, prepared, parts)`` reads the sweep (its positions, its columns, each row's
+status) and the engine's velocity and acceleration polygons over all rows
+(``construct_velocity``, ``construct_acceleration`` on the sweep's own positions): it holds no
+geometry of its own. A frame is a row the mechanism reaches; rows it cannot reach are skipped
+and listed. Polygon tips are in paper mm, the pole at 0: ``tips = k * value`` with ``k`` (kv or
+ka) one round number for every frame, the largest polygon of the cycle fitting its panel, so
+sizes compare from frame to frame. Singular rows (a dead or change point) keep the mechanism
+and leave the polygons out (``valid`` False).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
+from kinepoly.engine.polygon import Polygon
+from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
+from kinepoly.errors import AssemblyError, SceneError
+from kinepoly.geom.arrays import Bools, Points, Reals
+from kinepoly.scene.spec import LinkInput
+from kinepoly.sweep.run import PreparedSweep, SweepResult
+
+__all__ = ["PANEL_MM", "PARTS", "Frames", "LinkFrames", "PolygonFrames", "SliderFrames", "Trace", "Value",
+           "fitting_scale", "make_frames"]
+
+PARTS = ("mechanism", "velocity", "acceleration", "centers", "paths", "functions")
+"""What a frame can show: the mechanism, the two polygons, the instant centers with the frame, the
+point paths traced so far, a cursor on the transmission functions."""
+DEFAULT_PARTS = ("mechanism", "velocity", "acceleration", "paths")
+PANEL_MM = 90.0
+"""A polygon panel's side on paper: the largest polygon of the cycle fits a disc of this diameter
+around the pole (less a margin for the labels)."""
+_ROOM_MM = 0.5 * PANEL_MM - 6.0
+_NICE = (1.0, 2.0, 2.5, 5.0)
+_OK_OR_NEAR = 1
+_CANNOT = 3
+
+
+def fitting_scale(radius: float, room_mm: float = _ROOM_MM) -> float:
+    """The largest round scale (1, 2, 2.5 or 5 times a power of ten) that draws ``radius`` within ``room_mm``."""
+    if not (radius > 0.0 and math.isfinite(radius)):
+        return 1.0
+    raw = room_mm / radius
+    exponent = math.floor(math.log10(raw))
+    candidates = [m * 10.0 ** (exponent + k) for k in (-1, 0) for m in _NICE]
+    return max(c for c in candidates if c <= raw * (1 + 1e-12))
+
+
+@dataclass(frozen=True)
+class PolygonFrames:
+    """One polygon at every frame: ``tips[k, j]`` is tip ``labels[j]`` of frame k in paper mm (pole at 0).
+
+    ``images`` are each link's image (tip indices, -1 the pole), ``vectors`` the arrows drawn
+    (start, end, term) with -1 the pole; tips past ``len(labels)`` are construction points
+    without a label (the end of a Coriolis term).
+    """
+
+    kind: str
+    symbol: str
+    scale: float
+    unit: str
+    labels: tuple[str, ...]
+    tips: npt.NDArray[np.complex128]
+    valid: Bools
+    images: tuple[tuple[int, ...], ...]
+    vectors: tuple[tuple[int, int, str], ...]
+    center: complex = 0j
+    """The middle of every frame's polygon (paper mm from the pole): the panel is centred there."""
+
+
+@dataclass(frozen=True)
+class LinkFrames:
+    """A link's points at every frame (the scene's length unit, the scene's frame); the frame link does not move."""
+
+    name: str
+    points: tuple[str, ...]
+    xy: npt.NDArray[np.complex128]
+    ground: bool
+
+
+@dataclass(frozen=True)
+class SliderFrames:
+    """A slide: its guide line (from ``guide_a`` to ``guide_b``), the block's point and the slide's direction."""
+
+    name: str
+    guide_a: Points
+    guide_b: Points
+    block: Points
+    direction: Points
+
+
+@dataclass(frozen=True)
+class Trace:
+    """A point (a path) or an instant center at every frame; ``valid`` False where it has none."""
+
+    name: str
+    xy: Points
+    valid: Bools
+
+
+@dataclass(frozen=True)
+class Value:
+    """A quantity shown beside the drawing, at every row of the sweep (not only the frames)."""
+
+    name: str
+    unit: str
+    values: Reals
+    valid: Bools
+    order: int
+
+
+@dataclass(frozen=True)
+class Frames:
+    """Everything a drawing of the motion needs; frame k is the sweep's row ``rows[k]``."""
+
+    title: str
+    input_name: str
+    input_unit: str
+    length_unit: str
+    inputs: Reals
+    status: npt.NDArray[np.int8]
+    rows: npt.NDArray[np.intp]
+    skipped: tuple[int, ...]
+    links: tuple[LinkFrames, ...]
+    sliders: tuple[SliderFrames, ...]
+    paths: tuple[Trace, ...]
+    centers: tuple[Trace, ...]
+    velocity: PolygonFrames | None
+    acceleration: PolygonFrames | None
+    values: tuple[Value, ...]
+    box: tuple[float, float, float, float]
+    parts: tuple[str, ...]
+    periodic: bool
+
+    @property
+    def count(self) -> int:
+        return len(self.rows)
+
+    def value(self, name: str) -> Value:
+        return next(v for v in self.values if v.name == name)
+
+
+def _polygon_frames(polygon: Polygon, idx: npt.NDArray[np.intp], valid: Bools, unit: str,
+                    extras: list[tuple[str, str, Points | None, str]]) -> PolygonFrames:
+    mech = polygon.mechanism
+    ground_points = set(mech.scene.link(mech.ground).point_names) if mech.ground else set()
+    ground_points |= {label for label in polygon.tips if mech.ground and label.partition("@")[2] == mech.ground}
+    labels = [label for label in polygon.tips if label not in ground_points]
+    index = {label: j for j, label in enumerate(labels)}
+    index.update({g: -1 for g in ground_points})
+    values = [np.asarray(polygon.tips[label])[idx] for label in labels]
+    vectors: list[tuple[int, int, str]] = [(-1, index[label], "absolute") for label in labels]
+    aux: list[Points] = []
+    for start, end, through, term in extras:  # start -> start + through (term), then on to end
+        if start in index and end in index:
+            if through is None:
+                vectors.append((index[start], index[end], term))
+                continue
+            j = len(labels) + len(aux)
+            aux.append(np.asarray(polygon.tips[start])[idx] + np.asarray(through)[idx])
+            vectors += [(index[start], j, term), (j, index[end], "sliding")]
+    images = []
+    for link, members in polygon.members.items():
+        if link == mech.ground:
+            continue
+        image = tuple(dict.fromkeys(index[m.label] for m in members if m.label in index))
+        if len(image) >= 2:
+            images.append(image)
+    raw = np.stack(values + aux, axis=1) if values or aux else np.zeros((len(idx), 0), np.complex128)
+    finite = valid & np.isfinite(raw).all(axis=1)
+    every = np.append(raw[finite].ravel(), 0j)
+    low, high = complex(every.real.min(), every.imag.min()), complex(every.real.max(), every.imag.max())
+    scale = fitting_scale(0.5 * max(high.real - low.real, high.imag - low.imag))
+    tips = np.where(finite[:, None], raw * scale, 0.0).astype(np.complex128)
+    return PolygonFrames(polygon.kind, polygon.symbol, scale, unit, tuple(labels), tips, finite, tuple(images),
+                         tuple(vectors), 0.5 * (low + high) * scale)
+
+
+def _values(result: SweepResult) -> tuple[Value, ...]:
+    unit = result.scene.units
+    length, angle = unit.length, unit.angle
+    out = [Value(result.input.name, angle if isinstance(result.scene.input, LinkInput) else length,
+                 result.input.values, result.input.valid, 0)]
+    names = {c.name for c in result.columns}
+    units = {"angle": angle, "omega": "rad/s", "alpha": "rad/s^2", "slider": length, "slider-rate": f"{length}/s",
+             "slider-acceleration": f"{length}/s^2", "transmission": angle}
+    for col in result.columns:
+        if col.kind in units:
+            out.append(Value(col.name, units[col.kind], col.values, col.valid, col.order))
+        elif col.kind in ("velocity", "acceleration", "coriolis") and col.name.endswith("_x") \
+                and col.name[:-2] + "_y" in names:
+            other = result.column(col.name[:-2] + "_y")
+            where = "/s" if col.kind == "velocity" else "/s^2"
+            out.append(Value(f"|{col.name[:-2]}|", f"{length}{where}", np.hypot(col.values, other.values),
+                             col.valid & other.valid, col.order))
+    return tuple(out)
+
+
+def _links(result: SweepResult, idx: npt.NDArray[np.intp]) -> tuple[LinkFrames, ...]:
+    positions = result.positions
+    assert positions is not None
+    mech = positions.mechanism
+    out = []
+    for name in mech.link_names:
+        points = tuple(mech.scene.link(name).point_names)
+        if name == mech.ground:
+            xy = np.array([[complex(*mech.local(name, p)) for p in points]] * len(idx), np.complex128)
+        elif name in positions.poses:
+            xy = np.stack([positions.world(name, p)[idx] for p in points], axis=1) if points else \
+                np.zeros((len(idx), 0), np.complex128)
+        else:
+            continue
+        out.append(LinkFrames(name, points, xy.reshape(len(idx), len(points)), name == mech.ground))
+    return tuple(out)
+
+
+def _sliders(result: SweepResult, idx: npt.NDArray[np.intp], size: float) -> tuple[SliderFrames, ...]:
+    positions = result.positions
+    assert positions is not None
+    out = []
+    for spec in positions.mechanism.scene.sliders:
+        if spec.guide not in positions.poses or spec.block not in positions.poses:
+            continue
+        e = np.asarray(slide_direction(positions, spec))[idx]
+        through = np.asarray(positions.poses[spec.guide].world(spec.through))[idx]
+        block = np.asarray(positions.world(spec.block, spec.point))[idx]
+        s = (np.conj(e) * (block - through)).real
+        # the slide's whole stroke, and the point it is set through (so that a slot meets its lever)
+        low, high = min(float(s.min()), 0.0) - 0.15 * size, max(float(s.max()), 0.0) + 0.15 * size
+        out.append(SliderFrames(spec.name, through + low * e, through + high * e, block, e))
+    return tuple(out)
+
+
+def _centers(velocity: VelocityResult, idx: npt.NDArray[np.intp], valid: Bools, size: float) -> tuple[Trace, ...]:
+    """The instant center of each moving link with the frame: the point whose velocity image is the pole."""
+    polygon = velocity.polygon
+    mech = polygon.mechanism
+    out = []
+    for link in mech.link_names:
+        if link == mech.ground or link not in polygon.positions.poses:
+            continue
+        omega = polygon.rate_of(link)
+        member = next(iter(polygon.members.get(link, [])), None)
+        if omega is None or member is None:
+            continue
+        w, v = np.asarray(omega)[idx], np.asarray(polygon.tips[member.label])[idx]
+        finite = valid & (np.abs(w) * 1e3 * size > np.abs(v))
+        at = np.asarray(member.at)[idx] + 1j * v / np.where(finite, w, 1.0)
+        out.append(Trace(f"I{mech.ground or ''}{link}", np.where(finite, at, 0.0), finite))
+    return tuple(out)
+
+
+def _box(links: tuple[LinkFrames, ...], sliders: tuple[SliderFrames, ...]) -> tuple[float, float, float, float]:
+    parts = [link.xy.ravel() for link in links] + [s.guide_a for s in sliders] + [s.guide_b for s in sliders]
+    every = np.concatenate(parts) if parts else np.zeros(1, np.complex128)
+    return (float(every.real.min()), float(every.imag.min()), float(every.real.max()), float(every.imag.max()))
+
+
+def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, ...] = DEFAULT_PARTS) -> Frames:
+    """The frames of ``result`` (made from ``prepared``): rows the mechanism reaches, the polygons at fixed scales."""
+    unknown = [p for p in parts if p not in PARTS]
+    if unknown:
+        raise SceneError(f"--parts: expected some of {', '.join(PARTS)}, got {', '.join(unknown)}")
+    positions, shown = result.positions, result.shown
+    if positions is None or shown is None:
+        raise ValueError("this sweep result keeps no poses (it was not made by kinepoly.sweep.run_sweep)")
+    computed = np.flatnonzero(shown)
+    reach = result.status != _CANNOT
+    rows = np.flatnonzero(reach).astype(np.intp)
+    if not len(rows):
+        raise AssemblyError(f"{result.scene.title}: the mechanism cannot be assembled at any of the {result.rows} "
+                            "positions asked")
+    idx = computed[rows]
+    valid = result.status[rows] <= _OK_OR_NEAR
+    asked = prepared.asked
+    length = result.scene.units.length
+    velocity: VelocityResult | None = None
+    acceleration: AccelerationResult | None = None
+    with np.errstate(all="ignore"):
+        if asked.needs_velocity or "centers" in parts:
+            velocity = construct_velocity(positions, prepared.plan, asked.velocity)
+            if asked.needs_acceleration:
+                acceleration = construct_acceleration(velocity, prepared.plan, asked.acceleration)
+        links = _links(result, idx)
+        size = max(1e-300, max(float(np.abs(link.xy - link.xy[:, :1]).max()) if link.xy.size else 0.0
+                                for link in links))
+        sliders = _sliders(result, idx, size)
+        v_frames = a_frames = None
+        mech = positions.mechanism
+        if velocity is not None and "velocity" in parts:
+            extras: list[tuple[str, str, Points | None, str]] = [
+                (f"{s.point}@{s.guide}", velocity.polygon.label(s.block, s.point), None, "sliding")
+                      for s in mech.scene.sliders if s.guide != mech.ground]
+            v_frames = _polygon_frames(velocity.polygon, idx, valid, f"{length}/s", extras)
+        if acceleration is not None and "acceleration" in parts:
+            extras = [(f"{s.point}@{s.guide}", acceleration.polygon.label(s.block, s.point),
+                       acceleration.coriolis[s.name], "coriolis")  # a_P(guide) + coriolis + sliding = a_P(block)
+                      for s in mech.scene.sliders if s.name in acceleration.coriolis and s.guide != mech.ground]
+            a_frames = _polygon_frames(acceleration.polygon, idx, valid, f"{length}/s^2", extras)
+        paths: tuple[Trace, ...] = ()
+        if "paths" in parts:
+            labels = dict.fromkeys(label.partition("@")[0] for label in (*result.scene.find.velocity,
+                                                                         *result.scene.find.acceleration))
+            paths = tuple(Trace(p, np.asarray(positions.point(p))[idx], np.ones(len(idx), np.bool_))
+                          for p in labels)
+        centers = _centers(velocity, idx, valid, size) if velocity is not None and "centers" in parts else ()
+    unit = result.scene.units
+    return Frames(result.scene.title, result.input.name,
+                  unit.angle if isinstance(result.scene.input, LinkInput) else unit.length, length,
+                  result.input.values, result.status, rows, tuple(int(r) for r in np.flatnonzero(~reach)), links,
+                  sliders, paths, centers, v_frames, a_frames, _values(result), _box(links, sliders),
+                  tuple(p for p in PARTS if p in parts), result.periodic)
