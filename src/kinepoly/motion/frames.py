@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
+from kinepoly.engine.centrode import frame_centrodes
 from kinepoly.engine.polygon import Polygon
 from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
 from kinepoly.errors import AssemblyError, SceneError
@@ -238,21 +239,19 @@ def _sliders(result: SweepResult, idx: npt.NDArray[np.intp], size: float) -> tup
 
 
 def _centers(velocity: VelocityResult, idx: npt.NDArray[np.intp], valid: Bools, size: float) -> tuple[Trace, ...]:
-    """The instant center of each moving link with the frame: the point whose velocity image is the pole."""
+    """The instant center of each moving link with the frame (``engine.centrode``), where it is on the sheet:
+    within a thousand times the mechanism's size."""
     polygon = velocity.polygon
     mech = polygon.mechanism
     out = []
     for link in mech.link_names:
-        if link == mech.ground or link not in polygon.positions.poses:
+        if link == mech.ground or link not in polygon.positions.poses or polygon.rate_of(link) is None:
             continue
-        omega = polygon.rate_of(link)
-        member = next(iter(polygon.members.get(link, [])), None)
-        if omega is None or member is None:
-            continue
-        w, v = np.asarray(omega)[idx], np.asarray(polygon.tips[member.label])[idx]
-        finite = valid & (np.abs(w) * 1e3 * size > np.abs(v))
-        at = np.asarray(member.at)[idx] + 1j * v / np.where(finite, w, 1.0)
-        out.append(Trace(f"I{mech.ground or ''}{link}", np.where(finite, at, 0.0), finite))
+        found = frame_centrodes(velocity, link)
+        at = np.asarray(found.fixed)[idx]
+        near = np.asarray(polygon.positions.point(mech.scene.link(link).points[0].name))[idx]
+        shown = valid & np.asarray(found.finite)[idx] & (np.abs(at - near) <= 1e3 * size)
+        out.append(Trace(f"I{mech.ground or ''}{link}", np.where(shown, at, 0.0), shown))
     return tuple(out)
 
 
