@@ -23,25 +23,23 @@ from kinepoly.check import (
 )
 from kinepoly.check.analytic import AnalyticSolution, solve_analytic
 from kinepoly.check.compare import CheckReport, Quantity, compare
-from kinepoly.engine.acceleration import construct_acceleration
-from kinepoly.engine.assembly import position_at_input
 from kinepoly.engine.centers import InstantCenters, find_instant_centers, plan_instant_centers
+from kinepoly.engine.construct import Wanted, construct_row
 from kinepoly.engine.plan import PositionPlan, make_plan
 from kinepoly.engine.position import describe_input
-from kinepoly.engine.row import AccelerationPolygon, VelocityPolygon, acceleration_row, pose_row, velocity_row
+from kinepoly.engine.row import AccelerationPolygon, SliderValues, VelocityPolygon
 from kinepoly.engine.steps import Step
 from kinepoly.engine.transmission import transmission_angles
-from kinepoly.engine.velocity import construct_velocity
 from kinepoly.errors import SingularityError
 from kinepoly.geom.hull import diameter
 from kinepoly.geom.tolerances import LOUD_ERROR
-from kinepoly.geom.vec import Vec, dot, rotate, sub
+from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import Scene
 
-__all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "what_is_asked"]
+__all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "wanted", "what_is_asked"]
 
 
 @dataclass(frozen=True)
@@ -61,14 +59,6 @@ class Asked:
     @property
     def needs_acceleration(self) -> bool:
         return bool(self.acceleration or self.alpha)
-
-
-@dataclass(frozen=True)
-class SliderValues:
-    s: float
-    s_dot: float | None
-    s_ddot: float | None
-    coriolis: Vec | None
 
 
 @dataclass(frozen=True)
@@ -101,6 +91,7 @@ class Solution:
     inside: Inside | None = None
     accuracy: AccuracyReport | None = None
     centers: InstantCenters | None = None
+    sliders: dict[str, SliderValues] = field(default_factory=dict)
 
     def _repr_svg_(self) -> str:
         """A notebook shows the solution as its drawing."""
@@ -125,16 +116,8 @@ class Solution:
         return math.pi if theta == -math.pi else theta
 
     def slider(self, name: str) -> SliderValues:
-        mechanism, pose = (self.inside.mechanism, self.inside.pose) if self.inside else (self.mechanism, self.pose)
-        spec = mechanism.slider(name)
-        e = rotate((1.0, 0.0), pose.links[spec.guide].theta + spec.angle_rad)
-        owner = next(link for link in mechanism.links_of_point(spec.point) if link in pose.links)
-        at = pose.links[owner].world(mechanism.local(owner, spec.point))
-        s = dot(e, sub(at, pose.links[spec.guide].world(spec.through)))
-        s_dot = dot(e, self.velocity.sliding[name]) if self.velocity else None
-        s_ddot = dot(e, self.acceleration.sliding[name]) if self.acceleration else None
-        coriolis = self.acceleration.coriolis[name] if self.acceleration else None
-        return SliderValues(s, s_dot, s_ddot, coriolis)
+        """An asked slider's s, s_dot, s_ddot and Coriolis term, as the engine constructed them."""
+        return self.sliders[name]
 
 
 def _pair(mechanism: Mechanism, label: str) -> tuple[str, str]:
@@ -151,6 +134,11 @@ def what_is_asked(mechanism: Mechanism) -> Asked:
         alpha=tuple(find.alpha),
         sliders=tuple(find.sliders),
     )
+
+
+def wanted(asked: Asked) -> Wanted:
+    """What the engine is to construct for ``asked``."""
+    return Wanted(asked.velocity, asked.acceleration, asked.needs_velocity, asked.needs_acceleration, asked.sliders)
 
 
 def needed_links(mechanism: Mechanism, asked: Asked) -> set[str]:
@@ -174,25 +162,16 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     asked = what_is_asked(inner)
     center_plan = plan_instant_centers(inner) if scene.find.instant_centers else None
     plan = make_plan(inner, needed_links(inner, asked) | set(center_plan.links_needed if center_plan else ()))
-    with np.errstate(all="ignore"):  # a singular row raises by name; nothing non-finite passes (see _finite)
-        positions = position_at_input(inner, plan, frame.origin)
-        pose = pose_row(positions)
-        t1 = time.perf_counter()
-        unit = scene.units.length
-        velocity = acceleration = None
-        if asked.needs_velocity:
-            found = construct_velocity(positions, plan, asked.velocity, unit=unit, record=True, strict=True)
-            velocity = velocity_row(found)
-            if asked.needs_acceleration:
-                acceleration = acceleration_row(construct_acceleration(found, plan, asked.acceleration, unit=unit,
-                                                                       record=True, strict=True))
+    built = construct_row(inner, plan, wanted(asked), origin=frame.origin, unit=scene.units.length, record=True)
+    positions, pose, velocity, acceleration = built.positions, built.pose, built.velocity, built.acceleration
+    t1 = time.perf_counter()
     _finite(inner, velocity, acceleration)
     centers = find_instant_centers(inner, pose, center_plan, frame.origin) if center_plan else None
     t2 = time.perf_counter()
     where = describe_input(inner)
     transmissions = transmission_angles(positions, plan)
     draft = Solution(frame.scene, inner, asked, plan, pose, velocity, acceleration, compare([], 1.0), (),
-                     centers=centers)
+                     centers=centers, sliders=built.sliders)
     try:
         with np.errstate(all="ignore"):  # rates beyond double precision are reported by name just below
             analytic = solve_analytic(inner, dict(pose.links), with_acceleration=asked.needs_acceleration)
@@ -221,7 +200,7 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     timing = {"load_s": load_s, "position_s": t1 - t0, "construction_s": t2 - t1, "check_s": t3 - t2,
               "total_s": load_s + (t3 - t0)}
     return Solution(scene, mechanism, asked, plan, frame.pose_to_user(pose), velocity, acceleration, check,
-                    tuple(notices), timing, Inside(frame, inner, pose), accuracy, centers)
+                    tuple(notices), timing, Inside(frame, inner, pose), accuracy, centers, built.sliders)
 
 
 def _finite(mechanism: Mechanism, velocity: VelocityPolygon | None, acceleration: AccelerationPolygon | None) -> None:

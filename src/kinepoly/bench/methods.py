@@ -20,16 +20,15 @@ from kinepoly.bench.motion import LinkMotion, Trig, evaluate
 from kinepoly.bench.series import slider_crank_series
 from kinepoly.check.analytic import solve_analytic
 from kinepoly.check.compare import compare
-from kinepoly.engine.acceleration import construct_acceleration
 from kinepoly.engine.assembly import position_at_input
+from kinepoly.engine.construct import construct_row
 from kinepoly.engine.polygon import CrossLines
-from kinepoly.engine.row import acceleration_row, pose_row, velocity_row
-from kinepoly.engine.velocity import construct_velocity
+from kinepoly.engine.row import pose_row
 from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross_lines
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import Pose
 from kinepoly.scene.spec import LinkInput, SliderInput
-from kinepoly.solution import Solution
+from kinepoly.solution import Solution, wanted
 
 __all__ = ["FD_STEPS", "Guess", "Method", "Setting", "construct_at", "construction_values", "geos_crossing",
            "methods_for", "with_input"]
@@ -140,16 +139,9 @@ def construction_values(draft: Solution, keys: tuple[str, ...], origin: tuple[fl
 def construct_at(setting: Setting, mechanism: Mechanism, crossing: CrossLines = cross_lines) -> Solution:
     """Position and polygons at ``mechanism``'s input: the construction without the check."""
     sol = setting.solution
-    unit = mechanism.scene.units.length
-    with np.errstate(all="ignore"):
-        positions = position_at_input(mechanism, sol.plan)
-        found = construct_velocity(positions, sol.plan, sol.asked.velocity, unit=unit, strict=True, crossing=crossing)
-        acceleration = None
-        if sol.asked.needs_acceleration:
-            acceleration = acceleration_row(construct_acceleration(found, sol.plan, sol.asked.acceleration, unit=unit,
-                                                                   strict=True, crossing=crossing))
-    return Solution(mechanism.scene, mechanism, sol.asked, sol.plan, pose_row(positions), velocity_row(found),
-                    acceleration, compare([], 1.0), ())
+    built = construct_row(mechanism, sol.plan, wanted(sol.asked), unit=mechanism.scene.units.length, crossing=crossing)
+    return Solution(mechanism.scene, mechanism, sol.asked, sol.plan, built.pose, built.velocity, built.acceleration,
+                    compare([], 1.0), (), sliders=built.sliders)
 
 
 def geos_crossing(through1: PointsLike, direction1: PointsLike, through2: PointsLike, direction2: PointsLike,

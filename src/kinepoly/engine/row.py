@@ -15,7 +15,7 @@ from kinepoly.engine.velocity import VelocityResult
 from kinepoly.geom.arrays import Points, Reals
 from kinepoly.model.pose import Pose
 
-__all__ = ["AccelerationPolygon", "VelocityPolygon", "acceleration_row", "pose_row", "velocity_row"]
+__all__ = ["AccelerationPolygon", "SliderValues", "VelocityPolygon", "acceleration_row", "pose_row", "velocity_row"]
 
 Vec = tuple[float, float]
 
@@ -29,6 +29,16 @@ class VelocityPolygon:
     sliding: dict[str, Vec]
     steps: tuple[Step, ...]
     members: dict[str, list[tuple[str, Vec]]]
+
+
+@dataclass(frozen=True)
+class SliderValues:
+    """A slider's s, and where the polygons were constructed s_dot, s_ddot and the Coriolis term."""
+
+    s: float
+    s_dot: float | None
+    s_ddot: float | None
+    coriolis: Vec | None
 
 
 @dataclass(frozen=True)

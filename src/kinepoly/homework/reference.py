@@ -19,18 +19,14 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Literal
 
-import numpy as np
-
-from kinepoly.engine.acceleration import Rules, construct_acceleration
-from kinepoly.engine.assembly import position_at_input
-from kinepoly.engine.row import acceleration_row
-from kinepoly.engine.velocity import construct_velocity
+from kinepoly.engine.acceleration import Rules
+from kinepoly.engine.construct import construct_row
 from kinepoly.errors import KinepolyError
 from kinepoly.geom.vec import Vec
 from kinepoly.homework.answers import AnswerKey, Direction, Value
 from kinepoly.present.scales import polygon_scales
 from kinepoly.scene.spec import FindSpec, GivenInput, Scene
-from kinepoly.solution import Solution, solve
+from kinepoly.solution import Solution, solve, wanted
 
 __all__ = ["FLOOR_FRACTION", "Reference", "Values", "asked_keys", "fixed_angles", "prepare", "solve_for",
            "student_solution", "value_in", "values_of"]
@@ -229,13 +225,11 @@ def solve_for(scene: Scene, keys: Iterable[AnswerKey], *, everything: bool = Tru
 def student_solution(solution: Solution, rules: Rules) -> dict[AnswerKey, Value]:
     """The answers of a student who lays the acceleration polygon's known terms as ``rules`` say, at the
     positions and velocities of ``solution``: what :func:`values_of` gives, and the links that never turn."""
-    inside, plan, asked, unit = solution.inside, solution.plan, solution.asked, solution.scene.units.length
-    if solution.acceleration is not None and inside is not None:
-        with np.errstate(all="ignore"):  # as in the solve: the right construction went through at this row
-            velocity = construct_velocity(position_at_input(inside.mechanism, plan, inside.frame.origin), plan,
-                                          asked.velocity, unit=unit)
-            acceleration = construct_acceleration(velocity, plan, asked.acceleration, unit=unit, rules=rules)
-        solution = dataclasses.replace(solution, acceleration=acceleration_row(acceleration))
+    inside = solution.inside
+    if solution.acceleration is not None and inside is not None:  # the right construction went through at this row
+        built = construct_row(inside.mechanism, solution.plan, wanted(solution.asked), origin=inside.frame.origin,
+                              unit=solution.scene.units.length, strict=False, rules=rules)
+        solution = dataclasses.replace(solution, acceleration=built.acceleration, sliders=built.sliders)
     return _with_fixed_links(solution.scene, values_of(solution))
 
 

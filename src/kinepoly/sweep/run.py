@@ -35,10 +35,11 @@ from kinepoly.engine.group import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
 from kinepoly.engine.plan import NewtonGroup, PositionPlan, make_plan
 from kinepoly.engine.polygon import JointSolve, LineCrossing
 from kinepoly.engine.position import Failure, Positions, solve_positions
+from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.transmission import transmission_angles
-from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
+from kinepoly.engine.velocity import VelocityResult, construct_velocity
 from kinepoly.errors import AssemblyError, SceneError, SingularityError
-from kinepoly.geom.arrays import Bools, Points, Reals, dot
+from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import LinkPose
@@ -263,16 +264,14 @@ def _columns(out: _Builder, asked: Asked, velocity: VelocityResult | None, accel
         if label in scene.find.acceleration and acceleration is not None:
             out.pair(f"a_{label}", "acceleration", acceleration.tips[label])
     for name in asked.sliders:
-        spec = mech.slider(name)
-        e = slide_direction(positions, spec)
+        motion = slider_motion(positions, mech.slider(name), velocity, acceleration)
         if f"s_{name}" != input_column:
-            through = positions.poses[spec.guide].world(spec.through)
-            out.add(f"s_{name}", "slider", dot(e, _position(positions, spec.point) - through))
-        if velocity is not None:
-            out.add(f"s_dot_{name}", "slider-rate", dot(e, velocity.sliding[name]))
-        if acceleration is not None:
-            out.add(f"s_ddot_{name}", "slider-acceleration", dot(e, acceleration.sliding[name]))
-            out.pair(f"coriolis_{name}", "coriolis", acceleration.coriolis[name])
+            out.add(f"s_{name}", "slider", motion.s)
+        if motion.s_dot is not None:
+            out.add(f"s_dot_{name}", "slider-rate", motion.s_dot)
+        if motion.s_ddot is not None and motion.coriolis is not None:
+            out.add(f"s_ddot_{name}", "slider-acceleration", motion.s_ddot)
+            out.pair(f"coriolis_{name}", "coriolis", motion.coriolis)
 
 
 def _centrode(out: _Builder, link: str, velocity: VelocityResult, seed_row: int,
