@@ -97,11 +97,12 @@ def test_unreachable_positions_are_skipped_and_reported(tmp_path: Path, capsys: 
     frames = make_frames(result, prepared)
     unreachable = [int(r) for r in np.flatnonzero(result.status == 3)]
     assert unreachable and list(frames.skipped) == unreachable
-    assert frames.count == 36 - len(unreachable) and not set(frames.rows) & set(unreachable)
+    assert result.rows == 37  # 36 equal intervals from 0 to 350, both ends
+    assert frames.count == result.rows - len(unreachable) and not set(frames.rows) & set(unreachable)
     target = tmp_path / "short.gif"
     assert main(["animate", str(scene), "-o", str(target), "--positions", "36", "--from", "0", "--to", "350"]) == 0
     err = capsys.readouterr().err
-    assert f"{len(unreachable)} of 36 positions cannot be reached and are skipped" in err
+    assert f"{len(unreachable)} of {result.rows} positions cannot be reached and are skipped" in err
     with Image.open(target) as image:
         assert image.n_frames == frames.count
 
@@ -191,7 +192,7 @@ def test_singular_rows_keep_the_mechanism_and_leave_the_polygons_out() -> None:
     result = run_sweep(prepared, steps=40)
     frames = make_frames(result, prepared)
     singular = result.status == 2
-    assert singular.any() and frames.count == 40 and frames.skipped == ()
+    assert singular.any() and frames.count == result.rows == 41 and frames.skipped == ()  # 40 intervals
     assert frames.velocity is not None
     assert list(frames.velocity.valid) == list(~singular)
     assert np.isfinite(frames.velocity.tips).all() and np.abs(frames.velocity.tips - frames.velocity.center).max() <= 45

@@ -19,7 +19,7 @@ from collections.abc import Callable, Sequence
 from kinepoly.cli import animate, bench, check, draw, handout, solve, sweep, variants
 from kinepoly.errors import EXIT_SCENE, KinepolyError
 
-__all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "main", "main_exit"]
+__all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "HelpFormatter", "main", "main_exit", "parser", "version"]
 
 EXIT_INTERNAL = 70
 EXIT_INTERRUPTED = 130
@@ -46,7 +46,32 @@ _COMMANDS: tuple[tuple[str, str, Callable[[argparse.ArgumentParser], None], Call
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # type: ignore[override]
         self.print_usage(sys.stderr)
-        raise SystemExit(_usage_exit(f"{self.prog}: {message}"))
+        command = self.prog.removeprefix("kinepoly").strip()  # "kinepoly: error: " is said once, by _usage_exit
+        raise SystemExit(_usage_exit(f"{command}: {message}" if command else message))
+
+
+class HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Every option's help ends with its default, "(default: X)", unless it has none or already says it."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = action.help or ""
+        default = action.default
+        if (default is None or default is False or default is argparse.SUPPRESS or not action.option_strings
+                or "default" in text):
+            return text
+        shown = " ".join(map(str, default)) if isinstance(default, (list, tuple)) else "%(default)s"
+        return f"{text} (default: {shown})"
+
+
+def version() -> str:
+    """kinepoly's installed version (the package's metadata), or "unknown" when not installed."""
+    from importlib.metadata import PackageNotFoundError
+    from importlib.metadata import version as installed
+
+    try:
+        return installed("kinepoly")
+    except PackageNotFoundError:
+        return "unknown"
 
 
 def _usage_exit(message: str) -> int:
@@ -54,12 +79,24 @@ def _usage_exit(message: str) -> int:
     return EXIT_SCENE
 
 
+_EXIT_STATUS = ("exit status: 0 solved; 1 an answer was wrong (check); 2 the scene or the command is wrong; 3 the "
+                "mechanism cannot be assembled or is singular at that input; 70 an internal error; 130 interrupted")
+
+
+def parser() -> argparse.ArgumentParser:
+    """The whole command line (the README's table of options is generated from it: tools/cli_options.py)."""
+    return _parser()
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="kinepoly", description="Velocity and acceleration polygons of planar mechanisms, "
-                     "constructed as the graphical method draws them and checked analytically.")
+                     "constructed as the graphical method draws them and checked analytically.",
+                     epilog=_EXIT_STATUS, formatter_class=HelpFormatter)
+    parser.add_argument("--version", action="version", version=f"kinepoly {version()}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     for name, help_text, add_arguments, run in _COMMANDS:
-        command = sub.add_parser(name, help=help_text)
+        command = sub.add_parser(name, help=help_text, description=help_text[0].upper() + help_text[1:] + ".",
+                                 formatter_class=HelpFormatter)
         add_arguments(command)
         command.set_defaults(run=run)
     return parser

@@ -30,8 +30,9 @@ __all__ = ["add_arguments", "run", "run_check"]
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.description = ("Check a student's answers against the scene: a verdict per answer, and for a wrong "
-                          "one the likely mistake. Exit 0 when every answer is correct, 1 otherwise, 2 for a bad "
-                          "answers file. A folder of answers files gives a class report as CSV.")
+                          "one the likely mistake. A folder of answers files gives a class report as CSV.\n\n"
+                          "exit status: 0 every answer is correct; 1 an answer is wrong; 2 a bad scene, answers file "
+                          "or command; 3 the mechanism cannot be assembled or is singular at the scene's input")
     parser.add_argument("scene", help="the scene file (TOML)")
     parser.add_argument("answers", help="an answers file (TOML), or a folder of them for a class report")
     parser.add_argument("--json", action="store_true", help="print one JSON object instead of a table (or CSV)")

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -85,7 +86,9 @@ def _handout(args: argparse.Namespace) -> list[str]:
         from kinepoly.handout.build import handout_sheets
         from kinepoly.render.mpl import write_pdf_pages
 
-        handout, sheets = handout_sheets(solution, say, paper)
+        handout, sheets = handout_sheets(solution, say, args.paper)
+        for note in handout.notes:  # a larger paper than asked: said on the pages and here
+            print(f"kinepoly handout: {note}", file=sys.stderr)
         buffer = io.BytesIO()
         try:
             write_pdf_pages(sheets, buffer, handout.title)

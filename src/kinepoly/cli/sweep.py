@@ -1,4 +1,4 @@
-"""``kinepoly sweep SCENE --steps N [--from A --to B] [-o FILE.csv] [--plot FILE.png] [--centrode LINK]``.
+"""``kinepoly sweep SCENE [--positions N] [--from A --to B] [-o FILE.csv] [--plot FILE.png] [--centrode LINK]``.
 
 Files are written whole or not at all (``cli.files.write_atomically``).
 The CSV goes to ``-o FILE`` (``-o -`` or no ``-o`` and no ``--plot``: standard output). A
@@ -17,7 +17,10 @@ from typing import IO, Any, TextIO
 from kinepoly.cli.files import write_atomically
 from kinepoly.errors import SceneError
 
-__all__ = ["add_arguments", "run"]
+__all__ = ["DEFAULT_POSITIONS", "add_arguments", "run"]
+
+DEFAULT_POSITIONS = 360
+"""Intervals of a sweep without --positions: a full turn in 1 degree steps."""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -25,7 +28,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--from", dest="start", type=float, metavar="A",
                         help="first input (the scene's angle unit, or length for a slider input)")
     parser.add_argument("--to", dest="stop", type=float, metavar="B", help="last input (with --from)")
-    parser.add_argument("--steps", type=int, required=True, metavar="N", help="how many positions (rows)")
+    parser.add_argument("--positions", type=int, default=DEFAULT_POSITIONS, metavar="N",
+                        help="how many equal intervals: N + 1 rows from A to B, both ends included; N rows over a "
+                             "full turn (its end would repeat its start)")
+    parser.add_argument("--steps", dest="positions", type=int, help=argparse.SUPPRESS)  # the old name, still taken
     parser.add_argument("-o", "--output", metavar="FILE.csv", help="write the CSV here ('-' for standard output)")
     parser.add_argument("--plot", metavar="FILE.png", help="write the plots (PNG) here")
     parser.add_argument("--centrode", metavar="LINK", help="also report the fixed and moving centrodes of LINK")
@@ -97,7 +103,7 @@ def run(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     bar = _ProgressBar(sys.stderr) if sys.stderr.isatty() else None
     try:
-        result = sweep(scene, steps=args.steps, start=args.start, stop=args.stop, centrode=args.centrode,
+        result = sweep(scene, steps=args.positions, start=args.start, stop=args.stop, centrode=args.centrode,
                        progress=bar)
     finally:
         if bar is not None:

@@ -9,6 +9,7 @@ making room for the band changed a scale.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import replace
 
 from kinepoly.errors import HandoutError
 from kinepoly.handout.answers import answers_page
@@ -19,8 +20,9 @@ from kinepoly.handout.problem import problem_page
 from kinepoly.handout.step_pages import construction_pages
 from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.layout import paper_size
-from kinepoly.render.primitives import Sheet
+from kinepoly.render.primitives import Item, Sheet, Text
 from kinepoly.render.sheet import MARGIN_MM
+from kinepoly.render.text import plain_runs, runs_box
 from kinepoly.solution import Solution
 
 __all__ = ["drawn_kinds", "handout_content", "handout_sheets"]
@@ -41,6 +43,11 @@ def drawn_kinds(frame: Frame) -> list[str]:
     return sorted({v.term for figure in frame.layout.figures for v in figure.vectors})
 
 
+_LARGER = ("A4", "A3", "A2", "A1", "A0")
+_PAPER_NOTE = "Printed on {paper}: the handout does not fit the {asked} asked for (its text and drawing need more room)."
+"""The note on every page when a larger paper was chosen (the catalogue's ``page.larger_paper`` when it has one)."""
+
+
 def _paper(paper: str | tuple[float, float]) -> tuple[float, float]:
     if isinstance(paper, tuple):
         return paper
@@ -50,10 +57,26 @@ def _paper(paper: str | tuple[float, float]) -> tuple[float, float]:
         raise HandoutError(str(error)) from None
 
 
-def handout_sheets(solution: Solution, say: Catalogue,
-                   paper: str | tuple[float, float] = "A4") -> tuple[Handout, list[Sheet]]:
-    """The handout's content and a sheet per page, the text in a band under the drawing."""
-    width, height = _paper(paper)
+def _paper_name(paper: str | tuple[float, float]) -> str:
+    if isinstance(paper, tuple):
+        return f"{paper[0]:g}x{paper[1]:g}"
+    return paper.strip().upper() if paper.strip().lower()[:1] == "a" else paper.strip()
+
+
+def _larger_papers(size: tuple[float, float]) -> list[tuple[str, tuple[float, float]]]:
+    """A3, A2, ... A0 in the page's orientation, each larger than ``size`` both ways."""
+    portrait = size[1] > size[0]
+    out = []
+    for name in _LARGER:
+        w, h = paper_size(name + ("-portrait" if portrait else ""))
+        if w > size[0] + 1e-6 and h > size[1] + 1e-6:
+            out.append((name + ("-portrait" if portrait else ""), (w, h)))
+    return out
+
+
+def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float]) -> tuple[Frame, Handout] | str:
+    """The frame and the content on a page of ``size``, or why they do not fit it."""
+    width, height = size
     inner = width - 2 * (MARGIN_MM + GAP_MM)
     frame = band_frame(solution, (width, height), 0.0)
     scales = scales_of(frame.layout)
@@ -61,22 +84,59 @@ def handout_sheets(solution: Solution, say: Catalogue,
     for _ in range(6):
         need = max(band_height(page, inner, drawn_kinds(frame), say) for page in handout.pages)
         if need > _MOST_BAND * (height - 2 * MARGIN_MM):
-            raise HandoutError(f"the handout's text needs {need:.0f} mm of the page's {height:.0f}; choose a larger "
-                               f"--paper (e.g. A3)")
+            return f"the handout's text needs {need:.0f} mm of the page's {height:.0f}"
         if frame.band < need or scales_of(frame.layout) != scales:
             frame = band_frame(solution, (width, height), max(need, frame.band))
             if scales_of(frame.layout) != scales:
                 scales = scales_of(frame.layout)
                 handout = handout_content(solution, say, scales)
             continue
-        break
-    else:
-        raise HandoutError("the handout's layout does not settle on this paper; choose another --paper")
+        return frame, handout
+    return "the handout's layout does not settle on this paper"
+
+
+def _note_items(frame: Frame, notes: tuple[str, ...]) -> list[Item]:
+    """The notes in small type in the top margin, at the border's right end."""
+    items: list[Item] = []
+    y = frame.height - MARGIN_MM + 1.6
+    for note in notes:
+        runs = plain_runs(note, 2.4)
+        x1 = runs_box(runs)[2]
+        items.append(Text(frame.width - MARGIN_MM - x1, y, runs, "#7a1f1f", "paper note"))
+        y += 3.2
+    return items
+
+
+def handout_sheets(solution: Solution, say: Catalogue,
+                   paper: str | tuple[float, float] = "A4") -> tuple[Handout, list[Sheet]]:
+    """The handout's content and a sheet per page, the text in a band under the drawing.
+
+    When the page asked for is too small (the text's band and the drawing do not both fit), the
+    next larger A paper that holds them is taken (A3, A2, ... A0, in the page's orientation), and
+    every page and ``Handout.notes`` say so; the drawing reduces its polygons' scales or puts them
+    in cells of their own (``render.layout``) before that. Never fails for want of room.
+    """
+    size = _paper(paper)
+    asked = _paper_name(paper)
+    chosen, name = _frame_for(solution, say, size), asked
+    for larger, larger_size in _larger_papers(size):
+        if not isinstance(chosen, str):
+            break
+        chosen, name, size = _frame_for(solution, say, larger_size), larger, larger_size
+    if isinstance(chosen, str):
+        raise HandoutError(f"{chosen} even on A0; the handout cannot be laid out")  # a text longer than A0
+    frame, handout = chosen
+    notes: tuple[str, ...] = ()
+    if name != asked:
+        template = say.messages.get("page.larger_paper", _PAPER_NOTE)
+        notes = (template.format(paper=name, asked=asked),)
+    handout = replace(handout, paper=name, notes=notes)
+    width = frame.width
     kinds = drawn_kinds(frame)
     rect = (MARGIN_MM + GAP_MM, MARGIN_MM, width - MARGIN_MM - GAP_MM, MARGIN_MM + frame.band)
     sheets = []
     for page in handout.pages:
         layers = drawing_layers(solution, frame, page.drawing, say)
-        layers["title"] += page_frame_items(frame) + band_items(page, rect, kinds, say)
+        layers["title"] += page_frame_items(frame) + band_items(page, rect, kinds, say) + _note_items(frame, notes)
         sheets.append(blank_sheet(frame, f"{solution.scene.title}: {page.heading}", layers))
     return handout, sheets

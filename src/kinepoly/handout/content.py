@@ -69,3 +69,7 @@ class Handout:
     title: str
     language: str
     pages: tuple[Page, ...]
+    paper: str = ""
+    """The paper the PDF's pages were laid out on (``A3``, ``297x210``); empty before they are."""
+    notes: tuple[str, ...] = ()
+    """What the layout had to change (a larger paper than asked), said on every page and by the command."""

@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from kinepoly.handout.content import Drawing
 from kinepoly.present.catalogue import Catalogue
+from kinepoly.render.labels import LabelCache
 from kinepoly.render.layout import Panel
 from kinepoly.render.primitives import LAYERS, Arrow, Circle, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.sheet import MARGIN_MM, Layout, build_sheet, layout_sheet
@@ -44,6 +45,8 @@ class Frame:
     width: float
     height: float
     band: float
+    labels: LabelCache = field(default_factory=LabelCache, compare=False, repr=False)
+    """Shared by the frame's pages: the labels of the fixed parts are placed once."""
 
 
 def scales_of(layout: Layout) -> dict[str, float]:
@@ -193,7 +196,7 @@ def drawing_layers(solution: Solution, frame: Frame, drawing: Drawing, say: Cata
         step = 0 if solution.steps else None
     elif drawing.kind == "step":
         step = drawing.number
-    base = build_sheet(solution, frame.paper, step=step, layout=frame.layout)
+    base = build_sheet(solution, frame.paper, step=step, layout=frame.layout, labels=frame.labels)
     layers = {layer.name: list(layer.items) for layer in base.layers}
     titles, bars = _headings(solution, frame.layout, say)
     layers["title"], layers["scales"] = titles, bars

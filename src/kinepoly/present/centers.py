@@ -10,6 +10,7 @@ from typing import Any
 from kinepoly.engine.centers import InstantCenter, InstantCenters, KennedyLine, KennedyStep
 from kinepoly.engine.circle_diagram import center_label
 from kinepoly.geom.vec import Vec
+from kinepoly.present.clean import Noise
 from kinepoly.present.phrasing import Context, center_omega_sentence, english, kennedy_sentence
 
 __all__ = ["centers_json", "centers_steps_text", "centers_table", "kennedy_steps_json"]
@@ -70,11 +71,13 @@ def kennedy_steps_json(centers: InstantCenters, context: Context) -> list[dict[s
     return [_step_json(centers, step, context) for step in centers.steps]
 
 
-def _place_text(center: InstantCenter) -> str:
+def _place_text(center: InstantCenter, noise: Noise) -> str:
     if center.position is not None:
-        return f"({_fmt(center.position[0])}, {_fmt(center.position[1])})"
+        x, y = noise.pair(center.position, "position")
+        return f"({_fmt(x)}, {_fmt(y)})"
     assert center.direction is not None
-    return f"at infinity, direction ({_fmt(center.direction[0])}, {_fmt(center.direction[1])})"
+    ux, uy = noise.pair(center.direction, "direction")
+    return f"at infinity, direction ({_fmt(ux)}, {_fmt(uy)})"
 
 
 def _found_text(centers: InstantCenters, center: InstantCenter) -> str:
@@ -84,15 +87,18 @@ def _found_text(centers: InstantCenters, center: InstantCenter) -> str:
     return center.found
 
 
-def centers_table(centers: InstantCenters, unit: str, relative: float | None) -> list[str]:
-    """Rows of the asked centers, then the omegas they give and how they agree with the others."""
-    rows = [[center_label(key), _place_text(centers.centers[name]), _found_text(centers, centers.centers[name])]
+def centers_table(centers: InstantCenters, unit: str, relative: float | None, noise: Noise | None = None) -> list[str]:
+    """Rows of the asked centers, then the omegas they give and how they agree with the others.
+
+    ``noise`` sets coordinates below their error estimate to 0 (``present.clean``)."""
+    noise = noise if noise is not None else Noise()
+    rows = [[center_label(key), _place_text(centers.centers[name], noise), _found_text(centers, centers.centers[name])]
             for key, name in centers.asked]
     widths = [max(len(r[c]) for r in [["center", f"position ({unit})", "found"], *rows]) for c in range(3)]
     out = ["  ".join(v.ljust(w) for v, w in zip(row, widths, strict=True)).rstrip()
            for row in [["center", f"position ({unit})", "found"], ["-" * w for w in widths], *rows]]
     if centers.omegas:
-        values = ", ".join(f"{o.symbol} = {_fmt(o.omega)}" for o in centers.omegas)
+        values = ", ".join(f"{o.symbol} = {_fmt(noise.value(o.omega, 'omega'))}" for o in centers.omegas)
         agree = "" if relative is None else f"; against the polygon and the analytic solution: {relative:.2g} (relative)"
         out.append(f"omega from the instant centers (rad/s): {values}{agree}")
     return out

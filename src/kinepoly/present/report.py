@@ -8,15 +8,17 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from kinepoly.check.summary import QuantityError
 from kinepoly.engine.steps import Step
 from kinepoly.geom.vec import Vec, norm, unit
 from kinepoly.present.centers import centers_json, centers_steps_text, centers_table, kennedy_steps_json
+from kinepoly.present.clean import Noise, noise_of
 from kinepoly.present.phrasing import Context, english, step_sentence
 from kinepoly.present.scales import polygon_scales
 from kinepoly.scene.spec import LinkInput, SliderInput
 from kinepoly.solution import Solution
 
-__all__ = ["input_text", "steps_text", "table_text", "to_json"]
+__all__ = ["input_text", "readable_json", "steps_text", "table_text", "to_json"]
 
 
 def _pair(v: Vec) -> list[float]:
@@ -117,6 +119,32 @@ def to_json(solution: Solution) -> dict[str, Any]:
     return out
 
 
+def readable_json(solution: Solution, noise: Noise | None = None) -> dict[str, Any]:
+    """``to_json`` with every printed value below its error estimate set to 0 (``present.clean``).
+
+    For the text meant for people (the table, the title block); the JSON keeps the computed floats.
+    """
+    noise = noise if noise is not None else noise_of(solution)
+    data = to_json(solution)
+    degrees = solution.scene.units.angle == "deg"
+    for entry in data.get("links", {}).values():
+        entry["angle"] = noise.degrees(entry["angle"]) if degrees else noise.value(entry["angle"], "angle")
+        for key in ("omega", "alpha"):
+            if key in entry:
+                entry[key] = noise.value(entry[key], key)
+    for entry in data.get("points", {}).values():
+        for key in ("position", "velocity", "acceleration"):
+            if key in entry:
+                entry[key] = list(noise.pair(entry[key], key))
+    for entry in data.get("sliders", {}).values():
+        for key, kind in (("s", "position"), ("s_dot", "velocity"), ("s_ddot", "acceleration")):
+            if key in entry:
+                entry[key] = noise.value(entry[key], kind)
+        if "coriolis" in entry:
+            entry["coriolis"] = list(noise.pair(entry["coriolis"], "acceleration"))
+    return data
+
+
 def _value_json(value: float | tuple[float, float]) -> float | list[float]:
     return _pair(value) if isinstance(value, tuple) else float(value)
 
@@ -140,10 +168,27 @@ def _accuracy_rows(solution: Solution) -> list[str]:
     accuracy = solution.accuracy
     if accuracy is None or not accuracy.normwise:
         return []
-    rows = [[kind, f"{accuracy.normwise[kind]:.2g}",
-             "undefined" if accuracy.componentwise[kind] is None else f"{accuracy.componentwise[kind]:.2g}",
+    rows = [[kind, f"{accuracy.normwise[kind]:.2g}", _componentwise_text(accuracy.quantities, kind),
              f"{accuracy.estimated.get(kind, 0.0):.2g}"] for kind in accuracy.normwise]
     return _rows(["quantity", "normwise error", "componentwise error", "error estimate"], rows) + [""]
+
+
+def _components(value: float | tuple[float, float]) -> tuple[float, ...]:
+    return tuple(value) if isinstance(value, tuple) else (float(value),)
+
+
+def _componentwise_text(quantities: tuple[QuantityError, ...], kind: str) -> str:
+    """The worst componentwise error of ``kind`` over the components that mean something: those whose
+    analytic value is above its quantity's error estimate (a component that is 0, or rounding noise
+    around 0, has no relative error to speak of). "-" where no component is left."""
+    worst: float | None = None
+    for q in quantities:
+        if q.kind != kind:
+            continue
+        for got, ref in zip(_components(q.construction), _components(q.analytic), strict=True):
+            if abs(ref) > q.estimate and math.isfinite(ref):
+                worst = max(worst or 0.0, abs(got - ref) / abs(ref))
+    return "-" if worst is None else f"{worst:.2g}"
 
 
 def _fmt(x: float) -> str:
@@ -172,7 +217,8 @@ def _rows(header: list[str], rows: list[list[str]]) -> list[str]:
 
 def table_text(solution: Solution) -> str:
     """A readable summary: links, points, sliders, scales, warnings, and the cross-check footer."""
-    data = to_json(solution)
+    noise = noise_of(solution)
+    data = readable_json(solution, noise)
     u, au = solution.scene.units.length, solution.scene.units.angle
     out = [solution.scene.title, f"input: {input_text(solution)}", ""]
     if "links" in data:
@@ -195,7 +241,7 @@ def table_text(solution: Solution) -> str:
                 for name, v in data["sliders"].items()]
         out += _rows(["slider", f"s ({u})", f"s_dot ({u}/s)", f"s_ddot ({u}/s^2)", "coriolis"], rows) + [""]
     if solution.centers is not None:
-        out += centers_table(solution.centers, u, data["check"]["relative"].get("instant_center")) + [""]
+        out += centers_table(solution.centers, u, data["check"]["relative"].get("instant_center"), noise) + [""]
     for kind, poly in data.get("polygons", {}).items():
         per = f"{u}/s" if kind == "velocity" else f"{u}/s^2"
         symbol = "kv" if kind == "velocity" else "ka"

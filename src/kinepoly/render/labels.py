@@ -20,7 +20,7 @@ from kinepoly.render.text import Run, runs_box
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
 
-__all__ = ["CLEARANCE_MM", "LEADER", "Placer", "Request", "fill_geometry", "item_geometry", "place"]
+__all__ = ["CLEARANCE_MM", "LEADER", "LabelCache", "Placer", "Request", "fill_geometry", "item_geometry", "place"]
 
 Point = tuple[float, float]
 Box = tuple[float, float, float, float]
@@ -118,19 +118,67 @@ def _pushed_box(anchor: Point, direction: Point, size: tuple[float, float], gap:
     return (cx - a, cy - b, cx + a, cy + b)
 
 
+class _Placed:
+    """The geometries placed so far (labels, leaders), found by a grid of cells: only near ones are tested."""
+
+    _CELL_MM = 8.0
+
+    def __init__(self) -> None:
+        self.geometries: list[Any] = []
+        self._cells: dict[tuple[int, int], list[int]] = {}
+
+    def _keys(self, bounds: Box) -> Iterable[tuple[int, int]]:
+        c = self._CELL_MM
+        for i in range(math.floor(bounds[0] / c), math.floor(bounds[2] / c) + 1):
+            for j in range(math.floor(bounds[1] / c), math.floor(bounds[3] / c) + 1):
+                yield (i, j)
+
+    def append(self, geometry: Any) -> None:
+        index = len(self.geometries)
+        self.geometries.append(geometry)
+        for key in self._keys(geometry.bounds):
+            self._cells.setdefault(key, []).append(index)
+
+    def extend(self, geometries: Iterable[Any]) -> None:
+        for geometry in geometries:
+            self.append(geometry)
+
+    def touches(self, geometry: Any) -> bool:
+        """Whether ``geometry`` intersects any placed geometry."""
+        x0, y0, x1, y1 = geometry.bounds
+        seen: set[int] = set()
+        for key in self._keys((x0, y0, x1, y1)):
+            for index in self._cells.get(key, ()):
+                if index in seen:
+                    continue
+                seen.add(index)
+                g = self.geometries[index]
+                b = g.bounds
+                if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0 and geometry.intersects(g):
+                    return True
+        return False
+
+    def __len__(self) -> int:
+        return len(self.geometries)
+
+
 class Placer:
     """Places labels one after another in one region, avoiding what is drawn and what is placed."""
 
-    def __init__(self, region: Box, drawn: Iterable[Item], placed: list[Any] | None = None) -> None:
+    def __init__(self, region: Box, drawn: Iterable[Item], placed: _Placed | None = None,
+                 geometries: tuple[list[Any], list[Any]] | None = None) -> None:
         from shapely import STRtree
 
-        items = list(drawn)
         self.region = region
-        self._hard: list[Any] = [item_geometry(item) for item in items]
-        self._soft: list[Any] = [g for g in (fill_geometry(item) for item in items) if g is not None]
+        if geometries is None:
+            items = list(drawn)
+            self._hard: list[Any] = [item_geometry(item) for item in items]
+            self._soft: list[Any] = [g for g in (fill_geometry(item) for item in items) if g is not None]
+        else:
+            self._hard, self._soft = geometries
         self._hard_tree = STRtree(self._hard)
         self._soft_tree = STRtree(self._soft)
-        self._placed: list[Any] = placed if placed is not None else []
+        self._placed = placed if placed is not None else _Placed()
 
     def _inside(self, b: Box) -> bool:
         x0, y0, x1, y1 = self.region
@@ -146,10 +194,10 @@ class Placer:
             return False
         if avoid_fill and len(self._soft_tree.query(grown, predicate="intersects")):
             return False
-        return not any(grown.intersects(g) for g in self._placed)
+        return not self._placed.touches(grown)
 
     def _leader_ok(self, line: Any) -> bool:
-        return not any(line.intersects(g) for g in self._placed)
+        return not self._placed.touches(line)
 
     def block(self, item: Item) -> None:
         """Treat ``item`` as drawn from now on (something added after the labels started)."""
@@ -265,22 +313,100 @@ def _point(p: Point) -> Any:
     return ShapelyPoint(p)
 
 
-def place(requests: Sequence[Request], drawn: Iterable[Item]) -> dict[str, list[Item]]:
-    """Place every request (by priority, then in the given order), each in its region; items per layer."""
+class LabelCache:
+    """What the sheets of one layout (a handout's pages, a drawing's step sheets) share in placing labels.
+
+    The geometry of each drawn item is made once; a region's labels are placed once and reused on
+    every later sheet whose requests in that region, and drawn items near it, are the same (the
+    mechanism, the circle diagram: the fixed parts), so a page places only what changed (the
+    polygons up to its step). A region's labels are kept only when they lie clear of its edges and
+    of every other region's labels: then nothing outside the region could have moved them.
+    """
+
+    def __init__(self) -> None:
+        self._geometry: dict[Item, tuple[Any, Any, Box]] = {}
+        self._regions: dict[tuple[Any, ...], tuple[list[tuple[str, list[Item]]], list[Any]]] = {}
+
+    def geometry(self, item: Item) -> tuple[Any, Any, Box]:
+        """The item's hard geometry, its shading (or None) and the hard geometry's bounds."""
+        found = self._geometry.get(item)
+        if found is None:
+            hard = item_geometry(item)
+            found = self._geometry[item] = (hard, fill_geometry(item), tuple(hard.bounds))
+        return found
+
+
+def _near_region(bounds: Box, region: Box, margin: float) -> bool:
+    return (bounds[0] <= region[2] + margin and bounds[2] >= region[0] - margin
+            and bounds[1] <= region[3] + margin and bounds[3] >= region[1] - margin)
+
+
+def _well_inside(bounds: Box, region: Box, margin: float) -> bool:
+    return (bounds[0] > region[0] + margin and bounds[1] > region[1] + margin
+            and bounds[2] < region[2] - margin and bounds[3] < region[3] - margin)
+
+
+def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache | None = None) -> dict[str, list[Item]]:
+    """Place every request (by priority, then in the given order), each in its region; items per layer.
+
+    A region's labels avoid the drawn items near the region (nothing further can touch a label
+    inside it) and the labels placed before them in any region. With ``cache`` shared by the
+    sheets of one layout, a region whose requests and nearby drawing are as on an earlier sheet
+    gets that sheet's labels again without placing them anew: the same result, placed once.
+    """
+    cache = cache if cache is not None else LabelCache()
     drawn = list(drawn)
-    placers: dict[tuple[float, float, float, float], Placer] = {}
-    shared: list[Any] = []
+    geometry = [cache.geometry(item) for item in drawn]
+    ordered = sorted(requests, key=lambda r: r.priority)
+    by_region: dict[Box, list[Request]] = {}
+    for request in ordered:
+        by_region.setdefault(request.region, []).append(request)
+    margin = CLEARANCE_MM + 1e-6
+    near: dict[Box, list[int]] = {region: [k for k, g in enumerate(geometry) if _near_region(g[2], region, margin)]
+                                  for region in by_region}
+    keys = {region: (region, tuple(reqs), tuple(drawn[k] for k in near[region])) for region, reqs in by_region.items()}
+    shared = _Placed()
     out: dict[str, list[Item]] = {}
-    for request in sorted(requests, key=lambda r: r.priority):
-        placer = placers.get(request.region)
+    reused = {region for region in by_region if keys[region] in cache._regions}
+    for region in reused:
+        _, placed = cache._regions[keys[region]]
+        shared.extend(placed)
+    placers: dict[Box, Placer] = {}
+    made: dict[Box, list[tuple[str, list[Item]]]] = {}
+    made_geometry: dict[Box, list[Any]] = {}
+    for request in ordered:
+        region = request.region
+        if region in reused:
+            continue
+        placer = placers.get(region)
         if placer is None:
-            placer = placers[request.region] = Placer(request.region, drawn, shared)
+            hard = [geometry[k][0] for k in near[region]]
+            soft = [geometry[k][1] for k in near[region] if geometry[k][1] is not None]
+            placer = placers[region] = Placer(region, (), shared, (hard, soft))
+            made[region], made_geometry[region] = [], []
+        before = len(shared)
         if request.end is None:
             items = placer.at_point(request.anchor, request.runs, request.color, request.role, request.bold,
                                     request.gap, request.ring, request.optional)
         else:
             items = placer.along(request.anchor, request.end, request.runs, request.color, request.role)
-        out.setdefault(request.layer, []).extend(items)
+        made[region].append((request.layer, items))
+        made_geometry[region] += shared.geometries[before:]
+    for region in placers:
+        own = made_geometry[region]
+        mine = {id(g) for g in own}
+        others = [g for g in shared.geometries if id(g) not in mine]
+        if all(_well_inside(tuple(g.bounds), region, margin) for g in own) and \
+                not any(_near_region(tuple(g.bounds), region, margin) for g in others):
+            cache._regions[keys[region]] = (made[region], own)
+    results = {region: cache._regions[keys[region]][0] for region in reused} | made
+    # the layers' items in the order of the requests, as placed one after another
+    counters = dict.fromkeys(results, 0)
+    for request in ordered:
+        k = counters[request.region]
+        layer, items = results[request.region][k]
+        counters[request.region] = k + 1
+        out.setdefault(layer, []).extend(items)
     return out
 
 

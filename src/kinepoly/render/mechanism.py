@@ -104,7 +104,11 @@ def _link_shape(name: str, points: Sequence[Point], index: int) -> list[Item]:
     if len(points) == 2:
         return [Path((points[0], points[1]), LINK_STROKE, role=f"link {name}")]
     hull = MultiPoint(list(points)).convex_hull
-    longest = max(((a, b) for a in points for b in points), key=lambda ab: norm(sub(ab[1], ab[0])))
+    # the farthest pair lies on the hull: only its corners are paired (a link of many points stays cheap)
+    corners = {(float(x), float(y)) for x, y in getattr(hull, "exterior", hull).coords}
+    ends = [p for p in points if (float(p[0]), float(p[1])) in corners]
+    ends = ends if len(ends) >= 2 else list(points)
+    longest = max(((a, b) for a in ends for b in ends), key=lambda ab: norm(sub(ab[1], ab[0])))
     if hull.geom_type != "Polygon" or hull.area < 0.02 * norm(sub(longest[1], longest[0])) ** 2:
         return [Path(longest, LINK_STROKE, role=f"link {name}")]
     ring = tuple((float(x), float(y)) for x, y in list(hull.exterior.coords)[:-1])

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from kinepoly.present.phrasing import Context, english, step_sentence
 from kinepoly.present.scales import polygon_scales
 from kinepoly.render import centers as centers_layer
-from kinepoly.render.labels import Request, place
+from kinepoly.render.labels import LabelCache, Request, place
 from kinepoly.render.layout import Content, Panel, arrange, paper_size
 from kinepoly.render.mechanism import mechanism_box, mechanism_items
 from kinepoly.render.polygons import Figure, figure_box, polygon_figure, polygon_items
@@ -191,8 +191,12 @@ def _step_blocks(solution: Solution, layout: Layout, step: int, width: float) ->
 
 
 def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, step: int | None = None,
-                layout: Layout | None = None) -> Sheet:
-    """The drawing of ``solution``; with ``step``, the sheet of that construction step (1-based)."""
+                layout: Layout | None = None, labels: LabelCache | None = None) -> Sheet:
+    """The drawing of ``solution``; with ``step``, the sheet of that construction step (1-based).
+
+    ``labels``, shared by the sheets of one layout, places the labels of the parts that do not
+    change from sheet to sheet once (``render.labels.LabelCache``).
+    """
     layout = layout if layout is not None else layout_sheet(solution, paper)
     layers: dict[str, list[Item]] = {name: [] for name in LAYERS}
     requests: list[Request] = []
@@ -214,7 +218,7 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
     layers["title"] += _frame_items(layout) + headings + _title_items(solution, layout, step)
     layers["scales"] += bars
     drawn = [item for name in LAYERS for item in layers[name]]
-    for name, placed in place(requests, drawn).items():
+    for name, placed in place(requests, drawn, labels).items():
         layers[name] += placed
     title = solution.scene.title if step is None else f"{solution.scene.title}: step {step}"
     return Sheet(layout.width, layout.height, title, tuple(Layer(name, tuple(layers[name])) for name in LAYERS))
@@ -223,4 +227,6 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
 def step_sheets(solution: Solution, paper: str | tuple[float, float] = "A4") -> list[Sheet]:
     """One sheet per construction step, all on the layout of the whole drawing."""
     layout = layout_sheet(solution, paper)
-    return [build_sheet(solution, paper, step=n, layout=layout) for n in range(1, len(solution.steps) + 1)]
+    labels = LabelCache()
+    return [build_sheet(solution, paper, step=n, layout=layout, labels=labels)
+            for n in range(1, len(solution.steps) + 1)]

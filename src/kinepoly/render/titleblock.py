@@ -124,9 +124,9 @@ def _angle_of(v: Sequence[float]) -> str | float | None:
 
 def title_blocks(solution: Solution, notes: Sequence[str], width: float) -> list[Block]:
     """The title block's columns: title and input, the tables of asked results, notes and legend."""
-    from kinepoly.present.report import input_text, to_json
+    from kinepoly.present.report import input_text, readable_json
 
-    data = to_json(solution)
+    data = readable_json(solution)  # values below their error estimate are 0 (present.clean)
     u, uv, ua = _unit_text(solution)
     au = "°" if solution.scene.units.angle == "deg" else "rad"
     left_w = min(width * 0.42, 110.0)

@@ -4,7 +4,15 @@ Without ``--from``/``--to`` the range is a full turn of the input link, 0 to 360
 the end left out (it repeats the start), when the mechanism closes all the way round; else it
 is the stretch of input around the scene's own input where it closes (a rocker's swing, a
 slider's stroke), its ends found to about 1e-10 of the step by repeated subdivision. A slider
-input that closes further than ten times the mechanism's size either way stops there.
+input that closes further than ten times the mechanism's size either way stops there, and so
+does a range where a point runs off further than ten times the mechanism's size (a slider
+driven toward an asymptote): both with an ``open-range`` notice.
+
+``steps`` is the number of equal intervals the range is cut into, so that round inputs stay
+round: from A to B there are ``steps + 1`` rows, both ends included (``--from 0 --to 90
+--positions 90``: 91 rows 1 degree apart); a full turn (the default one, or B = A + 360
+degrees) has ``steps`` rows, for its last would repeat its first (``--positions 360``: 0, 1,
+..., 359).
 
 The scene's own input is always a row, for that is where the assembly is chosen: when it is not
 on the grid it is slipped in between two rows (and not shown); when it lies outside the range
@@ -91,8 +99,9 @@ def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) ->
         low, high = float(min(shown[0], shown[-1])), float(max(shown[0], shown[-1]))
         middle = 0.5 * (low + high)
         seed = seed + full * round((middle - seed) / full)
-    if periodic and full is not None:
-        seed = seed % full
+    if periodic and full is not None:  # the turn's own copy of the seed: from the lowest row, one turn up
+        low = float(min(shown[0], shown[-1]))
+        seed = low + (seed - low) % full
     step = abs(float(shown[1] - shown[0])) if len(shown) > 1 else 1.0
     close = np.flatnonzero(np.abs(shown - seed) <= 1e-9 * step)
     if close.size:
@@ -123,13 +132,37 @@ def _evaluate(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row:
     return solve_positions(mechanism, plan, _internal(mechanism, values), Continuity(seed_row, seed, periodic))
 
 
+@dataclass(frozen=True)
+class _Reach:
+    """Where the sweep may go: every point within ``radius`` of ``center`` (ten times the mechanism's size)."""
+
+    center: complex
+    radius: float
+
+    def within(self, mechanism: Mechanism, found: Positions) -> Bools:
+        """Rows that close with every point of the mechanism within reach."""
+        inside = found.ok.copy()
+        for link in found.poses:
+            for p in mechanism.scene.link(link).points:
+                distance = np.abs(np.asarray(found.world(link, p.name)) - self.center)
+                inside &= np.where(np.isfinite(distance), distance, np.inf) <= self.radius
+        return inside
+
+
+def _reach(mechanism: Mechanism, seed: dict[str, LinkPose], size: float) -> _Reach:
+    points = [pose.world(p.local) for link, pose in seed.items() for p in mechanism.scene.link(link).points]
+    center = complex(sum(q[0] for q in points), sum(q[1] for q in points)) / max(len(points), 1)
+    return _Reach(center, 10.0 * size)
+
+
 def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: float,
-          seed: dict[str, LinkPose]) -> tuple[float, dict[str, LinkPose]]:
-    """The last input from ``inside`` toward ``outside`` where the mechanism still closes."""
+          seed: dict[str, LinkPose], reach: _Reach | None = None) -> tuple[float, dict[str, LinkPose]]:
+    """The last input from ``inside`` toward ``outside`` where the mechanism still closes (and, with
+    ``reach``, every point stays within it)."""
     for _ in range(_ZOOM_ROUNDS):
         values = np.linspace(inside, outside, _ZOOM + 1)
         found = _evaluate(mechanism, plan, values, 0, seed, periodic=False)
-        ok = found.ok
+        ok = found.ok if reach is None else reach.within(mechanism, found)
         last = int(np.argmin(ok)) - 1 if not ok.all() else len(values) - 1
         if last < 0:
             break
@@ -173,7 +206,10 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
         raise AssemblyError(f"the scene's own input ({seed_value:.6g}) does not close in the sweep's arrays; "
                             "give --from and --to")
     periodic = full is not None
-    before, after = _run_around(found.ok, seed_row, periodic)
+    bounds = _reach(mechanism, seed, size)
+    ok = bounds.within(mechanism, found)
+    ok[seed_row] = True
+    before, after = _run_around(ok, seed_row, periodic)
     n = len(values)
     notices: list[Notice] = []
     ends = []
@@ -190,13 +226,17 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
             ends.append(inside)
             continue
         outside = inside + sign * abs(float(values[1] - values[0]))
-        edge, _ = _edge(mechanism, plan, inside, outside, found.row(row))
+        edge, _ = _edge(mechanism, plan, inside, outside, found.row(row), bounds)
+        if found.ok[next_row % n] and not ok[next_row % n]:  # it still closes there, but runs off
+            notices.append(Notice("open-range", f"the mechanism still closes at {edge:.6g}, but a point runs off "
+                                  f"beyond ten times its size ({size:.6g}); the sweep stops there (give --from "
+                                  "and --to to go further)"))
         ends.append(edge)
     return ends[0], ends[1], False, notices
 
 
 def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
-    """A full turn of the input link in ``steps`` rows (None for a slider input)."""
+    """A full turn of the input link in ``steps`` rows, ``steps`` equal intervals (None for a slider input)."""
     full = _full_turn(mechanism)
     if full is None:
         return None
@@ -208,22 +248,28 @@ def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
 
 def _check_steps(steps: int) -> None:
     if not 2 <= steps <= MAX_STEPS:
-        raise SceneError(f"--steps: expected a whole number of rows from 2 to {MAX_STEPS}, got {steps}")
+        raise SceneError(f"--positions: expected a whole number of intervals from 2 to {MAX_STEPS}, got {steps}")
+
+
+def _is_full_turn(start: float, stop: float, full: float | None) -> bool:
+    """Whether ``start`` to ``stop`` is one whole turn (either way), up to rounding of the inputs."""
+    return full is not None and abs(abs(stop - start) - full) <= 1e-12 * full
 
 
 def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPose], steps: int,
                start: float | None, stop: float | None) -> InputGrid:
-    """The rows of a sweep of ``steps`` shown rows, from ``start`` to ``stop`` (the scene's input unit)."""
+    """The rows of a sweep of ``steps`` equal intervals from ``start`` to ``stop`` (the scene's input unit):
+    ``steps + 1`` shown rows, or ``steps`` over a full turn (its end would repeat its start)."""
     _check_steps(steps)
     full = _full_turn(mechanism)
     notices: list[Notice] = []
     if start is None or stop is None:
         start, stop, periodic, notices = _default_range(mechanism, plan, seed, mechanism_size(mechanism, seed))
     else:
-        periodic = False
+        periodic = _is_full_turn(start, stop, full)
     if periodic:
         shown = np.linspace(start, stop, steps, endpoint=False)
     else:
-        shown = np.linspace(start, stop, steps)
+        shown = np.linspace(start, stop, steps + 1)
     values, mask, seed_row = _with_seed(shown, _seed_value(mechanism), periodic, full)
     return InputGrid(values, _internal(mechanism, values), mask, seed_row, periodic, tuple(notices))

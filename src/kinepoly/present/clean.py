@@ -1,0 +1,92 @@
+"""Rounding noise as people read it: a value below its quantity's error estimate prints as 0.
+
+The JSON keeps the computed floats; the table, the steps, the title block, the handouts and
+the answer keys print what ``Noise`` leaves. A quantity's floor is its kind's estimated
+relative error (``Solution.accuracy``) times the natural size of that kind in the scene (the
+cross-check's normwise scale): an x-coordinate of 1.4e-14 mm in a 200 mm mechanism, a triad's
+angle of 4.8e-14 degrees or a unit direction's 6.1e-17 are all below it, and print as 0.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from kinepoly.geom.tolerances import UNIT_ROUNDOFF
+
+if TYPE_CHECKING:
+    from kinepoly.solution import Solution
+
+__all__ = ["KINDS", "Noise", "clean", "noise_of"]
+
+KINDS = ("position", "angle", "direction", "velocity", "omega", "instant_center", "acceleration", "alpha")
+"""The kinds of printed quantities: those of the cross-check, and ``direction`` (a unit vector)."""
+
+_CLASS = {"position": "position", "angle": "position", "direction": "position", "velocity": "velocity",
+          "omega": "velocity", "instant_center": "velocity", "acceleration": "acceleration", "alpha": "acceleration"}
+
+_MIN_RELATIVE = 16.0 * UNIT_ROUNDOFF
+"""No kind's estimate is taken below a few units of roundoff (a quantity computed in one operation)."""
+
+
+def clean(value: float, scale: float, relative: float) -> float:
+    """``value``, or 0 where its magnitude is below ``relative`` times ``scale`` (its error estimate).
+
+    -0.0 becomes 0.0; infinities and NaN pass unchanged.
+    """
+    if not math.isfinite(value):
+        return value
+    return 0.0 if abs(value) <= abs(scale) * relative else value + 0.0
+
+
+@dataclass(frozen=True)
+class Noise:
+    """The absolute error floor of each kind (the unit of the kind: mm, rad, mm/s, ...)."""
+
+    floors: Mapping[str, float] = field(default_factory=dict)
+
+    def floor(self, kind: str) -> float:
+        return self.floors.get(kind, 0.0)
+
+    def value(self, x: float, kind: str) -> float:
+        """``x`` of ``kind``, 0 where below the floor."""
+        return clean(x, self.floor(kind), 1.0)
+
+    def pair(self, v: Sequence[float], kind: str) -> tuple[float, float]:
+        """A vector of ``kind`` with each component below the floor set to 0."""
+        return self.value(v[0], kind), self.value(v[1], kind)
+
+    def degrees(self, x: float) -> float:
+        """An angle already in degrees, 0 where below the angle floor (kept in radians)."""
+        return clean(x, math.degrees(self.floor("angle")), 1.0)
+
+
+def _scales(solution: Solution) -> dict[str, float]:
+    from kinepoly.solution import _natural_scales
+
+    natural = _natural_scales(solution)
+    scales = {kind: max(solution.check.scales.get(kind, 0.0), natural.get(kind, 0.0)) for kind in KINDS}
+    scales["angle"] = scales["direction"] = 1.0
+    return {kind: s if s > 0.0 and math.isfinite(s) else 1.0 for kind, s in scales.items()}
+
+
+def _relative(solution: Solution) -> dict[str, float]:
+    estimated = dict(solution.accuracy.estimated) if solution.accuracy is not None else {}
+    by_class: dict[str, float] = {}
+    for kind, rel in estimated.items():
+        if kind in _CLASS:
+            by_class[_CLASS[kind]] = max(by_class.get(_CLASS[kind], 0.0), rel)
+    fallback = max(estimated.values(), default=_MIN_RELATIVE)
+    out = {}
+    for kind in KINDS:
+        rel = estimated.get(kind, by_class.get(_CLASS[kind], fallback))
+        out[kind] = max(rel, _MIN_RELATIVE) if math.isfinite(rel) else _MIN_RELATIVE
+    return out
+
+
+def noise_of(solution: Solution) -> Noise:
+    """Each kind's floor in ``solution``: its estimated relative error times its natural size."""
+    scales, relative = _scales(solution), _relative(solution)
+    return Noise({kind: scales[kind] * relative[kind] for kind in KINDS})
