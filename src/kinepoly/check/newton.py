@@ -87,9 +87,12 @@ class System:
         """Each moving link's first column in q."""
         return {link: 3 * k for k, link in enumerate(self.layout.moving)}
 
-    def jacobian(self, q: np.ndarray) -> SparseMatrix:
-        """Phi_q as a sparse matrix: each constraint's rows, derived over only the links it joins."""
+    def jacobian(self, q: np.ndarray) -> np.ndarray | SparseMatrix:
+        """Phi_q: dense up to WINDOW unknowns; beyond, a sparse matrix of each constraint's rows, derived over
+        only the links it joins (so that a long chain costs time linear in its length)."""
         b = self.bodies(q)
+        if self.layout.n <= WINDOW:
+            return np.vstack([c.jacobian(b, self.layout) for c in self.constraints])
         rows: list[np.ndarray] = []
         cols: list[np.ndarray] = []
         values: list[np.ndarray] = []
@@ -109,12 +112,17 @@ class System:
             return SparseMatrix.of((first, n), np.zeros(0), np.zeros(0), np.zeros(0))
         return SparseMatrix.of((first, n), np.concatenate(rows), np.concatenate(cols), np.concatenate(values))
 
-    def scaled_jacobian(self, q: np.ndarray) -> SparseMatrix:
-        return self.jacobian(q).scaled(self.row_scale, self.col_scale)
+    def scaled_jacobian(self, q: np.ndarray) -> np.ndarray | SparseMatrix:
+        jac = self.jacobian(q)
+        if isinstance(jac, SparseMatrix):
+            return jac.scaled(self.row_scale, self.col_scale)
+        return np.asarray(self.row_scale[:, None] * jac * self.col_scale[None, :], dtype=float)
 
-    def condition(self, scaled_jac: SparseMatrix) -> float:
+    def condition(self, scaled_jac: np.ndarray | SparseMatrix) -> float:
         """The condition of the scaled Jacobian as each group sees it (``check.blocks.window_condition``): the
         whole system's 2-norm condition up to WINDOW unknowns, beyond that each group's with its neighbours."""
+        if not isinstance(scaled_jac, SparseMatrix):
+            return condition_number(scaled_jac)  # at most WINDOW unknowns: judged whole
         angle_rows = np.array([f for c in self.constraints for f in c.angle_rows], dtype=bool)
         angle_columns = np.tile([False, False, True], len(self.layout.moving))
         return window_condition(scaled_jac, WINDOW, angle_columns=angle_columns, angle_rows=angle_rows)
@@ -153,14 +161,16 @@ def _links_of(constraint: Constraint, moving: dict[str, int]) -> tuple[str, ...]
 def condition_number(matrix: np.ndarray | SparseMatrix) -> float:
     """2-norm condition number by SVD (inf when singular); a sparse matrix is judged block by block.
 
-    A ``SparseMatrix`` (the Jacobian) is put in block triangular form (``check.blocks``) and the
+    A ``SparseMatrix`` (the Jacobian) of more than WINDOW unknowns is put in block triangular form (``check.blocks``) and the
     largest condition number of its diagonal blocks is returned: the matrix is singular exactly
     when one of them is, and each group's conditioning is judged on its own, in time linear in
     the number of groups, instead of by one dense SVD whose condition also grows with the length
     of a chain of healthy loops.
     """
     if isinstance(matrix, SparseMatrix):
-        return block_condition(matrix)
+        if matrix.shape[1] > WINDOW:
+            return block_condition(matrix)
+        matrix = matrix.toarray()  # a small system: one dense SVD is cheaper than finding its blocks
     if matrix.size == 0:
         return 1.0
     sv = np.linalg.svd(matrix, compute_uv=False)
@@ -183,9 +193,11 @@ def solve_scaled(system: System, scaled_jac: np.ndarray | SparseMatrix, rhs: np.
 
 
 def _solve(matrix: np.ndarray | SparseMatrix, rhs: np.ndarray) -> np.ndarray:
-    """matrix y = rhs; the Jacobian block by block (linear in the number of groups)."""
+    """matrix y = rhs; a Jacobian of more than WINDOW unknowns block by block (linear in the number of groups)."""
     if isinstance(matrix, SparseMatrix):
-        return solve_blocks(matrix, np.asarray(rhs, dtype=float))
+        if matrix.shape[1] > WINDOW:
+            return solve_blocks(matrix, np.asarray(rhs, dtype=float))
+        matrix = matrix.toarray()  # a small system: one dense solve is cheaper than finding its blocks
     return np.asarray(np.linalg.solve(matrix, rhs), dtype=float)
 
 
@@ -226,11 +238,12 @@ def newton(system: System, q0: np.ndarray) -> tuple[np.ndarray, float]:
     return q, norm
 
 
-def _newton_step(system: System, jac: SparseMatrix, f: np.ndarray) -> np.ndarray:
+def _newton_step(system: System, jac: np.ndarray | SparseMatrix, f: np.ndarray) -> np.ndarray:
     """Solve jac y = -f, by least squares where jac is singular (its condition checked first)."""
-    if block_condition(jac) <= SINGULAR_CONDITION:  # singular exactly when a diagonal block is
+    if condition_number(jac) <= SINGULAR_CONDITION:  # singular exactly when a diagonal block is
         return _solve(jac, -f)
-    return np.asarray(np.linalg.lstsq(jac.toarray(), -f, rcond=None)[0], dtype=float)
+    dense = jac.toarray() if isinstance(jac, SparseMatrix) else jac
+    return np.asarray(np.linalg.lstsq(dense, -f, rcond=None)[0], dtype=float)
 
 
 def _line_search(
