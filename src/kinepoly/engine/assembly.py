@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -162,21 +162,46 @@ def _coordinate(local: float, origin: float) -> str:
 
 @dataclass(frozen=True)
 class Continuity:
-    """The sweep's policy: row ``seed_row`` takes the assembly of ``seed``; the others follow it."""
+    """The sweep's policy: row ``seed_row`` takes the assembly of ``seed``; the others follow it.
+
+    ``seed`` is the solve's positions at the seed row, or a function that solves them when asked:
+    with ``guess``, a dyad whose inner joint is the only guessed point of its links takes, at the
+    seed row, the assembly that puts the joint nearest its guess, as ``NearestGuess`` would, without
+    solving the seed row apart; anything else asks for the seed.
+    """
 
     seed_row: int
-    seed: Mapping[str, LinkPose]
+    seed: Mapping[str, LinkPose] | Callable[[], Mapping[str, LinkPose]]
     periodic: bool
     progress: Callable[[int, int], None] | None = None
+    guess: Mapping[str, Vec] = field(default_factory=dict)
+
+    def _seed(self) -> Mapping[str, LinkPose]:
+        return self.seed() if callable(self.seed) else self.seed
+
+    def _guessed(self, mechanism: Mechanism, closure: Closure) -> int | None:
+        """The seed row's assembly from the guess of the inner joint alone, where that decides it."""
+        dyad, joint, row = closure.dyad, closure.joint, self.seed_row
+        if dyad.kind not in ("RRR", "RRP") or joint not in self.guess or not closure.ok[row]:
+            return None
+        if any(p.name in self.guess and p.name != joint for link in dyad.links for p in mechanism.scene.link(link).points):
+            return None
+        g = complex(*self.guess[joint])
+        tells = [complex(t[row]) for t in closure.telling]
+        own = [abs(t - g) ** 2 for t in tells]
+        size = abs(tells[1] - tells[0]) + max(max(abs(t.real), abs(t.imag)) for t in tells)
+        return own.index(min(own)) if abs(own[0] - own[1]) > 1e-12 * size * size else None
 
     def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
         """Rows that do not close are marked by the executor; nothing to raise."""
 
     def choose(self, mechanism: Mechanism, closure: Closure, placed: Placement,
                later: Callable[[int], Placement]) -> Choice | Placement:
-        target = closure.telling_at(dict(self.seed))
-        gaps = [abs(complex(t[self.seed_row]) - target) for t in closure.telling]
-        label = gaps.index(min(gaps))
+        label = self._guessed(mechanism, closure)
+        if label is None:
+            target = closure.telling_at(dict(self._seed()))
+            gaps = [abs(complex(t[self.seed_row]) - target) for t in closure.telling]
+            label = gaps.index(min(gaps))
         labels = follow_branch(closure.telling[0], closure.telling[1], placed.ok, self.seed_row, label,
                                self.periodic, closure.gap)
         return labels if isinstance(labels, int) else np.asarray(labels == 0)
@@ -190,7 +215,8 @@ class Continuity:
         rotation = {link: np.ones(n, np.complex128) for link in group.links}
         closed = np.zeros(n, np.bool_)
         known_links = group.known_links()
-        seed = {link: self.seed[link] for link in group.links}
+        solved = self._seed()
+        seed = {link: solved[link] for link in group.links}
         points = _known_points(mechanism, seed)
         size = group_size(mechanism, group, points)
         done = 0

@@ -22,6 +22,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -321,14 +322,18 @@ def seed_poses(mechanism: Mechanism, plan: PositionPlan) -> dict[str, LinkPose]:
 
 @dataclass(frozen=True)
 class PreparedSweep:
-    """What a sweep needs once per scene: the mechanism, what is asked, the plan, and the seed assembly."""
+    """What a sweep needs once per scene: the mechanism, what is asked, the plan; the seed assembly (the
+    solve's at the scene's own input) is solved when first asked for."""
 
     mechanism: Mechanism
     asked: Asked
     plan: PositionPlan
-    seed: dict[str, LinkPose]
     centrode: str | None
     prepare_s: float
+
+    @cached_property
+    def seed(self) -> dict[str, LinkPose]:
+        return seed_poses(self.mechanism, self.plan)
 
 
 def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
@@ -343,8 +348,7 @@ def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
         raise SceneError(f"--centrode: expected a moving link of the scene ({links}), got {centrode!r}")
     asked = what_is_asked(mechanism)
     plan = make_plan(mechanism, needed_links(mechanism, asked) | ({centrode} if centrode else set()))
-    seed = seed_poses(mechanism, plan)
-    return PreparedSweep(mechanism, asked, plan, seed, centrode, time.perf_counter() - t0)
+    return PreparedSweep(mechanism, asked, plan, centrode, time.perf_counter() - t0)
 
 
 def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None, stop: float | None = None,
@@ -353,17 +357,18 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
     if (start is None) != (stop is None):
         raise SceneError("--from and --to: give both, or neither for the full turn (or the input's whole range)")
     t0 = time.perf_counter()
-    mechanism, plan, seed = prepared.mechanism, prepared.plan, prepared.seed
+    mechanism, plan = prepared.mechanism, prepared.plan
     with np.errstate(all="ignore"):
         grid, positions = None, None
         trial = full_turn_grid(mechanism, steps) if start is None and steps >= FULL_TURN_CHECK_ROWS else None
         if trial is not None and not any(isinstance(g, NewtonGroup) for g in plan.groups):
-            positions = solve_positions(mechanism, plan, trial.internal, Continuity(trial.seed_row, seed, True, progress))
+            policy = Continuity(trial.seed_row, lambda: prepared.seed, True, progress, dict(mechanism.scene.guess))
+            positions = solve_positions(mechanism, plan, trial.internal, policy)
             grid, positions = (trial, positions) if positions.ok.all() else (None, None)
         if grid is None:
-            grid = input_grid(mechanism, plan, seed, steps, start, stop)
+            grid = input_grid(mechanism, plan, prepared.seed, steps, start, stop)
         t1 = time.perf_counter()
-        result = _execute(mechanism, plan, prepared.asked, grid, seed, prepared.centrode, progress, positions)
+        result = _execute(mechanism, plan, prepared.asked, grid, prepared, progress, positions)
     t2 = time.perf_counter()
     return replace(result, timing={"prepare_s": prepared.prepare_s, "range_s": t1 - t0, "execute_s": t2 - t1,
                                    "total_s": prepared.prepare_s + t2 - t0})
@@ -379,12 +384,12 @@ def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float |
     return run_sweep(prepare_sweep(scene, centrode), steps=steps, start=start, stop=stop, progress=progress)
 
 
-def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: InputGrid, seed: dict[str, LinkPose],
-             centrode: str | None, progress: Progress | None, positions: Positions | None) -> SweepResult:
-    scene = mechanism.scene
+def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: InputGrid, prepared: PreparedSweep,
+             progress: Progress | None, positions: Positions | None) -> SweepResult:
+    scene, centrode = mechanism.scene, prepared.centrode
     if positions is None:
         positions = solve_positions(mechanism, plan, grid.internal,
-                                    Continuity(grid.seed_row, seed, grid.periodic, progress))
+                                    Continuity(grid.seed_row, prepared.seed, grid.periodic, progress))
     flags = _Flags(np.zeros(len(grid.values), np.int8))
     for failure in positions.failures:
         flags.raise_to(failure.rows, _CANNOT, _failure_text(failure))
@@ -415,7 +420,7 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     input_column = Column(name, "input", grid.values if every else grid.values[shown],
                           np.ones(int(shown.sum()), np.bool_))
     skeleton = tuple((link, tuple(complex(*pose.world(p.local)) for p in scene.link(link).points))
-                     for link, pose in seed.items())
+                     for link, pose in positions.row(grid.seed_row).items())
     return SweepResult(scene, input_column, out.columns(flags.level, shown),
                        flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
                        tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), skeleton,
