@@ -57,3 +57,4 @@ def browser_page() -> Iterator[Any]:
             yield page
         finally:
             browser.close()
+

@@ -7,23 +7,15 @@ installed, except on CI (CI set), where that is a failure.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
-from tests.chromium import browser_page
 from tests.scenes import EXAMPLES
 
 from kinepoly.cli import main
 from kinepoly.scene.loader import load_scene
 from kinepoly.sweep.run import sweep
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    with browser_page() as page:
-        yield page
 
 
 @pytest.fixture(scope="module")

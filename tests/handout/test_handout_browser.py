@@ -8,21 +8,13 @@ chromium is not installed, except on CI (CI set), where that is a failure.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
-from tests.chromium import browser_page
 from tests.scenes import EXAMPLES
 
 from kinepoly.cli import main
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    with browser_page() as page:
-        yield page
 
 
 @pytest.fixture(scope="module")

@@ -192,12 +192,7 @@ def block_condition(matrix: SparseMatrix, blocks: Blocks | None = None, *, angle
         cols = [blocks.match[r] for r in rows]
         block = _block(dense_rows, rows, cols)
         if angle_columns is not None and angle_rows is not None:
-            theta = angle_columns[cols]
-            plain = ~angle_rows[rows]
-            arm = float(np.max(np.abs(block[np.ix_(plain, theta)]), initial=0.0))
-            if 0.0 < arm < 1.0:
-                block[:, theta] /= arm
-                block[angle_rows[rows], :] *= arm
+            _at_own_size(block, angle_columns[cols], angle_rows[rows])
         worst = max(worst, _condition(block))
     return worst
 
@@ -243,14 +238,18 @@ def window_condition(matrix: SparseMatrix, limit: int, *, angle_columns: np.ndar
         window_rows = [r for j in sorted(chosen) for r in blocks.order[j]]
         cols = [match[r] for r in window_rows]
         block = _block(entries, window_rows, cols)
-        theta = angle_columns[cols]
-        plain = ~angle_rows[window_rows]
-        arm = float(np.max(np.abs(block[np.ix_(plain, theta)]), initial=0.0))
-        if 0.0 < arm < 1.0:
-            block[:, theta] /= arm
-            block[angle_rows[window_rows], :] *= arm
+        _at_own_size(block, angle_columns[cols], angle_rows[window_rows])
         worst = max(worst, _condition(block))
     return worst
+
+
+def _at_own_size(block: np.ndarray, theta: np.ndarray, angle_rows: np.ndarray) -> None:
+    """Rescale a block in place as if the mechanism's size were the block's own largest lever arm s < 1:
+    its angle columns divided by s, its angle rows multiplied by s."""
+    arm = float(np.max(np.abs(block[np.ix_(~angle_rows, theta)]), initial=0.0))
+    if 0.0 < arm < 1.0:
+        block[:, theta] /= arm
+        block[angle_rows, :] *= arm
 
 
 def _row_entries(matrix: SparseMatrix) -> list[dict[int, float]]:
