@@ -11,6 +11,8 @@ A notebook needs four names::
 is SVG text; ``kinepoly.animate(scene, "four-bar.gif")`` is ``kinepoly animate`` (docs/python.md).
 """
 
+from typing import TYPE_CHECKING, Any
+
 from kinepoly.errors import (
     AssemblyError,
     CatalogueError,
@@ -21,11 +23,13 @@ from kinepoly.errors import (
     SceneError,
     SingularityError,
 )
-from kinepoly.motion.api import animate, draw
 from kinepoly.present.report import steps_text, table_text, to_json
 from kinepoly.scene.loader import load_scene, loads_scene
 from kinepoly.scene.spec import Scene
 from kinepoly.solution import Solution, solve
+
+if TYPE_CHECKING:
+    from kinepoly.motion.api import animate, draw
 
 __all__ = [
     "AssemblyError",
@@ -47,3 +51,13 @@ __all__ = [
     "table_text",
     "to_json",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """``animate`` and ``draw`` load the drawing and animation code (matplotlib, the sweep) when first
+    used, so that ``import kinepoly`` and ``kinepoly solve`` start fast."""
+    if name in ("animate", "draw"):
+        from kinepoly.motion import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'kinepoly' has no attribute {name!r}")

@@ -19,7 +19,6 @@ import numpy as np
 from kinepoly.engine.closures import other_side
 from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
-from kinepoly.engine.position import describe_input
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.engine.velocity import VelocityResult, lay_driven_slider, link_length, read_rate, slide_direction
 from kinepoly.errors import SceneError
@@ -175,8 +174,6 @@ def _slide_label(slider: SliderSpec) -> str:
 
 def _dyad(ctx: _Context, dyad: Dyad) -> None:
     b, i, j = ctx.b, dyad.first, dyad.second
-    if b.strict:
-        b.where = f"of group {dyad.name} at {describe_input(b.mechanism)}"
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point

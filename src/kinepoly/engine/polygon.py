@@ -25,7 +25,7 @@ from typing import Literal
 
 import numpy as np
 
-from kinepoly.engine.position import Positions
+from kinepoly.engine.position import Positions, describe_input
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross, cross_lines
@@ -83,7 +83,7 @@ class Polygon:
     ``steps`` are its output."""
 
     def __init__(self, positions: Positions, kind: Kind, omega: dict[str, Reals] | None = None, *,
-                 unit: str = "mm", record: bool = False, strict: bool = False, where: str = "",
+                 unit: str = "mm", record: bool = False, strict: bool = False,
                  crossing: CrossLines = cross_lines) -> None:
         self.mechanism: Mechanism = positions.mechanism
         self.positions = positions
@@ -101,7 +101,6 @@ class Polygon:
         self.crossings: list[LineCrossing | JointSolve] = []
         self.record = record
         self.strict = strict
-        self.where = where
         self.crossing = crossing
         self.steps: list[Step] = []
         mech = self.mechanism
@@ -320,13 +319,14 @@ class Polygon:
         crossing = self.crossing(first[0], first[1], second[0], second[1], first[2], second[2])
         self.crossings.append(LineCrossing(self.kind, group, what, crossing.sin_angle, crossing.along_first))
         if self.strict and not abs(float(crossing.sin_angle[0])) > PARALLEL_SIN:
+            where = f"of group {group} at {describe_input(self.mechanism)}"
             lengths = [abs(complex(d if isinstance(d, complex) else d[0])) for d in (first[1], second[1])]
             if min(lengths) == 0.0:
                 raise SingularityError(
-                    f"singular position {self.where}: at joint {what} the {self.kind} construction fails because "
+                    f"singular position {where}: at joint {what} the {self.kind} construction fails because "
                     "a direction line has no direction; two joints of one link are at the same place")
             raise SingularityError(
-                f"singular position {self.where}: at joint {what} the {self.kind} direction lines ({labels[0]}; "
+                f"singular position {where}: at joint {what} the {self.kind} direction lines ({labels[0]}; "
                 f"{labels[1]}) are parallel: the links that meet there are in line, or square to a slide (a "
                 f"dead centre or change point), so the {self.kind} of {what} is not determined by the input")
         return crossing

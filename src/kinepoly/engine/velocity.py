@@ -17,7 +17,7 @@ import numpy as np
 from kinepoly.engine.closures import other_side
 from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
-from kinepoly.engine.position import Positions, describe_input
+from kinepoly.engine.position import Positions
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines, turn
@@ -193,8 +193,6 @@ def _known_pairs(*terms: tuple[str, str]) -> tuple[tuple[str, str], ...]:
 
 def _dyad(polygon: Polygon, dyad: Dyad, sliding: dict[str, Points], sines: dict[str, Reals]) -> None:
     mech, i, j = polygon.mechanism, dyad.first, dyad.second
-    if polygon.strict:
-        polygon.where = f"of group {dyad.name} at {describe_input(mech)}"
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point

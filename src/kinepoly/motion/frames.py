@@ -21,6 +21,7 @@ import numpy.typing as npt
 from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
 from kinepoly.engine.centrode import frame_centrodes
 from kinepoly.engine.polygon import Polygon
+from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals
@@ -231,7 +232,7 @@ def _sliders(result: SweepResult, idx: npt.NDArray[np.intp], size: float) -> tup
         e = np.asarray(slide_direction(positions, spec))[idx]
         through = np.asarray(positions.poses[spec.guide].world(spec.through))[idx]
         block = np.asarray(positions.world(spec.block, spec.point))[idx]
-        s = (np.conj(e) * (block - through)).real
+        s = np.asarray(slider_motion(positions, spec).s)[idx]
         # the slide's whole stroke, and the point it is set through (so that a slot meets its lever)
         low, high = min(float(s.min()), 0.0) - 0.15 * size, max(float(s.max()), 0.0) + 0.15 * size
         out.append(SliderFrames(spec.name, through + low * e, through + high * e, block, e))

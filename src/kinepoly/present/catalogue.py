@@ -23,7 +23,7 @@ from types import MappingProxyType
 from typing import Any
 
 from kinepoly.errors import CatalogueError
-from kinepoly.render.titleblock import format_number
+from kinepoly.present.clean import format_number
 
 __all__ = ["Catalogue", "load_catalogue", "packaged_languages", "placeholders"]
 

@@ -19,7 +19,7 @@ from kinepoly.geom.tolerances import UNIT_ROUNDOFF
 if TYPE_CHECKING:
     from kinepoly.solution import Solution
 
-__all__ = ["KINDS", "Noise", "clean", "noise_of"]
+__all__ = ["KINDS", "Noise", "clean", "format_number", "noise_of"]
 
 KINDS = ("position", "angle", "direction", "velocity", "omega", "instant_center", "acceleration", "alpha")
 """The kinds of printed quantities: those of the cross-check, and ``direction`` (a unit vector)."""
@@ -90,3 +90,17 @@ def noise_of(solution: Solution) -> Noise:
     """Each kind's floor in ``solution``: its estimated relative error times its natural size."""
     scales, relative = _scales(solution), _relative(solution)
     return Noise({kind: scales[kind] * relative[kind] for kind in KINDS})
+
+
+def format_number(x: float) -> str:
+    """Fixed-point with about five significant digits; an exponent only when very large or small."""
+    if x == 0.0 or not math.isfinite(x):
+        return "0" if x == 0.0 else str(x)
+    a = abs(x)
+    if a >= 1e7 or a < 1e-4:
+        return f"{x:.4e}"
+    decimals = max(0, 4 - math.floor(math.log10(a)))
+    text = f"{x:.{decimals}f}"
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from kinepoly.present.clean import format_number
 from kinepoly.present.phrasing import Context, english, step_sentence
 from kinepoly.present.scales import polygon_scales
 from kinepoly.render import centers as centers_layer
@@ -25,7 +26,6 @@ from kinepoly.render.titleblock import (
     block_items,
     flow,
     flow_height,
-    format_number,
     heading_items,
     legend_block,
     space_scale_text,

@@ -10,33 +10,20 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from kinepoly.present.clean import format_number
 from kinepoly.render.layout import HEADING_MM, Panel, round_step
 from kinepoly.render.primitives import Item, Path, Stroke, Text
 from kinepoly.render.style import SMALL_MM, TERM_COLORS, TERM_NAMES, THIN, TITLE_MM
 from kinepoly.render.text import DESCENT_EM, Run, plain_runs, point_runs, text_width, wrap
 from kinepoly.solution import Solution
 
-__all__ = ["STEP_TEXT_MM", "Block", "block_items", "flow", "flow_height", "format_number", "heading_items",
+__all__ = ["STEP_TEXT_MM", "Block", "block_items", "flow", "flow_height", "heading_items",
            "legend_block", "space_scale_text", "step_block", "title_blocks"]
 
 Point = tuple[float, float]
 _GAP_MM = 6.0
 _PAD_MM = 2.5
 _UNIT_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
-
-
-def format_number(x: float) -> str:
-    """Fixed-point with about five significant digits; an exponent only when very large or small."""
-    if x == 0.0 or not math.isfinite(x):
-        return "0" if x == 0.0 else str(x)
-    a = abs(x)
-    if a >= 1e7 or a < 1e-4:
-        return f"{x:.4e}"
-    decimals = max(0, 4 - math.floor(math.log10(a)))
-    text = f"{x:.{decimals}f}"
-    if "." in text:
-        text = text.rstrip("0").rstrip(".")
-    return "0" if text in ("-0", "") else text
 
 
 @dataclass(frozen=True)
