@@ -17,8 +17,9 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from kinepoly.cli.files import emit, scene_file
+from kinepoly.cli.files import PAPER_HELP, emit, paper_of, scene_file
 from kinepoly.errors import EXIT_OK, EXIT_SCENE, EXIT_WRONG_ANSWERS, SceneError
+from kinepoly.present.scales import A4
 
 if TYPE_CHECKING:
     from kinepoly.homework.answers import Answers
@@ -37,11 +38,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("answers", help="an answers file (TOML), or a folder of them for a class report")
     parser.add_argument("--json", action="store_true", help="print one JSON object instead of a table (or CSV)")
     parser.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of printing it")
+    parser.add_argument("--paper", default="A4", help="the paper the students drew on (kinepoly draw's or handout's): "
+                        "its kv and ka are those a polygon length not divided by them is recognised with; "
+                        + PAPER_HELP)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run ``kinepoly check``; the exit status."""
-    return run_check(args.scene, args.answers, as_json=args.json, output=args.output)
+    return run_check(args.scene, args.answers, as_json=args.json, output=args.output, paper=paper_of(args.paper))
 
 
 def _warn(checker: Checker) -> None:
@@ -57,8 +61,12 @@ def _answer_files(folder: Path) -> list[Path]:
     return files
 
 
-def run_check(scene_path: str, answers_path: str, *, as_json: bool = False, output: str | None = None) -> int:
-    """Check one answers file (a table, or JSON) or a folder of them (a class report as CSV, or JSON)."""
+def run_check(scene_path: str, answers_path: str, *, as_json: bool = False, output: str | None = None,
+              paper: tuple[float, float] = A4) -> int:
+    """Check one answers file (a table, or JSON) or a folder of them (a class report as CSV, or JSON).
+
+    ``paper`` (width, height in mm) is the drawing's: its kv and ka are those the diagnoses use.
+    """
     from kinepoly.homework.answers import load_answers
     from kinepoly.homework.checking import check, make_checker
     from kinepoly.homework.report import result_json, result_text
@@ -66,16 +74,17 @@ def run_check(scene_path: str, answers_path: str, *, as_json: bool = False, outp
     scene, text = scene_file(scene_path)
     if not Path(answers_path).is_dir():
         answers = load_answers(answers_path, scene)
-        checker = make_checker(scene, [answers], text)
+        checker = make_checker(scene, [answers], text, paper)
         _warn(checker)
         result = check(answers, checker)
         emit(json.dumps(result_json(result, scene), indent=1, allow_nan=False) if as_json
              else result_text(result, scene), output)
         return EXIT_OK if result.is_all_correct else EXIT_WRONG_ANSWERS
-    return _check_class(scene, text, Path(answers_path), as_json=as_json, output=output)
+    return _check_class(scene, text, Path(answers_path), as_json=as_json, output=output, paper=paper)
 
 
-def _check_class(scene: Scene, text: str, folder: Path, *, as_json: bool, output: str | None) -> int:
+def _check_class(scene: Scene, text: str, folder: Path, *, as_json: bool, output: str | None,
+                 paper: tuple[float, float]) -> int:
     from kinepoly.homework.answers import Answers, load_answers
     from kinepoly.homework.checking import CheckResult, check, make_checker
     from kinepoly.homework.report import class_csv, result_json
@@ -86,7 +95,7 @@ def _check_class(scene: Scene, text: str, folder: Path, *, as_json: bool, output
             loaded.append((path.name, load_answers(path, scene)))
         except SceneError as error:
             loaded.append((path.name, error.problems))
-    checker = make_checker(scene, [a for _, a in loaded if isinstance(a, Answers)], text)
+    checker = make_checker(scene, [a for _, a in loaded if isinstance(a, Answers)], text, paper)
     _warn(checker)
     rows: list[tuple[str, CheckResult | Sequence[str]]] = []
     for name, answers in loaded:

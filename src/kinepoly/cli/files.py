@@ -14,12 +14,25 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
 
-from kinepoly.errors import SceneError
+from kinepoly.errors import OutputError, SceneError
 
 if TYPE_CHECKING:
     from kinepoly.scene.spec import Scene
 
-__all__ = ["emit", "scene_file", "write_atomically"]
+__all__ = ["PAPER_HELP", "emit", "paper_of", "scene_file", "write_atomically"]
+
+PAPER_HELP = "A0..A5, letter, legal, tabloid (landscape; add -portrait), or WIDTHxHEIGHT in mm (default A4)"
+"""The help of every ``--paper``: the paper decides the polygon scales (``present.scales``) of every command."""
+
+
+def paper_of(spec: str) -> tuple[float, float]:
+    """``--paper``'s width and height in mm; OutputError (exit 2) saying what is accepted."""
+    from kinepoly.render.layout import paper_size
+
+    try:
+        return paper_size(spec)
+    except ValueError as error:
+        raise OutputError(str(error)) from error
 
 
 def write_atomically(path: str | os.PathLike[str], write: Callable[[IO[Any]], None], *, binary: bool) -> None:

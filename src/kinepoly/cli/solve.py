@@ -1,7 +1,8 @@
-"""``kinepoly solve SCENE [--json | --steps]``: a readable table, the JSON of the contract, or the steps.
+"""``kinepoly solve SCENE [--json | --steps] [--paper A4]``: a readable table, the JSON of the contract, or the steps.
 
 The text comes from ``kinepoly.present.report``; a failed cross-check is also a warning on
-standard error (the exit status stays 0: the construction's numbers are printed).
+standard error (the exit status stays 0: the construction's numbers are printed). The polygon
+scales are those of ``kinepoly draw`` and ``kinepoly handout`` on the same ``--paper``.
 """
 
 from __future__ import annotations
@@ -11,6 +12,8 @@ import json
 import sys
 import time
 
+from kinepoly.cli.files import PAPER_HELP, paper_of
+
 __all__ = ["add_arguments", "run"]
 
 
@@ -18,23 +21,28 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("scene", help="the scene file (TOML)")
     parser.add_argument("--json", action="store_true", help="print the result as one JSON object")
     parser.add_argument("--steps", action="store_true", help="print the construction step by step")
+    parser.add_argument("--paper", default="A4", help="the paper of the drawing whose polygon scales kv and ka are "
+                        "reported (as kinepoly draw and handout use them): " + PAPER_HELP)
 
 
 def run(args: argparse.Namespace) -> int:
     """Load, solve, print; the exit status."""
     from kinepoly.present.report import steps_text, table_text, to_json
+    from kinepoly.present.scales import decide_scales
     from kinepoly.scene.loader import load_scene
     from kinepoly.solution import solve
 
+    paper = paper_of(args.paper)
     t0 = time.perf_counter()
     scene = load_scene(args.scene)
     solution = solve(scene, load_s=time.perf_counter() - t0)
+    scales = decide_scales(solution, paper)
     if args.json:
-        print(json.dumps(to_json(solution), indent=1, allow_nan=False))
+        print(json.dumps(to_json(solution, scales), indent=1, allow_nan=False))
     elif args.steps:
-        print(steps_text(solution))
+        print(steps_text(solution, scales))
     else:
-        print(table_text(solution))
+        print(table_text(solution, scales))
     for notice in solution.notices:
         if notice.code == "check-failed":
             print(f"kinepoly: WARNING: {notice.message}", file=sys.stderr)

@@ -50,6 +50,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``kinepoly variants``; the exit status."""
+    from kinepoly.scene.loader import load_scene
+
+    scene = load_scene(args.scene)
+    if scene.gears:
+        raise SceneError(f"{scene.source}: gears: kinepoly variants is not built yet for [[gears]] (a varied "
+                         "length breaks the pitch circles' centre distance); expected a scene without gears")
     options = {key: getattr(args, f"vary_{key}") for key, _ in _RANGES}
     return run_variants(args.scene, args.n, args.seed, args.output, options, args.min_transmission)
 

@@ -15,7 +15,7 @@ from kinepoly.handout.notation import runs_of, text_width, wrap
 from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.primitives import Item, Text
 from kinepoly.render.style import SMALL_MM
-from kinepoly.render.text import DESCENT_EM, Run, plain_runs
+from kinepoly.render.text import Run, plain_runs, runs_box
 from kinepoly.render.titleblock import Block, block_items, flow, flow_height
 
 __all__ = ["band_height", "band_items"]
@@ -30,13 +30,23 @@ _FIT_MAX_MM = 105.0
 _FILL_MIN_MM = 45.0
 _GAP_MM = 6.0
 _PAD_MM = 2.5
+_LEAD_MM = 0.6
+"""The least gap between the boxes of two lines of the band."""
 _LEGEND_ORDER = ("absolute", "relative", "sliding", "normal", "tangential", "coriolis")
 
 Line = tuple[tuple[Run, ...], bool, float]
 
 
 def _line(runs: tuple[Run, ...], bold: bool, size: float, spacing: float = 1.45) -> Line:
-    return (runs, bold, spacing * size)
+    """A line ``spacing`` times its size high, or higher where its sub- and superscripts need it."""
+    _, y0, _, y1 = runs_box(runs, bold)
+    return (runs, bold, max(spacing * size, y1 - y0 + _LEAD_MM))
+
+
+def _baseline(runs: tuple[Run, ...], bold: bool, top: float, height: float) -> float:
+    """The baseline that centres the runs' box in a line from ``top`` down ``height``."""
+    _, y0, _, y1 = runs_box(runs, bold)
+    return top - (height - (y1 - y0)) / 2 - y1
 
 
 def _paragraph_lines(paragraph: Paragraph, width: float) -> list[tuple[Line, str]]:
@@ -174,8 +184,7 @@ def band_items(page: Page, rect: tuple[float, float, float, float], kinds: Seque
             continue
         y = top[1]
         for (runs, bold, h), role in zip(block.lines, roles, strict=True):
-            size = max(r.size for r in runs)
-            baseline = y - h + (h - size) / 2 + DESCENT_EM * size
+            baseline = _baseline(runs, bold, y, h)
             if role != "handout space":
                 items.append(Text(top[0], baseline, runs, "#000000", role, None, bold))
             y -= h

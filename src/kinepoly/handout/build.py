@@ -14,14 +14,16 @@ from dataclasses import replace
 from kinepoly.errors import HandoutError
 from kinepoly.handout.answers import answers_page
 from kinepoly.handout.band import band_height, band_items
-from kinepoly.handout.content import Handout
+from kinepoly.handout.content import Handout, Page
 from kinepoly.handout.drawing import GAP_MM, Frame, band_frame, blank_sheet, drawing_layers, page_frame_items, scales_of
 from kinepoly.handout.problem import problem_page
 from kinepoly.handout.step_pages import construction_pages
 from kinepoly.present.catalogue import Catalogue
-from kinepoly.render.layout import paper_size
+from kinepoly.render.labels import FEW
+from kinepoly.render.layout import larger_papers, paper_name, paper_size
 from kinepoly.render.primitives import Item, Sheet, Text
-from kinepoly.render.sheet import MARGIN_MM
+from kinepoly.render.sheet import GAIN as _GAIN
+from kinepoly.render.sheet import MARGIN_MM, build_sheet, roomy
 from kinepoly.render.text import plain_runs, runs_box
 from kinepoly.solution import Solution
 
@@ -43,7 +45,6 @@ def drawn_kinds(frame: Frame) -> list[str]:
     return sorted({v.term for figure in frame.layout.figures for v in figure.vectors})
 
 
-_LARGER = ("A4", "A3", "A2", "A1", "A0")
 _PAPER_NOTE = "Printed on {paper}: the handout does not fit the {asked} asked for (its text and drawing need more room)."
 """The note on every page when a larger paper was chosen (the catalogue's ``page.larger_paper`` when it has one)."""
 
@@ -59,40 +60,80 @@ def _paper(paper: str | tuple[float, float]) -> tuple[float, float]:
 
 def _paper_name(paper: str | tuple[float, float]) -> str:
     if isinstance(paper, tuple):
-        return f"{paper[0]:g}x{paper[1]:g}"
+        return paper_name(paper)
     return paper.strip().upper() if paper.strip().lower()[:1] == "a" else paper.strip()
 
 
-def _larger_papers(size: tuple[float, float]) -> list[tuple[str, tuple[float, float]]]:
-    """A3, A2, ... A0 in the page's orientation, each larger than ``size`` both ways."""
-    portrait = size[1] > size[0]
-    out = []
-    for name in _LARGER:
-        w, h = paper_size(name + ("-portrait" if portrait else ""))
-        if w > size[0] + 1e-6 and h > size[1] + 1e-6:
-            out.append((name + ("-portrait" if portrait else ""), (w, h)))
-    return out
-
-
-def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float]) -> tuple[Frame, Handout] | str:
-    """The frame and the content on a page of ``size``, or why they do not fit it."""
+def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float],
+               asked: tuple[float, float]) -> tuple[Frame, Handout] | str:
+    """The frame and the content on a page of ``size`` at the scales of the paper ``asked``, or why they do not fit."""
     width, height = size
     inner = width - 2 * (MARGIN_MM + GAP_MM)
-    frame = band_frame(solution, (width, height), 0.0)
+    frame = band_frame(solution, (width, height), 0.0, asked)
     scales = scales_of(frame.layout)
     handout = handout_content(solution, say, scales)
+    heights: dict[Page, float] = {}  # a page's text is set once per paper, however often the scales settle
+
+    def height_of(page: Page) -> float:
+        if page not in heights:
+            heights[page] = band_height(page, inner, drawn_kinds(frame), say)
+        return heights[page]
+
     for _ in range(6):
-        need = max(band_height(page, inner, drawn_kinds(frame), say) for page in handout.pages)
+        need = max(height_of(page) for page in handout.pages)
         if need > _MOST_BAND * (height - 2 * MARGIN_MM):
             return f"the handout's text needs {need:.0f} mm of the page's {height:.0f}"
         if frame.band < need or scales_of(frame.layout) != scales:
-            frame = band_frame(solution, (width, height), max(need, frame.band))
+            frame = band_frame(solution, (width, height), max(need, frame.band), asked)
             if scales_of(frame.layout) != scales:
                 scales = scales_of(frame.layout)
                 handout = handout_content(solution, say, scales)
             continue
         return frame, handout
     return "the handout's layout does not settle on this paper"
+
+
+def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
+            asked: str) -> tuple[Frame, Handout, str]:
+    """The frame and content on the paper asked or the smallest larger A paper that holds them, and its name.
+
+    A paper holds the handout when its text's band fits, the drawing is ``roomy`` (each polygon
+    at its scale, the mechanism large enough) and every label of the whole drawing finds a free
+    place; a larger paper is tried only while it gives crowded labels more room (fewer of them
+    without a free place). When no paper up to A0 is roomy, the first whose band fits (the
+    polygons' scales reduced there, as the drawing says).
+    """
+    papers = [(asked, size), *larger_papers(size)]
+    fallback: tuple[Frame, Handout, str] | None = None
+    best: tuple[Frame, Handout, str] | None = None
+    why = ""
+    for name, paper in papers:
+        chosen = _frame_for(solution, say, paper, size)
+        if isinstance(chosen, str):
+            why = chosen
+            if best is None:
+                continue
+            break
+        fallback = fallback or (*chosen, name)
+        if not roomy(solution, chosen[0].layout):
+            if best is None:
+                continue
+            break
+        if best is not None and _crowded(solution, chosen[0]) > _GAIN * _crowded(solution, best[0]):
+            break  # little room gained for the labels: they crowd where the polygon does, at any paper
+        best = (*chosen, name)
+        if not 0 < _crowded(solution, chosen[0]) <= FEW:
+            break  # every label free, or so many crowded that their polygon's points crowd, at any paper
+    fallback = best or fallback
+    if fallback is None:
+        raise HandoutError(f"{why} even on A0; the handout cannot be laid out")  # a text longer than A0
+    return fallback
+
+
+def _crowded(solution: Solution, frame: Frame) -> int:
+    """How many labels of the whole drawing find no free place on ``frame`` (they stay placed for its pages)."""
+    build_sheet(solution, frame.paper, layout=frame.layout, labels=frame.labels, title_block=False)
+    return len(frame.labels.crowded)
 
 
 def _note_items(frame: Frame, notes: tuple[str, ...]) -> list[Item]:
@@ -118,14 +159,7 @@ def handout_sheets(solution: Solution, say: Catalogue,
     """
     size = _paper(paper)
     asked = _paper_name(paper)
-    chosen, name = _frame_for(solution, say, size), asked
-    for larger, larger_size in _larger_papers(size):
-        if not isinstance(chosen, str):
-            break
-        chosen, name, size = _frame_for(solution, say, larger_size), larger, larger_size
-    if isinstance(chosen, str):
-        raise HandoutError(f"{chosen} even on A0; the handout cannot be laid out")  # a text longer than A0
-    frame, handout = chosen
+    frame, handout, name = _choose(solution, say, size, asked)
     notes: tuple[str, ...] = ()
     if name != asked:
         template = say.messages.get("page.larger_paper", _PAPER_NOTE)

@@ -22,8 +22,8 @@ from kinepoly.render.layout import Panel
 from kinepoly.render.primitives import LAYERS, Arrow, Circle, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.sheet import MARGIN_MM, Layout, build_sheet, layout_sheet
 from kinepoly.render.style import HALO
-from kinepoly.render.text import Run, plain_runs
-from kinepoly.render.titleblock import heading_items, space_scale_text
+from kinepoly.render.text import Run
+from kinepoly.render.titleblock import fitted_runs, heading_items, space_scale_text
 from kinepoly.solution import Solution
 
 __all__ = ["GAP_MM", "Frame", "band_frame", "blank_sheet", "drawing_layers", "moved", "page_frame_items", "scales_of"]
@@ -59,27 +59,30 @@ def _bottom(layout: Layout) -> float:
     return layout.title_rect[3]
 
 
-def band_frame(solution: Solution, page: tuple[float, float], band: float) -> Frame:
+def band_frame(solution: Solution, page: tuple[float, float], band: float,
+               scales_paper: tuple[float, float] | None = None) -> Frame:
     """The drawing for a page of size ``page`` with ``band`` mm of text at its foot (0: none).
 
     With a band the page keeps its size and the drawing's paper is made shorter until the band
     fits (the layout's notes may change its title block, so a few rounds settle it); without
-    one the drawing keeps the whole paper and the page loses the title block's strip.
+    one the drawing keeps the whole paper and the page loses the title block's strip. The polygons'
+    scales are those decided for ``scales_paper`` (the paper asked for; ``page`` when None).
     """
+    asked = scales_paper or page
     width, height = page
     if band <= 0.0:
-        layout = layout_sheet(solution, page)
+        layout = layout_sheet(solution, page, grow=False, scales_paper=asked)
         shift = MARGIN_MM - _bottom(layout)
         return Frame(layout, page, shift, width, height + shift, 0.0)
     paper_height = height
-    layout = layout_sheet(solution, (width, paper_height))
+    layout = layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked)
     for _ in range(4):
         shift = MARGIN_MM + band + GAP_MM - _bottom(layout)
         wanted = height - shift
         if abs(wanted - paper_height) < 1e-6:
             break
         paper_height = wanted
-        layout = layout_sheet(solution, (width, paper_height))
+        layout = layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked)
     shift = height - paper_height
     return Frame(layout, (width, paper_height), shift, width, height, band)
 
@@ -98,7 +101,7 @@ def moved(item: Item, dy: float) -> Item:
     return replace(item, y=item.y + dy, anchor=up(item.anchor) if item.anchor else None)
 
 
-def _scale_text(panel: Panel, say: Catalogue, unit: str) -> tuple[str, str]:
+def _scale_text(panel: Panel, say: Catalogue, unit: str, reduced: bool) -> tuple[str, str]:
     if panel.name == "mechanism":
         ratio = space_scale_text(panel.scale, unit).partition(" ")[2]
         text, bar_unit = say.say("panel.space_scale", ratio=ratio.replace(".", say.decimal)), unit
@@ -106,7 +109,7 @@ def _scale_text(panel: Panel, say: Catalogue, unit: str) -> tuple[str, str]:
         text, bar_unit = say.say("panel.kv", scale=say.number(panel.scale), unit=f"{unit}/s"), f"{unit}/s"
     else:
         text, bar_unit = say.say("panel.ka", scale=say.number(panel.scale), unit=f"{unit}/s²"), f"{unit}/s²"
-    if panel.wanted is not None and panel.scale < panel.wanted * (1 - 1e-12):
+    if reduced:
         text += " " + say.say("panel.reduced")
     return text, bar_unit
 
@@ -119,10 +122,10 @@ def _headings(solution: Solution, layout: Layout, say: Catalogue) -> tuple[list[
     for panel in layout.panels:
         name = say.say(f"panel.{panel.name}")
         if panel.name == "centers":
-            titles.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, plain_runs(name, 2.8), "#000000",
+            titles.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, fitted_runs(name, 2.8, panel.rect[2] - panel.rect[0] - 2.0, True), "#000000",
                                f"heading {panel.name}", None, True))
             continue
-        text, bar_unit = _scale_text(panel, say, unit)
+        text, bar_unit = _scale_text(panel, say, unit, panel.name in layout.reduced)
         heading, scale = heading_items(panel, name, text, bar_unit)
         titles += heading
         bars += [_decimal(item, say) for item in scale]
@@ -196,7 +199,7 @@ def drawing_layers(solution: Solution, frame: Frame, drawing: Drawing, say: Cata
         step = 0 if solution.steps else None
     elif drawing.kind == "step":
         step = drawing.number
-    base = build_sheet(solution, frame.paper, step=step, layout=frame.layout, labels=frame.labels)
+    base = build_sheet(solution, frame.paper, step=step, layout=frame.layout, labels=frame.labels, title_block=False)
     layers = {layer.name: list(layer.items) for layer in base.layers}
     titles, bars = _headings(solution, frame.layout, say)
     layers["title"], layers["scales"] = titles, bars

@@ -17,7 +17,8 @@ from kinepoly.handout.content import Column, Handout, Page, Paragraph, Table
 from kinepoly.handout.drawing import Frame, band_frame, blank_sheet, drawing_layers, page_frame_items, scales_of
 from kinepoly.handout.notation import html_of
 from kinepoly.present.catalogue import Catalogue
-from kinepoly.render.layout import paper_size
+from kinepoly.render.layout import larger_papers, paper_size
+from kinepoly.render.sheet import roomy
 from kinepoly.render.style import TERM_COLORS
 from kinepoly.solution import Solution
 
@@ -163,10 +164,20 @@ def _section(solution: Solution, frame: Frame, page: Page, number: int, kinds: l
             f'<div class="text">{text}</div>\n</section>\n')
 
 
+def _frame(solution: Solution, size: tuple[float, float]) -> Frame:
+    """The drawing on the paper asked, or the smallest larger A paper that gives each polygon its scale and the
+    mechanism its size (``render.sheet.roomy``), as the PDF's drawing; the scales are the paper asked's."""
+    for _, paper in [("", size), *larger_papers(size)]:
+        frame = band_frame(solution, paper, 0.0, size)
+        if roomy(solution, frame.layout):
+            return frame
+    return band_frame(solution, size, 0.0, size)
+
+
 def handout_html(solution: Solution, say: Catalogue, paper: str | tuple[float, float] = "A4") -> tuple[Handout, str]:
     """The handout as one HTML page (and its content), in the catalogue's language."""
     size = paper if isinstance(paper, tuple) else paper_size(paper)
-    frame = band_frame(solution, size, 0.0)
+    frame = _frame(solution, size)
     handout = handout_content(solution, say, scales_of(frame.layout))
     kinds = drawn_kinds(frame)
     count = len(handout.pages)

@@ -17,10 +17,8 @@ from __future__ import annotations
 import functools
 import html
 import re
-import unicodedata
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
 
 from kinepoly.render import text as render_text
 from kinepoly.render.text import Run
@@ -36,44 +34,40 @@ _LEAD = "(|[«„\""
 _TRAIL = ")|].,;:!?»\"²"
 
 
-@functools.cache
-def _font(bold: bool) -> Any:
-    from matplotlib import font_manager
-    from matplotlib.ft2font import FT2Font
-
-    weight = "bold" if bold else "normal"
-    font = FT2Font(font_manager.findfont(font_manager.FontProperties(family="DejaVu Sans", weight=weight)))
-    font.set_size(72, 72)  # 72 pixels per em: an advance in pixels / 72 is in ems
-    return font
-
-
-@functools.cache
-def _advance_em(ch: str, bold: bool) -> float:
-    from matplotlib import ft2font
-
-    loaded: Any = vars(ft2font)
-    flags = loaded["LoadFlags"].NO_HINTING if "LoadFlags" in loaded else loaded["LOAD_NO_HINTING"]  # before 3.10
-    font = _font(bold)
-    if font.get_char_index(ord(ch)) == 0:  # no glyph in DejaVu Sans: drawn as the font's box, or wide
-        return 0.0 if unicodedata.combining(ch) else 1.0 if unicodedata.east_asian_width(ch) in "WF" else 0.6
-    glyph = font.load_char(ord(ch), flags=flags)
-    return float(glyph.linearHoriAdvance) / 65536.0 / 72.0
-
-
 def text_width(text: str, size: float, bold: bool = False) -> float:
     """Advance width of ``text`` in DejaVu Sans (Bold) at em size ``size`` (mm), any character.
 
     Read from the font matplotlib draws with, so that Turkish, Romanian or any other letters
     and the symbols of the handout (⊥, ∥, →, △) are measured as drawn.
     """
-    return size * sum(_advance_em(ch, bold) for ch in text)
+    return size * sum(render_text.glyph_em(ch, bold) for ch in text)
 
 
 def wrap(text: str, size: float, width: float, bold: bool = False) -> list[str]:
-    """Break ``text`` at spaces into lines no wider than ``width`` as typeset (a longer word stands alone)."""
-    return render_text.wrap(text, size, width, bold, measure=_typeset_width)
+    """Break ``text`` at spaces into lines no wider than ``width`` as typeset (a longer word stands alone).
+
+    A line's typeset width is the sum of its words' and spaces' (each word is typeset on its own),
+    so each word is measured once.
+    """
+    space = text_width(" ", size, bold)
+    lines: list[str] = []
+    current: list[str] = []
+    current_w = 0.0
+    for word in text.split():
+        w = _typeset_width(word, size, bold)
+        trial = current_w + space + w if current else w
+        if current and trial > width + 1e-9:  # a sum's rounding does not break a line measured whole
+            lines.append(" ".join(current))
+            current, current_w = [word], w
+        else:
+            current.append(word)
+            current_w = trial
+    if current:
+        lines.append(" ".join(current))
+    return lines
 
 
+@functools.lru_cache(maxsize=65536)
 def _typeset_width(text: str, size: float, bold: bool) -> float:
     runs = runs_of(text, size, bold)
     return max(r.dx + text_width(r.text, r.size, bold) for r in runs)

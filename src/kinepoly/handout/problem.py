@@ -28,17 +28,10 @@ def _angle(solution: Solution, say: Catalogue, radians: float) -> str:
 
 
 def _input(solution: Solution, say: Catalogue) -> list[Paragraph]:
-    inp, ground, unit = solution.scene.input, solution.mechanism.ground or "", solution.scene.units.length
-    if isinstance(inp, LinkInput):
-        return [Paragraph(say.say(
-            "problem.input_link", link=inp.link, angle_name=f"θ{ground}{inp.link}",
-            angle=_angle(solution, say, inp.angle_rad), omega_name=f"ω{ground}{inp.link}",
-            omega=say.number(abs(inp.omega)), omega_sense=say.say(f"sense.{_sense(inp.omega)}"),
-            alpha_name=f"α{ground}{inp.link}", alpha=say.number(abs(inp.alpha)),
-            alpha_sense=say.say(f"sense.{_sense(inp.alpha)}")))]
-    if isinstance(inp, SliderInput):
-        return [Paragraph(say.say("problem.input_slider", slider=inp.slider, s=say.number(inp.s),
-                                  s_dot=say.number(inp.s_dot), s_ddot=say.number(inp.s_ddot), unit=unit))]
+    inp, unit = solution.scene.input, solution.scene.units.length
+    if not isinstance(inp, GivenInput):
+        return [_drive_paragraph(solution, say, drive.spec, f"{drive.base}{drive.moving}", unit)
+                for drive in solution.mechanism.drives]
     assert isinstance(inp, GivenInput)
     out = [Paragraph(say.say("problem.input_given", link=solution.mechanism.link_names[0]))]
     for point in inp.points:
@@ -48,6 +41,19 @@ def _input(solution: Solution, say: Catalogue) -> list[Paragraph]:
         out.append(Paragraph(say.say("problem.given_point", point=point.name, value=say.pair(*point.velocity),
                                      unit=f"{unit}/s", acceleration=acceleration).rstrip()))
     return out
+
+
+def _drive_paragraph(solution: Solution, say: Catalogue, inp: LinkInput | SliderInput, pair: str,
+                     unit: str) -> Paragraph:
+    if isinstance(inp, LinkInput):
+        return Paragraph(say.say(
+            "problem.input_link", link=inp.link, angle_name=f"θ{pair}",
+            angle=_angle(solution, say, inp.angle_rad), omega_name=f"ω{pair}",
+            omega=say.number(abs(inp.omega)), omega_sense=say.say(f"sense.{_sense(inp.omega)}"),
+            alpha_name=f"α{pair}", alpha=say.number(abs(inp.alpha)),
+            alpha_sense=say.say(f"sense.{_sense(inp.alpha)}")))
+    return Paragraph(say.say("problem.input_slider", slider=inp.slider, s=say.number(inp.s),
+                             s_dot=say.number(inp.s_dot), s_ddot=say.number(inp.s_ddot), unit=unit))
 
 
 def _sense(rate: float) -> str:

@@ -10,7 +10,7 @@ is taken, the label goes further out with a thin leader line back to its anchor.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -20,7 +20,7 @@ from kinepoly.render.text import Run, runs_box
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
 
-__all__ = ["CLEARANCE_MM", "LEADER", "LabelCache", "Placer", "Request", "fill_geometry", "item_geometry", "place"]
+__all__ = ["CLEARANCE_MM", "FEW", "LEADER", "LabelCache", "Placer", "Request", "fill_geometry", "item_geometry", "place"]
 
 Point = tuple[float, float]
 Box = tuple[float, float, float, float]
@@ -29,6 +29,8 @@ CLEARANCE_MM = 0.35
 """The least gap kept between a label's box and anything drawn."""
 LEADER = Stroke("#555555", 0.13)
 _RINGS_MM = (0.5, 1.2, 2.2, 3.5)
+_LEADER_FREE_MM = 2.0
+"""Near its anchor a leader may cross what is drawn there (the pin, the shaft it names)."""
 _FAR_RINGS_MM = (5.0, 7.5, 10.0, 14.0, 19.0, 25.0, 32.0, 40.0)
 _DIRECTIONS_DEG = (45, 135, -45, -135, 0, 180, 90, -90, 22.5, 157.5, -22.5, -157.5, 67.5, 112.5, -67.5, -112.5)
 
@@ -60,7 +62,8 @@ class Request:
 def item_geometry(item: Item) -> BaseGeometry:
     """What a reader sees of ``item`` as a shapely geometry: strokes with their width, heads, boxes.
 
-    The inside of a filled closed path (light shading) is left out: see ``fill_geometry``.
+    The inside of a lightly shaded closed path (plates, image triangles) is left out: see
+    ``fill_geometry``; an opaque one (a pivot's triangle, a slider's block) is whole.
     """
     from shapely.geometry import LineString, Polygon, box
     from shapely.geometry import Point as ShapelyPoint
@@ -77,9 +80,12 @@ def item_geometry(item: Item) -> BaseGeometry:
             return disc
         return disc.difference(ShapelyPoint(item.center).buffer(max(item.radius - width / 2, 0.0), quad_segs=8))
     points = list(item.points)
+    width = item.stroke.width if item.stroke else 0.0
+    if item.closed and item.fill is not None and item.fill_opacity >= 1.0 and len(points) >= 3:
+        # an opaque symbol (a pivot's triangle, a slider's block): its whole area, not only its outline
+        return Polygon(points).buffer(max(width / 2, 1e-3), join_style="mitre")
     if item.closed:
         points.append(points[0])
-    width = item.stroke.width if item.stroke else 0.0
     if len(points) == 1:
         return ShapelyPoint(points[0]).buffer(max(width / 2, 1e-3))
     return LineString(points).buffer(max(width / 2, 1e-3), cap_style="flat", join_style="mitre")
@@ -125,7 +131,9 @@ class _Placed:
 
     def __init__(self) -> None:
         self.geometries: list[Any] = []
+        self._bounds: list[Box] = []
         self._cells: dict[tuple[int, int], list[int]] = {}
+        self._leaders: set[int] = set()
 
     def _keys(self, bounds: Box) -> Iterable[tuple[int, int]]:
         c = self._CELL_MM
@@ -133,33 +141,60 @@ class _Placed:
             for j in range(math.floor(bounds[1] / c), math.floor(bounds[3] / c) + 1):
                 yield (i, j)
 
-    def append(self, geometry: Any) -> None:
+    def append(self, geometry: Any, leader: bool = False) -> None:
         index = len(self.geometries)
+        if leader:
+            self._leaders.add(index)
         self.geometries.append(geometry)
-        for key in self._keys(geometry.bounds):
+        bounds = tuple(geometry.bounds)
+        self._bounds.append(bounds)
+        for key in self._keys(bounds):
             self._cells.setdefault(key, []).append(index)
 
     def extend(self, geometries: Iterable[Any]) -> None:
         for geometry in geometries:
             self.append(geometry)
 
-    def touches(self, geometry: Any) -> bool:
-        """Whether ``geometry`` intersects any placed geometry."""
+    def add(self, placed: Placed) -> None:
+        """A placed label's geometries: its box (with its ring), then its leader if it has one."""
+        _, items, geometries = placed
+        has_leader = any(isinstance(item, Path) and item.role.startswith("leader ") for item in items)
+        for k, geometry in enumerate(geometries):
+            self.append(geometry, leader=has_leader and k == 1)
+
+    def is_leader(self, index: int) -> bool:
+        return index in self._leaders
+
+    def touches(self, geometry: Any, labels_only: bool = False, distance: float = 0.0) -> bool:
+        """Whether ``geometry`` comes within ``distance`` of any placed geometry (``labels_only``: of any placed
+        label, leaders aside)."""
+        import shapely
+
         x0, y0, x1, y1 = geometry.bounds
+        x0, y0, x1, y1 = x0 - distance, y0 - distance, x1 + distance, y1 + distance
         seen: set[int] = set()
         for key in self._keys((x0, y0, x1, y1)):
             for index in self._cells.get(key, ()):
-                if index in seen:
+                if index in seen or (labels_only and index in self._leaders):
                     continue
                 seen.add(index)
-                g = self.geometries[index]
-                b = g.bounds
-                if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0 and geometry.intersects(g):
-                    return True
+                b = self._bounds[index]
+                if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0:
+                    g = self.geometries[index]
+                    if geometry.intersects(g) if distance <= 0.0 else shapely.dwithin(geometry, g, distance):
+                        return True
         return False
 
     def __len__(self) -> int:
         return len(self.geometries)
+
+    def copy(self) -> _Placed:
+        other = _Placed()
+        other.geometries = list(self.geometries)
+        other._bounds = list(self._bounds)
+        other._cells = {key: list(indexes) for key, indexes in self._cells.items()}
+        other._leaders = set(self._leaders)
+        return other
 
 
 class Placer:
@@ -179,25 +214,51 @@ class Placer:
         self._hard_tree = STRtree(self._hard)
         self._soft_tree = STRtree(self._soft)
         self._placed = placed if placed is not None else _Placed()
+        self.crowded: list[str] = []
+        """The roles of labels put where they touch something: no free place was within reach."""
 
     def _inside(self, b: Box) -> bool:
         x0, y0, x1, y1 = self.region
         return b[0] >= x0 and b[1] >= y0 and b[2] <= x1 and b[3] <= y1
 
     def _free(self, b: Box, avoid_fill: bool) -> bool:
-        from shapely.geometry import box
+        return next(self._free_of([b], avoid_fill))
 
-        if not self._inside(b):
-            return False
-        grown = box(b[0] - CLEARANCE_MM, b[1] - CLEARANCE_MM, b[2] + CLEARANCE_MM, b[3] + CLEARANCE_MM)
-        if len(self._hard_tree.query(grown, predicate="intersects")):
-            return False
-        if avoid_fill and len(self._soft_tree.query(grown, predicate="intersects")):
-            return False
-        return not self._placed.touches(grown)
+    def _free_of(self, boxes: Sequence[Box], avoid_fill: bool) -> Iterator[bool]:
+        """For each of ``boxes`` in turn, whether it lies inside the region, its clearance touching nothing
+        drawn (with ``avoid_fill`` no shading either) and no placed label; the drawing is tested for all
+        boxes at once, the placed labels box by box as asked (the first free one often ends the search)."""
+        import numpy as np
+        import shapely
 
-    def _leader_ok(self, line: Any) -> bool:
-        return not self._placed.touches(line)
+        if not boxes:
+            return
+        c = CLEARANCE_MM
+        b = np.asarray(boxes, dtype=float)
+        grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
+        taken = set(self._hard_tree.query(grown, predicate="intersects")[0].tolist())
+        if avoid_fill:
+            taken |= set(self._soft_tree.query(grown, predicate="intersects")[0].tolist())
+        for k, box in enumerate(boxes):
+            yield k not in taken and self._inside(box) and not self._placed.touches(grown[k])
+
+    def _leader_ok(self, line: Any, anchor: Point, strict: bool) -> bool:
+        """A leader (its centre line) keeps its clearance from every label (other leaders may meet it, at a spot
+        they share); ``strict``: from everything drawn too, beyond ``_LEADER_FREE_MM`` of its anchor."""
+        from shapely.geometry import LineString
+
+        reach = LEADER.width / 2 + CLEARANCE_MM
+        if self._placed.touches(line, labels_only=True, distance=reach):
+            return False
+        if not strict:
+            return True
+        (ax, ay), (bx, by) = line.coords[0], line.coords[-1]
+        length = math.hypot(bx - ax, by - ay)
+        if length <= _LEADER_FREE_MM:
+            return True
+        t = _LEADER_FREE_MM / length
+        clear = LineString([(ax + t * (bx - ax), ay + t * (by - ay)), (bx, by)])
+        return not len(self._hard_tree.query(clear, predicate="dwithin", distance=reach))
 
     def block(self, item: Item) -> None:
         """Treat ``item`` as drawn from now on (something added after the labels started)."""
@@ -215,47 +276,48 @@ class Placer:
         text = self._text(b, runs, color, role, anchor, bold)
         if leader is None:
             return [text]
-        self._placed.append(leader.buffer(LEADER.width / 2))
+        self._placed.append(leader.buffer(LEADER.width / 2), leader=True)
         points = tuple((float(x), float(y)) for x, y in leader.coords)
         return [Path(points, LEADER, role=f"leader {role}"), text]
 
     def _near(self, candidates: Sequence[Box]) -> Box | None:
         for avoid_fill in (True, False):
-            for b in candidates:
-                if self._free(b, avoid_fill):
+            for b, free in zip(candidates, self._free_of(candidates, avoid_fill), strict=True):
+                if free:
                     return b
         return None
 
     def _far(self, runs: tuple[Run, ...], color: str, role: str, anchor: Point, bold: bool,
              size: tuple[float, float], shift: Point, optional: bool = False) -> list[Item]:
-        from shapely.geometry import LineString, box
-        from shapely.ops import nearest_points
+        from shapely.geometry import LineString
 
-        for ring in _FAR_RINGS_MM:
-            for angle in _DIRECTIONS_DEG:
-                u = (math.cos(math.radians(angle)), math.sin(math.radians(angle)))
-                b = _pushed_box(anchor, u, size, ring)
-                if not self._free(b, False):
-                    continue
-                near = nearest_points(box(*b), _point(anchor))[0]
-                length = math.hypot(near.x - anchor[0], near.y - anchor[1])
+        candidates = [_pushed_box(anchor, (math.cos(math.radians(angle)), math.sin(math.radians(angle))), size, ring)
+                      for ring in _FAR_RINGS_MM for angle in _DIRECTIONS_DEG]
+        free = [b for b, ok in zip(candidates, self._free_of(candidates, False), strict=True) if ok]
+        for strict in (True, False):  # a leader that crosses nothing drawn first, then one that must
+            for b in free:
+                near = (min(max(anchor[0], b[0]), b[2]), min(max(anchor[1], b[1]), b[3]))  # the box's nearest point
+                length = math.hypot(near[0] - anchor[0], near[1] - anchor[1])
                 if length <= 0.6:
                     continue
                 k = (length - 0.3) / length
                 start = (anchor[0] + shift[0], anchor[1] + shift[1])
-                end = (anchor[0] + k * (near.x - anchor[0]), anchor[1] + k * (near.y - anchor[1]))
+                end = (anchor[0] + k * (near[0] - anchor[0]), anchor[1] + k * (near[1] - anchor[1]))
                 leader = LineString([start, end])
-                if self._leader_ok(leader.buffer(LEADER.width / 2)):
+                if self._leader_ok(leader, anchor, strict):
                     return self._accept(b, runs, color, role, anchor, bold, leader)
         if optional:
             return []
         # Nowhere free within reach: keep the nearest place inside the region (the overlap test reports it).
+        self.crowded.append(role)
         b = _pushed_box(anchor, (1.0, 0.0), size, _RINGS_MM[0])
         return self._accept(b, runs, color, role, anchor, bold)
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
-                 bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False) -> list[Item]:
-        """A label near a point (a joint, a tip): the nearest free place around it."""
+                 bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False,
+                 far: bool = False) -> list[Item]:
+        """A label near a point (a joint, a tip): the nearest free place around it; ``far``: set out with a
+        leader from the start (a point among many, whose near places would wall the others in)."""
         x0, y0, x1, y1 = runs_box(runs, bold)
         size = (x1 - x0, y1 - y0)
         radius = math.hypot(*size) / 2 + 0.35
@@ -265,7 +327,7 @@ class Placer:
             for angle in _DIRECTIONS_DEG:
                 u = (math.cos(math.radians(angle)), math.sin(math.radians(angle)))
                 candidates.append(_pushed_box(anchor, u, outer, gap + distance))
-        found = self._near(candidates)
+        found = None if far else self._near(candidates)
         if found is None:
             items = self._far(runs, color, role, anchor, bold, outer, (0.0, 0.0), optional)
             if not items:
@@ -313,19 +375,29 @@ def _point(p: Point) -> Any:
     return ShapelyPoint(p)
 
 
+Placed = tuple[str, list[Item], list[Any]]
+"""A placed label: its layer, its items (text, and leader or ring), and their geometries as placed."""
+
+
 class LabelCache:
     """What the sheets of one layout (a handout's pages, a drawing's step sheets) share in placing labels.
 
-    The geometry of each drawn item is made once; a region's labels are placed once and reused on
+    The geometry of each drawn item is made once. A region's labels are placed once and reused on
     every later sheet whose requests in that region, and drawn items near it, are the same (the
-    mechanism, the circle diagram: the fixed parts), so a page places only what changed (the
-    polygons up to its step). A region's labels are kept only when they lie clear of its edges and
-    of every other region's labels: then nothing outside the region could have moved them.
+    mechanism, the circle diagram: the fixed parts); a region's labels are kept so only when they
+    lie clear of its edges and of every other region's labels (then nothing outside the region
+    could have moved them). A region whose drawing grows from sheet to sheet (a polygon, step by
+    step) keeps each label of the sheet before that nothing new touches, and places only the new
+    labels and those the new drawing displaced: each page costs what it adds, and a label stays
+    where the reader saw it on the page before.
     """
 
     def __init__(self) -> None:
         self._geometry: dict[Item, tuple[Any, Any, Box]] = {}
-        self._regions: dict[tuple[Any, ...], tuple[list[tuple[str, list[Item]]], list[Any]]] = {}
+        self._regions: dict[tuple[Any, ...], tuple[list[Placed], list[str]]] = {}
+        self._last: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
+        self.crowded: set[str] = set()
+        """The roles of the labels that found no free place on any sheet placed with this cache."""
 
     def geometry(self, item: Item) -> tuple[Any, Any, Box]:
         """The item's hard geometry, its shading (or None) and the hard geometry's bounds."""
@@ -346,65 +418,156 @@ def _well_inside(bounds: Box, region: Box, margin: float) -> bool:
             and bounds[2] < region[2] - margin and bounds[3] < region[3] - margin)
 
 
+def _kept(cache: LabelCache, region: Box, requests: Sequence[Request], near: Sequence[Item]) -> dict[int, Placed]:
+    """The labels of the region's previous sheet that stay: requested again, and touched by nothing drawn since."""
+    from shapely import STRtree
+
+    last = cache._last.get(region)
+    if last is None:
+        return {}
+    before, drawn_before = last
+    fresh = [cache.geometry(item)[0] for item in near if item not in drawn_before]
+    available = {request: list(placed) for request, placed in before.items()}
+    candidates: dict[int, Placed] = {}
+    for k, request in enumerate(requests):
+        entries = available.get(request)
+        if entries:
+            candidates[k] = entries.pop(0)
+    if not fresh or not candidates:
+        return candidates
+    tree = STRtree(fresh)
+    order = list(candidates)
+    geometries = [g for k in order for g in candidates[k][2]]
+    owner = [k for k in order for _ in candidates[k][2]]
+    hit = tree.query(geometries, predicate="dwithin", distance=CLEARANCE_MM)[0]
+    for index in set(hit.tolist()):
+        candidates.pop(owner[index], None)
+    return candidates
+
+
+_TRIES = 3
+"""Placements of a region, each with the labels that found no free place before moved to the front."""
+FEW = 10
+"""At most this many crowded labels are worth another placement, or another paper (``render.sheet``)."""
+_FEW = FEW
+
+
+def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], near: Sequence[Item],
+                  shared: _Placed) -> tuple[list[Placed], list[str]]:
+    """The region's labels: those kept from the sheet before, then the others placed one after another.
+
+    Where some label finds no free place (the labels around a crowded spot closed every way out),
+    the region is placed again with those labels first, while that helps.
+    """
+    kept = _kept(cache, region, requests, near)
+    base = shared.copy()
+    for entry in kept.values():
+        base.add(entry)
+    hard = [cache.geometry(item)[0] for item in near]
+    soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
+    order = [k for k in range(len(requests)) if k not in kept]
+    best: tuple[list[Placed], list[str]] | None = None
+    for _ in range(_TRIES):
+        placed, crowded = _attempt(region, requests, order, kept, hard, soft, base.copy())
+        if best is not None and len(crowded) >= len(best[1]):
+            break  # moving the crowded labels first did not help
+        best = (placed, crowded)
+        if not crowded or len(crowded) > _FEW:
+            break  # none crowded, or so many that the polygon's own points crowd: moving them first cannot help
+        first = [k for k in order if requests[k].role in crowded]
+        order = first + [k for k in order if k not in first]
+    assert best is not None
+    placed, crowded = best
+    for entry in placed:
+        shared.add(entry)
+    by_request: dict[Request, list[Placed]] = {}
+    for request, entry in zip(requests, placed, strict=True):
+        by_request.setdefault(request, []).append(entry)
+    cache._last[region] = (by_request, frozenset(near))
+    return placed, crowded
+
+
+_CROWD_MM = 3.0
+_CROWD_COUNT = 4
+"""A point label with this many other labels' anchors within ``_CROWD_MM`` is set out with a leader at once."""
+
+
+def _crowd(requests: Sequence[Request]) -> set[int]:
+    """The point labels among many anchors close together (a polygon's tips and short vectors near its pole)."""
+    anchors = [r.anchor if r.end is None else _mid(r.anchor, r.end) for r in requests]
+    out: set[int] = set()
+    for k, request in enumerate(requests):
+        if request.end is not None:
+            continue
+        a = anchors[k]
+        close = sum(1 for j, b in enumerate(anchors) if j != k and math.dist(a, b) <= _CROWD_MM)
+        if close >= _CROWD_COUNT:
+            out.add(k)
+    return out
+
+
+def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kept: dict[int, Placed],
+             hard: list[Any], soft: list[Any], placed_so_far: _Placed) -> tuple[list[Placed], list[str]]:
+    """One placement of the requests not kept, in ``order``; every request's label and the roles crowded."""
+    placer = Placer(region, (), placed_so_far, (hard, soft))
+    out: dict[int, Placed] = dict(kept)
+    crowd = _crowd(requests)
+    for k in order:
+        request = requests[k]
+        before = len(placed_so_far)
+        if request.end is None:
+            items = placer.at_point(request.anchor, request.runs, request.color, request.role, request.bold,
+                                    request.gap, request.ring, request.optional, far=k in crowd)
+        else:
+            items = placer.along(request.anchor, request.end, request.runs, request.color, request.role)
+        out[k] = (request.layer, items, placed_so_far.geometries[before:])
+    return [out[k] for k in range(len(requests))], placer.crowded
+
+
 def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache | None = None) -> dict[str, list[Item]]:
-    """Place every request (by priority, then in the given order), each in its region; items per layer.
+    """Place every request in its region (by priority, then in the given order); items per layer.
 
     A region's labels avoid the drawn items near the region (nothing further can touch a label
-    inside it) and the labels placed before them in any region. With ``cache`` shared by the
-    sheets of one layout, a region whose requests and nearby drawing are as on an earlier sheet
-    gets that sheet's labels again without placing them anew: the same result, placed once.
+    inside it) and the labels placed before them. With ``cache`` shared by the sheets of one
+    layout, a region whose requests and nearby drawing are as on an earlier sheet gets that
+    sheet's labels again, and a region that grew keeps the labels nothing new touches: each
+    sheet places only what it adds (``LabelCache``).
     """
     cache = cache if cache is not None else LabelCache()
     drawn = list(drawn)
-    geometry = [cache.geometry(item) for item in drawn]
+    bounds = [cache.geometry(item)[2] for item in drawn]
     ordered = sorted(requests, key=lambda r: r.priority)
     by_region: dict[Box, list[Request]] = {}
     for request in ordered:
         by_region.setdefault(request.region, []).append(request)
     margin = CLEARANCE_MM + 1e-6
-    near: dict[Box, list[int]] = {region: [k for k, g in enumerate(geometry) if _near_region(g[2], region, margin)]
-                                  for region in by_region}
-    keys = {region: (region, tuple(reqs), tuple(drawn[k] for k in near[region])) for region, reqs in by_region.items()}
+    near = {region: [drawn[k] for k, b in enumerate(bounds) if _near_region(b, region, margin)] for region in by_region}
+    keys = {region: (region, tuple(reqs), tuple(near[region])) for region, reqs in by_region.items()}
     shared = _Placed()
-    out: dict[str, list[Item]] = {}
-    reused = {region for region in by_region if keys[region] in cache._regions}
-    for region in reused:
-        _, placed = cache._regions[keys[region]]
-        shared.extend(placed)
-    placers: dict[Box, Placer] = {}
-    made: dict[Box, list[tuple[str, list[Item]]]] = {}
-    made_geometry: dict[Box, list[Any]] = {}
-    for request in ordered:
-        region = request.region
-        if region in reused:
+    results: dict[Box, list[Placed]] = {}
+    for region in by_region:
+        found = cache._regions.get(keys[region])
+        if found is not None:
+            results[region] = found[0]
+            for entry in found[0]:
+                shared.add(entry)
+            cache.crowded.update(found[1])
+    for region, reqs in by_region.items():
+        if region in results:
             continue
-        placer = placers.get(region)
-        if placer is None:
-            hard = [geometry[k][0] for k in near[region]]
-            soft = [geometry[k][1] for k in near[region] if geometry[k][1] is not None]
-            placer = placers[region] = Placer(region, (), shared, (hard, soft))
-            made[region], made_geometry[region] = [], []
-        before = len(shared)
-        if request.end is None:
-            items = placer.at_point(request.anchor, request.runs, request.color, request.role, request.bold,
-                                    request.gap, request.ring, request.optional)
-        else:
-            items = placer.along(request.anchor, request.end, request.runs, request.color, request.role)
-        made[region].append((request.layer, items))
-        made_geometry[region] += shared.geometries[before:]
-    for region in placers:
-        own = made_geometry[region]
+        placed, crowded = _place_region(cache, region, reqs, near[region], shared)
+        results[region] = placed
+        cache.crowded.update(crowded)
+        own = [g for _, _, geometries in placed for g in geometries]
         mine = {id(g) for g in own}
-        others = [g for g in shared.geometries if id(g) not in mine]
         if all(_well_inside(tuple(g.bounds), region, margin) for g in own) and \
-                not any(_near_region(tuple(g.bounds), region, margin) for g in others):
-            cache._regions[keys[region]] = (made[region], own)
-    results = {region: cache._regions[keys[region]][0] for region in reused} | made
-    # the layers' items in the order of the requests, as placed one after another
+                not any(_near_region(tuple(g.bounds), region, margin) for g in shared.geometries if id(g) not in mine):
+            cache._regions[keys[region]] = (placed, crowded)
+    out: dict[str, list[Item]] = {}
     counters = dict.fromkeys(results, 0)
-    for request in ordered:
+    for request in ordered:  # the layers' items in the order of the requests
         k = counters[request.region]
-        layer, items = results[request.region][k]
+        layer, items, _ = results[request.region][k]
         counters[request.region] = k + 1
         out.setdefault(layer, []).extend(items)
     return out

@@ -18,7 +18,9 @@ __all__ = [
     "Content",
     "Panel",
     "arrange",
+    "larger_papers",
     "nice_floor",
+    "paper_name",
     "paper_size",
     "round_step",
 ]
@@ -33,6 +35,8 @@ _SIZES_MM = {
 }
 PAPER_NAMES = tuple(_SIZES_MM)
 _NICE = (1.0, 2.0, 2.5, 5.0)
+_LABEL_ROOM_MM = 30.0
+"""The most a polygon's column is widened beyond its polygon, when the page has room to spare."""
 HEADING_MM = 8.5
 """Room at the top of each panel for its heading."""
 
@@ -55,6 +59,31 @@ def paper_size(spec: str) -> tuple[float, float]:
                          f", optionally with -portrait or -landscape (default landscape), or WIDTHxHEIGHT in mm")
     long, short = _SIZES_MM[name]
     return (short, long) if orientation == "portrait" else (long, short)
+
+
+_LARGER = ("a4", "a3", "a2", "a1", "a0")
+
+
+def paper_name(size: tuple[float, float]) -> str:
+    """``A3`` (landscape), ``A4-portrait``, ``letter`` for a named size; else ``WIDTHxHEIGHT``."""
+    for name, (long, short) in _SIZES_MM.items():
+        shown = name.upper() if name[0] == "a" else name
+        if abs(size[0] - long) < 1e-6 and abs(size[1] - short) < 1e-6:
+            return shown
+        if abs(size[0] - short) < 1e-6 and abs(size[1] - long) < 1e-6:
+            return f"{shown}-portrait"
+    return f"{size[0]:g}x{size[1]:g}"
+
+
+def larger_papers(size: tuple[float, float]) -> list[tuple[str, tuple[float, float]]]:
+    """A4, A3, ... A0 in the orientation of ``size``, each larger than ``size`` both ways, smallest first."""
+    portrait = size[1] > size[0]
+    out = []
+    for name in _LARGER:
+        w, h = paper_size(name + ("-portrait" if portrait else ""))
+        if w > size[0] + 1e-6 and h > size[1] + 1e-6:
+            out.append((paper_name((w, h)), (w, h)))
+    return out
 
 
 def nice_floor(x: float) -> float:
@@ -164,7 +193,10 @@ def _try(contents: Sequence[Content], area: Box, columns: list[list[int]],
     spare = width - sum(widths)
     if spare < 0.0:
         return None
-    widths[0] += spare  # the mechanism's column takes what is left
+    # each polygon's column gets some of what is left for labels set further out; the mechanism's the rest
+    share = min(spare / len(columns), _LABEL_ROOM_MM) if len(columns) > 1 else 0.0
+    widths = [w + share for w in widths]
+    widths[0] += spare - share * len(columns)
     panels: dict[int, Panel] = {}
     x = x0
     for column, col_w in zip(columns, widths, strict=True):

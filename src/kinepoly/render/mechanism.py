@@ -46,8 +46,34 @@ def world_points(solution: Solution) -> dict[str, dict[str, Vec]]:
     return out
 
 
+def assur_lines(solution: Solution) -> list[tuple[str, Vec, tuple[Vec, ...]]]:
+    """Each triad's Assur point S found on the mechanism, with the points its two leg lines are drawn
+    through (a rod's two pins; a block's pin, the line then normal to the slide): only where S lies
+    within the mechanism's own extent grown by half its size, so that a far S does not shrink the sheet."""
+    points = [p for pts in world_points(solution).values() for p in pts.values()]
+    xs, ys = [p[0] for p in points], [p[1] for p in points]
+    size = max(max(xs) - min(xs), max(ys) - min(ys))
+    out = []
+    for step in solution.steps:
+        if step.polygon != "velocity" or step.topic != "assur-point":
+            continue
+        name = str(step.param("point"))
+        at = solution.pose.marks.get(name)
+        if at is None or not (min(xs) - size / 2 <= at[0] <= max(xs) + size / 2
+                              and min(ys) - size / 2 <= at[1] <= max(ys) + size / 2):
+            continue
+        through = []
+        for which in ("first", "second"):
+            params = dict(step.params)
+            key = f"{which}_pin" if f"{which}_pin" in params else f"{which}_point"
+            through.append(solution.position(str(params[key])))
+        out.append((name, at, tuple(through)))
+    return out
+
+
 def mechanism_box(solution: Solution) -> tuple[float, float, float, float]:
     points = [p for pts in world_points(solution).values() for p in pts.values()]
+    points += [at for _, at, _ in assur_lines(solution)]
     xs, ys = [p[0] for p in points], [p[1] for p in points]
     return (min(xs), min(ys), max(xs), max(ys))
 
@@ -123,11 +149,10 @@ def _free_angle(taken: Sequence[float]) -> float:
     return max((math.radians(15 * k) for k in range(24)), key=clearance)
 
 
-def _input_arrow(solution: Solution, panel: Panel, at: Point, taken: Sequence[float]) -> tuple[list[Item],
-                                                                                                 list[Request]]:
-    """A curved arrow round the input pivot in the sense of omega, labelled omega12, clear of the links."""
-    inp = solution.scene.input
-    assert isinstance(inp, LinkInput)
+def _input_arrow(inp: LinkInput, pair: str, panel: Panel, at: Point, taken: Sequence[float]) -> tuple[
+        list[Item], list[Request]]:
+    """A curved arrow round an input pivot in the sense of omega, labelled omega12 (``pair`` = "12"), clear
+    of the links."""
     if inp.omega == 0.0:
         return [], []
     radius = 6.5
@@ -140,9 +165,8 @@ def _input_arrow(solution: Solution, panel: Panel, at: Point, taken: Sequence[fl
     head_start = sub(end, scale(2.2, tangent))
     items: list[Item] = [Path(arc[:-3], Stroke("#000000", 0.3), role="input omega"),
                          Arrow(head_start, end, "#000000", 0.3, 2.2, 0.8, role="input omega head")]
-    ground = solution.mechanism.ground or ""
-    label = f"ω{ground}{inp.link}"
-    runs = _stack_runs("ω", f"{ground}{inp.link}")
+    label = f"ω{pair}"
+    runs = _stack_runs("ω", pair)
     request = Request(LAYER, panel.drawing_rect, runs, arc[12], color="#000000", role=f"input {label}", priority=1)
     return items, [request]
 
@@ -193,6 +217,14 @@ def mechanism_items(solution: Solution, panel: Panel) -> tuple[list[Item], list[
     for link, pts in paper.items():
         for name, p in pts.items():
             drawn_points.setdefault(name, p)
+    for name, s_world, leg_points in assur_lines(solution):  # the Assur point, where two legs' lines cross
+        s_paper = panel.paper(s_world)
+        for leg_point in leg_points:
+            items.append(Path((panel.paper(leg_point), s_paper), Stroke("#555555", 0.25, (2.0, 1.2)),
+                              role=f"assur line {name}"))
+        items.append(Circle(s_paper, 0.9, Stroke("#000000", 0.3), fill="#ffffff", role=f"assur point {name}"))
+        requests.append(Request(LAYER, region, point_runs(name, LABEL_MM), s_paper, role=f"point {name}", priority=0,
+                                gap=PIN_RADIUS_MM))
     for name, p in drawn_points.items():
         if name in joints or any(s.point == name for s in mech.sliders):
             items.append(Circle(p, PIN_RADIUS_MM, Stroke("#000000", 0.3), fill="#ffffff", role=f"joint {name}"))
@@ -207,12 +239,15 @@ def mechanism_items(solution: Solution, panel: Panel) -> tuple[list[Item], list[
         requests.append(Request(LAYER, region, plain_runs(link, LABEL_MM * 0.85), anchor,
                                 color=link_label_color(order.index(link)), role=f"link {link}", priority=2, gap=0.8,
                                 ring=True, optional=True))
-    if isinstance(solution.scene.input, LinkInput) and mech.ground in paper:
-        pivot = mech.input_pivot()
-        at = paper[mech.ground][pivot.point]
-        taken = [math.atan2(p[1] - at[1], p[0] - at[0]) for link, pts in paper.items() if link != mech.ground
-                 and pivot.point in pts for name, p in pts.items() if name != pivot.point and norm(sub(p, at)) > 0]
-        arrow_items, arrow_requests = _input_arrow(solution, panel, at, taken or [0.0])
+    for drive in mech.drives if mech.ground is not None else ():
+        if not isinstance(drive.spec, LinkInput) or drive.base not in paper:
+            continue
+        pivot = drive.joint.point
+        at = paper[drive.base].get(pivot) or paper[drive.moving][pivot]
+        taken = [math.atan2(p[1] - at[1], p[0] - at[0]) for link, pts in paper.items() if link != drive.base
+                 and pivot in pts for name, p in pts.items() if name != pivot and norm(sub(p, at)) > 0]
+        arrow_items, arrow_requests = _input_arrow(drive.spec, f"{drive.base}{drive.moving}", panel, at,
+                                                   taken or [0.0])
         items += arrow_items
         requests += arrow_requests
     return items, requests

@@ -184,7 +184,11 @@ def _with_absolutes(vectors: list[FigureVector], tips: tuple[FigureTip, ...], sy
                 out[k] = FigureVector(absolute, v.start, v.end, "absolute", v.step)
             elif v.label != absolute and not v.label.startswith(absolute + " ="):
                 out[k] = FigureVector(f"{absolute} = {v.label}", v.start, v.end, v.term, v.step)
-    return out
+    unique: list[FigureVector] = []  # coincident tips (gears rolling) name one arrow, drawn once
+    for v in out:
+        if not any(u.label == v.label and u.start == v.start and u.end == v.end for u in unique):
+            unique.append(v)
+    return unique
 
 
 def figure_box(figure: Figure) -> tuple[float, float, float, float]:
@@ -276,6 +280,8 @@ def polygon_items(figure: Figure, panel: Panel, upto: int | None = None) -> tupl
             if current(fl.step):
                 halos.append(Path((a, b), HALO, role="highlight"))
     dots: list[Item] = []
+    tiny: dict[tuple[float, float], list[tuple[str, str]]] = {}
+    """The vectors too short to draw, by where they end: named in one label there (with the tip's, if one is)."""
     for v in figure.vectors:
         if not shown(v.step):
             continue
@@ -287,8 +293,7 @@ def polygon_items(figure: Figure, panel: Panel, upto: int | None = None) -> tupl
             continue
         if length < TINY_FACTOR * HEAD_LENGTH_MM * 1.5:
             dots.append(Circle(end, 0.55, None, fill=color, role=f"vector {v.label}"))
-            requests.append(Request(layer, region, runs, end, color=color, role=f"vector {v.label}", priority=3,
-                                    gap=0.6))
+            tiny.setdefault(_spot(end), []).append((v.label, color))
         else:
             items.append(Arrow(start, end, color, VECTOR_WIDTH_MM, HEAD_LENGTH_MM, HEAD_HALF_WIDTH_MM,
                                role=f"vector {v.label}"))
@@ -300,7 +305,8 @@ def polygon_items(figure: Figure, panel: Panel, upto: int | None = None) -> tupl
     pole = panel.paper((0.0, 0.0))
     items.append(Circle(pole, 0.8, Stroke("#000000", 0.25), fill="#ffffff", role="pole"))
     pole_label = ", ".join(["o", *(name.lower() for name in figure.pole_names)])
-    requests.append(Request(layer, region, _joined_tip_runs(["o", *figure.pole_names], prime), pole,
+    requests.append(Request(layer, region, _with_vectors(_joined_tip_runs(["o", *figure.pole_names], prime),
+                                                         tiny.pop(_spot(pole), [])), pole,
                             role=f"tip {pole_label}", priority=3, gap=0.8))
     groups: dict[tuple[float, float], list[FigureTip]] = {}
     for tip in figure.tips:
@@ -314,10 +320,32 @@ def polygon_items(figure: Figure, panel: Panel, upto: int | None = None) -> tupl
         items.append(Circle(p, 0.45, None, fill="#000000", role=f"tip {group[0].label.lower()}"))
         if any(current(t.step) for t in group):
             halos.append(Circle(p, 1.8, None, fill=HALO.color, role="highlight"))
-        runs = _joined_tip_runs([t.label for t in group], prime)
+        runs = _with_vectors(_joined_tip_runs([t.label for t in group], prime), tiny.pop(_spot(p), []))
         requests.append(Request(layer, region, runs, p, role="tip " + ", ".join(t.label.lower() for t in group),
                                 priority=3, gap=0.6))
+    for spot, named in tiny.items():
+        label = ", ".join(name for name, _ in named)
+        requests.append(Request(layer, region, _with_vectors((), named), spot, color=named[0][1],
+                                role=f"vector {label}", priority=3, gap=0.6))
     return halos + items, requests
+
+
+def _spot(p: Point) -> tuple[float, float]:
+    """Where a tip or a short vector's end is drawn, to a hundredth of a millimetre (one spot, one label)."""
+    return (round(p[0], 2), round(p[1], 2))
+
+
+def _with_vectors(runs: tuple[Run, ...], named: list[tuple[str, str]]) -> tuple[Run, ...]:
+    """A tip's runs followed by the names of the short vectors ending there: ``a′, a_A, a^n_A/A0``."""
+    out = list(runs)
+    x = max((r.dx + text_width(r.text, r.size) for r in out), default=0.0)
+    for name, _ in named:
+        if out:
+            out.append(Run(", ", x, 0.0, LABEL_MM))
+            x += text_width(", ", LABEL_MM)
+        out += [Run(r.text, r.dx + x, r.dy, r.size) for r in _labelled_runs(name, LABEL_MM)]
+        x = max(r.dx + text_width(r.text, r.size) for r in out)
+    return tuple(out)
 
 
 def _area(points: tuple[Point, ...]) -> float:

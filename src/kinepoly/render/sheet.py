@@ -8,22 +8,23 @@ to that step, the step's new elements highlighted, the step's text in the title 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 from kinepoly.present.clean import format_number
 from kinepoly.present.phrasing import Context, english, step_sentence
-from kinepoly.present.scales import polygon_scales
+from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.render import centers as centers_layer
-from kinepoly.render.labels import LabelCache, Request, place
-from kinepoly.render.layout import Content, Panel, arrange, paper_size
+from kinepoly.render.labels import FEW, LabelCache, Request, place
+from kinepoly.render.layout import Content, Panel, arrange, larger_papers, paper_name, paper_size
 from kinepoly.render.mechanism import mechanism_box, mechanism_items
 from kinepoly.render.polygons import Figure, figure_box, polygon_figure, polygon_items
 from kinepoly.render.primitives import LAYERS, Item, Layer, Path, Sheet, Stroke, Text
-from kinepoly.render.text import plain_runs
 from kinepoly.render.titleblock import (
     STEP_TEXT_MM,
     Block,
     block_items,
+    fitted_runs,
     flow,
     flow_height,
     heading_items,
@@ -34,7 +35,7 @@ from kinepoly.render.titleblock import (
 )
 from kinepoly.solution import Solution
 
-__all__ = ["Layout", "build_sheet", "layout_sheet", "step_sheets"]
+__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "roomy", "step_sheets"]
 
 MARGIN_MM = 10.0
 _INNER_MM = 3.0
@@ -53,13 +54,20 @@ class Layout:
     figures: tuple[Figure, ...]
     title_rect: tuple[float, float, float, float]
     notes: tuple[str, ...]
+    reduced: frozenset[str] = frozenset()
+    """The polygons (``velocity``, ``acceleration``) drawn at a smaller scale than wanted: their headings say so."""
+    blocks: tuple[Block, ...] = ()
+    """The title block's columns of the whole drawing (made once: a step's sheet takes its first)."""
+    labels: LabelCache = field(default_factory=LabelCache, compare=False, repr=False)
+    """The labels placed on this layout's sheets so far (``render.labels.LabelCache``): placed once, reused."""
 
     def panel(self, name: str) -> Panel | None:
         return next((p for p in self.panels if p.name == name), None)
 
 
-def _title_blocks(solution: Solution, figures: tuple[Figure, ...], notes: tuple[str, ...], width: float) -> list[Block]:
-    blocks = title_blocks(solution, notes, width)
+def _title_blocks(solution: Solution, figures: tuple[Figure, ...], notes: tuple[str, ...], width: float,
+                  data: dict[str, Any]) -> list[Block]:
+    blocks = title_blocks(solution, notes, width, data)
     kinds = _drawn_terms(figures)
     if kinds:
         blocks.append(legend_block(kinds))
@@ -72,31 +80,117 @@ def _drawn_terms(figures: tuple[Figure, ...]) -> list[str]:
     return [k for k in order if k in present]
 
 
-def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4") -> Layout:
-    """Decide the page: the title block's height, the panels and their scales."""
-    width, height = paper_size(paper) if isinstance(paper, str) else paper
+def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, grow: bool = True,
+                 scales_paper: tuple[float, float] | None = None) -> Layout:
+    """Decide the page: its paper, the title block's height, the panels and their scales.
+
+    Each polygon is drawn at the scale decided for the paper asked (``present.scales.decide_scales``;
+    for ``scales_paper`` when given) and the mechanism large enough to read (``roomy``), every
+    label in a free place (``crowded``). When the paper asked cannot hold them, the next larger A
+    paper that can (A3, A2 ... A0, in the paper's orientation) is taken and the title block says
+    so; a larger paper is tried for the labels only while it gives them more room (fewer
+    crowded). When no paper is roomy, the first that keeps the scales, else the paper asked with
+    the polygons' scales reduced (said too). ``grow=False`` keeps the paper as given (a handout
+    chooses its own).
+    """
+    size = paper_size(paper) if isinstance(paper, str) else paper
+    from kinepoly.present.report import readable_json
+
+    decided = decide_scales(solution, scales_paper or size)
+    data = readable_json(solution, scales=decided)
+    first = _layout_on(solution, size, (), decided, data)
+    if not grow:
+        return first
+    best: Layout | None = None
+    kept: Layout | None = None
+    for name, candidate in [("", size), *larger_papers(size)]:
+        note = (f"drawn on {name}: the polygons at their scales, the mechanism and their labels need more room "
+                f"than {paper_name(size)} has")
+        layout = first if not name else _layout_on(solution, candidate, (note,), decided, data)
+        kept = kept or (layout if _keeps_scales(layout) else None)
+        if not roomy(solution, layout):
+            if best is None:
+                continue
+            break
+        if best is not None and crowded(solution, layout) > GAIN * crowded(solution, best):
+            break  # little room gained for the labels: they crowd where the polygon does, at any paper
+        best = layout
+        if not 0 < crowded(solution, layout) <= FEW:
+            break  # every label free, or so many crowded that their polygon's points crowd, at any paper
+    return best or kept or first
+
+
+GAIN = 0.75
+"""A larger paper is taken for the labels only when it leaves at most this share of them crowded."""
+
+
+def _keeps_scales(layout: Layout) -> bool:
+    return not any(p.wanted is not None and p.scale < p.wanted * (1 - 1e-12) for p in layout.panels)
+
+
+def crowded(solution: Solution, layout: Layout) -> int:
+    """How many labels of the whole drawing on ``layout`` find no free place (they stay placed for its sheets)."""
+    build_sheet(solution, (layout.width, layout.height), layout=layout)
+    return len(layout.labels.crowded)
+
+
+def roomy(solution: Solution, layout: Layout) -> bool:
+    """Whether every panel keeps the scale it wants and the mechanism is drawn at least a third of the area large."""
+    if not _keeps_scales(layout):
+        return False
+    mech = layout.panel("mechanism")
+    if mech is None:
+        return True
+    box = _mechanism_box(solution)
+    size = max(box[2] - box[0], box[3] - box[1]) * mech.scale
+    area = _drawing_area(layout.width, layout.height, layout.title_rect[3] - layout.title_rect[1])
+    return size >= _LEAST_MECHANISM * min(area[2] - area[0], area[3] - area[1]) - 1e-9
+
+
+_LEAST_MECHANISM = 0.3
+"""The mechanism's drawn size, as a share of the drawing area's shorter side, below which a larger paper is taken."""
+
+
+def _drawing_area(width: float, height: float, title_h: float) -> tuple[float, float, float, float]:
+    inner = (MARGIN_MM + _INNER_MM, MARGIN_MM + _INNER_MM, width - MARGIN_MM - _INNER_MM, height - MARGIN_MM - _INNER_MM)
+    return (inner[0], inner[1] + title_h + _INNER_MM, inner[2], inner[3])
+
+
+def _layout_on(solution: Solution, size: tuple[float, float], fixed: tuple[str, ...],
+               decided: PolygonScales, data: dict[str, Any]) -> Layout:
+    """The layout on a paper of ``size`` at the ``decided`` scales; ``fixed`` notes first in the title block;
+    ``data`` the solution's readable values (``present.report.readable_json``)."""
+    width, height = size
     figures = tuple(polygon_figure(solution, kind) for kind in ("velocity", "acceleration")
                     if (solution.velocity if kind == "velocity" else solution.acceleration) is not None)
-    inner = (MARGIN_MM + _INNER_MM, MARGIN_MM + _INNER_MM, width - MARGIN_MM - _INNER_MM, height - MARGIN_MM - _INNER_MM)
-    inner_w = inner[2] - inner[0]
+    inner_w = width - 2 * (MARGIN_MM + _INNER_MM)
     # the notes depend on the scales, the scales on the title block's height: two passes settle it
-    notes: tuple[str, ...] = ()
+    fixed = fixed + tuple(f"{p.symbol} reduced from {format_number(p.wanted)} to {format_number(p.value)} so that "
+                          f"the {p.kind} polygon fits the paper" for p in decided.reduced)
+    notes: tuple[str, ...] = fixed
     panels: list[Panel] = []
     title_h = 0.0
+    scales = decided.as_dict()
+    blocks: list[Block] = []
+    used = notes
     for _ in range(2):
-        title_h = flow_height(_title_blocks(solution, figures, notes, inner_w), inner_w)
-        area = (inner[0], inner[1] + title_h + _INNER_MM, inner[2], inner[3])
-        scales = polygon_scales(solution)
+        blocks, used = _title_blocks(solution, figures, notes, inner_w, data), notes
+        title_h = flow_height(blocks, inner_w)
+        area = _drawing_area(width, height, title_h)
         contents = [Content("mechanism", _mechanism_box(solution), None, _PADDING_MM["mechanism"])]
         diagram = centers_layer.centers_content(solution)
         if diagram is not None:
             contents.append(diagram)
         contents += [Content(f.kind, figure_box(f), scales[f.kind], _PADDING_MM[f.kind]) for f in figures]
         panels = arrange(contents, area)
-        notes = tuple(_scale_note(p) for p in panels if p.name in ("velocity", "acceleration") and p.wanted is not None
-                      and p.scale < p.wanted * (1 - 1e-12))
+        notes = fixed + tuple(_scale_note(p) for p in panels if p.name in ("velocity", "acceleration")
+                              and p.wanted is not None and p.scale < p.wanted * (1 - 1e-12))
+    if notes != used:
+        blocks = _title_blocks(solution, figures, notes, inner_w, data)
     title_rect = (MARGIN_MM, MARGIN_MM, width - MARGIN_MM, MARGIN_MM + title_h)
-    return Layout(width, height, tuple(panels), figures, title_rect, notes)
+    reduced = frozenset({p.kind for p in decided.reduced} | {p.name for p in panels if p.wanted is not None
+                                                             and p.scale < p.wanted * (1 - 1e-12)})
+    return Layout(width, height, tuple(panels), figures, title_rect, notes, reduced, tuple(blocks))
 
 
 def _mechanism_box(solution: Solution) -> tuple[float, float, float, float]:
@@ -135,10 +229,10 @@ def _headings(solution: Solution, layout: Layout) -> tuple[list[Item], list[Item
         elif panel.name == "acceleration":
             text, bar_unit = f"ka = {format_number(panel.scale)} mm per {unit}/s²", f"{unit}/s²"
         else:
-            title_items.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, plain_runs(_NAMES[panel.name], 2.8),
+            title_items.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, fitted_runs(_NAMES[panel.name], 2.8, panel.rect[2] - panel.rect[0] - 2.0, True),
                                     "#000000", f"heading {panel.name}", None, True))
             continue
-        if panel.wanted is not None and panel.scale < panel.wanted * (1 - 1e-12):
+        if panel.name in layout.reduced:
             text += " (reduced)"
         t, s = heading_items(panel, _NAMES[panel.name], text, bar_unit)
         title_items += t
@@ -149,8 +243,7 @@ def _headings(solution: Solution, layout: Layout) -> tuple[list[Item], list[Item
 def _title_items(solution: Solution, layout: Layout, step: int | None) -> list[Item]:
     x0, _, x1, y1 = layout.title_rect
     width = x1 - x0 - 2 * _INNER_MM
-    blocks = _title_blocks(solution, layout.figures, layout.notes, width) if step is None else \
-        _step_blocks(solution, layout, step, width)
+    blocks = list(layout.blocks) if step is None else _step_blocks(solution, layout, step, width)
     items: list[Item] = []
     kinds = _drawn_terms(layout.figures)
     for k, (block, (bx, by)) in enumerate(flow(blocks, width)):
@@ -167,7 +260,7 @@ def _step_blocks(solution: Solution, layout: Layout, step: int, width: float) ->
     """
     s = solution.steps[step - 1]
     kinds = _drawn_terms(layout.figures)
-    head = title_blocks(solution, layout.notes, width)[0]
+    head = layout.blocks[0]
     legend = [legend_block(kinds)] if kinds else []
     words = step_sentence(s, english(), Context(solution, {p.name: p.scale for p in layout.panels}))
     heading = f"[{s.polygon}, {s.kind}] {s.equation}"
@@ -191,13 +284,15 @@ def _step_blocks(solution: Solution, layout: Layout, step: int, width: float) ->
 
 
 def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, step: int | None = None,
-                layout: Layout | None = None, labels: LabelCache | None = None) -> Sheet:
+                layout: Layout | None = None, labels: LabelCache | None = None, title_block: bool = True) -> Sheet:
     """The drawing of ``solution``; with ``step``, the sheet of that construction step (1-based).
 
     ``labels``, shared by the sheets of one layout, places the labels of the parts that do not
-    change from sheet to sheet once (``render.labels.LabelCache``).
+    change from sheet to sheet once (``render.labels.LabelCache``); ``title_block=False`` leaves the
+    title block's text out (a handout writes its own).
     """
     layout = layout if layout is not None else layout_sheet(solution, paper)
+    labels = labels if labels is not None else layout.labels
     layers: dict[str, list[Item]] = {name: [] for name in LAYERS}
     requests: list[Request] = []
     mech_panel = layout.panel("mechanism")
@@ -215,7 +310,7 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
     layers[centers_layer.LAYER] += items
     requests += reqs
     headings, bars = _headings(solution, layout)
-    layers["title"] += _frame_items(layout) + headings + _title_items(solution, layout, step)
+    layers["title"] += _frame_items(layout) + headings + (_title_items(solution, layout, step) if title_block else [])
     layers["scales"] += bars
     drawn = [item for name in LAYERS for item in layers[name]]
     for name, placed in place(requests, drawn, labels).items():
@@ -227,6 +322,5 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
 def step_sheets(solution: Solution, paper: str | tuple[float, float] = "A4") -> list[Sheet]:
     """One sheet per construction step, all on the layout of the whole drawing."""
     layout = layout_sheet(solution, paper)
-    labels = LabelCache()
-    return [build_sheet(solution, paper, step=n, layout=layout, labels=labels)
+    return [build_sheet(solution, paper, step=n, layout=layout)
             for n in range(1, len(solution.steps) + 1)]

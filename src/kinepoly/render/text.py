@@ -8,15 +8,19 @@ and stacked. Sizes are the font's em size in millimetres.
 
 from __future__ import annotations
 
+import functools
 import re
+import unicodedata
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 __all__ = [
     "ASCENT_EM",
     "CAP_HEIGHT_EM",
     "DESCENT_EM",
     "Run",
+    "glyph_em",
     "plain_runs",
     "point_runs",
     "runs_box",
@@ -54,13 +58,42 @@ _ADVANCE_BOLD = (713, 934, 1067, 1716, 1425, 2052, 1786, 627, 936, 936, 1071, 17
             1585, 1716, 1219, 0, 847, 1836)
 _WIDTH_EM = {ch: adv / 2048 for ch, adv in zip(_CHARS, _ADVANCE, strict=True)}
 _WIDTH_BOLD_EM = {ch: adv / 2048 for ch, adv in zip(_CHARS, _ADVANCE_BOLD, strict=True)}
-_WIDE_EM = 2048 / 2048  # any character not in the table is taken as one em wide (never too narrow)
 
 
 def text_width(text: str, size: float, bold: bool = False) -> float:
-    """Advance width of ``text`` in DejaVu Sans (Bold) at em size ``size`` (mm)."""
+    """Advance width of ``text`` in DejaVu Sans (Bold) at em size ``size`` (mm).
+
+    The table holds the characters of the drawings; any other (a Turkish or Romanian letter of
+    a handout) is read from the font (``glyph_em``).
+    """
     table = _WIDTH_BOLD_EM if bold else _WIDTH_EM
-    return size * sum(table.get(ch, _WIDE_EM) for ch in text)
+    return size * sum(table[ch] if ch in table else glyph_em(ch, bold) for ch in text)
+
+
+@functools.cache
+def _font(bold: bool) -> Any:
+    from matplotlib import font_manager
+    from matplotlib.ft2font import FT2Font
+
+    weight = "bold" if bold else "normal"
+    font = FT2Font(font_manager.findfont(font_manager.FontProperties(family="DejaVu Sans", weight=weight)))
+    font.set_size(72, 72)  # 72 pixels per em: an advance in pixels / 72 is in ems
+    return font
+
+
+@functools.cache
+def glyph_em(ch: str, bold: bool) -> float:
+    """Advance of ``ch`` in DejaVu Sans (Bold) in ems, read from the font matplotlib draws with (any character)."""
+    from matplotlib import ft2font
+
+    loaded: Any = vars(ft2font)
+    flags = loaded["LoadFlags"].NO_HINTING if "LoadFlags" in loaded else loaded["LOAD_NO_HINTING"]  # before 3.10
+    font = _font(bold)
+    if font.get_char_index(ord(ch)) == 0:  # no glyph in DejaVu Sans: drawn as the font's box, or wide
+        return 0.0 if unicodedata.combining(ch) else 1.0 if unicodedata.east_asian_width(ch) in "WF" else 0.6
+    glyph = font.load_char(ord(ch), flags=flags)
+    return float(glyph.linearHoriAdvance) / 65536.0 / 72.0
+
 
 
 @dataclass(frozen=True)

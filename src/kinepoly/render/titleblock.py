@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from kinepoly.present.clean import format_number
 from kinepoly.render.layout import HEADING_MM, Panel, round_step
@@ -17,7 +18,7 @@ from kinepoly.render.style import SMALL_MM, TERM_COLORS, TERM_NAMES, THIN, TITLE
 from kinepoly.render.text import DESCENT_EM, Run, plain_runs, point_runs, text_width, wrap
 from kinepoly.solution import Solution
 
-__all__ = ["STEP_TEXT_MM", "Block", "block_items", "flow", "flow_height", "heading_items",
+__all__ = ["STEP_TEXT_MM", "Block", "block_items", "fitted_runs", "flow", "flow_height", "heading_items",
            "legend_block", "space_scale_text", "step_block", "title_blocks"]
 
 Point = tuple[float, float]
@@ -109,11 +110,15 @@ def _angle_of(v: Sequence[float]) -> str | float | None:
     return format_number(math.degrees(math.atan2(v[1], v[0])))
 
 
-def title_blocks(solution: Solution, notes: Sequence[str], width: float) -> list[Block]:
-    """The title block's columns: title and input, the tables of asked results, notes and legend."""
+def title_blocks(solution: Solution, notes: Sequence[str], width: float,
+                 data: dict[str, Any] | None = None) -> list[Block]:
+    """The title block's columns: title and input, the tables of asked results, notes and legend.
+
+    ``data`` is ``present.report.readable_json(solution)`` when the caller has it already.
+    """
     from kinepoly.present.report import input_text, readable_json
 
-    data = readable_json(solution)  # values below their error estimate are 0 (present.clean)
+    data = data if data is not None else readable_json(solution)  # values below their error estimate are 0
     u, uv, ua = _unit_text(solution)
     au = "°" if solution.scene.units.angle == "deg" else "rad"
     left_w = min(width * 0.42, 110.0)
@@ -209,10 +214,11 @@ def block_items(block: Block, top_left: Point, role: str, legend: Sequence[str] 
 def heading_items(panel: Panel, title: str, scale_text: str, bar_unit: str) -> tuple[list[Item], list[Item]]:
     """A panel's heading (title layer) and its scale text and bar (scales layer), in the heading strip."""
     x0, _, x1, y1 = panel.rect
-    title_items: list[Item] = [Text(x0 + 1.0, y1 - 3.2, plain_runs(title, 2.8), "#000000", f"heading {panel.name}",
-                                    None, True)]
+    room = x1 - x0 - 2.0
+    title_items: list[Item] = [Text(x0 + 1.0, y1 - 3.2, fitted_runs(title, 2.8, room, True), "#000000",
+                                    f"heading {panel.name}", None, True)]
     baseline = y1 - HEADING_MM + 1.2
-    text = Text(x0 + 1.0, baseline, plain_runs(scale_text, SMALL_MM), "#000000", f"scale {panel.name}")
+    text = Text(x0 + 1.0, baseline, fitted_runs(scale_text, SMALL_MM, room), "#000000", f"scale {panel.name}")
     scale_items: list[Item] = [text]
     label_room = text_width(f"{format_number(25.0 / panel.scale)} {bar_unit}", SMALL_MM) + 2.0
     start = text.box[2] + 3.0
@@ -234,6 +240,12 @@ def heading_items(panel: Panel, title: str, scale_text: str, bar_unit: str) -> t
                                 "#000000",
                                 f"scale label {panel.name}"))
     return title_items, scale_items
+
+
+def fitted_runs(text: str, size: float, room: float, bold: bool = False) -> tuple[Run, ...]:
+    """``text`` at ``size``, or smaller where it would be wider than ``room`` (a heading in a narrow panel)."""
+    width = text_width(text, size, bold)
+    return plain_runs(text, size if width <= room else size * max(room, 1.0) / width)
 
 
 def space_scale_text(scale: float, unit: str) -> str:

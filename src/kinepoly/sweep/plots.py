@@ -27,15 +27,24 @@ _REACH = 3.0
 """Centrodes run off to infinity where the link stops turning; the panel shows this many sizes around."""
 
 
-def _masked(col: Column, unwrap_period: float | None = None) -> np.ma.MaskedArray[Any, Any]:
-    """The column with its empty rows masked; angles unwrapped within each stretch of valid rows
-    (a stretch after a gap starts again in the principal range: no motion joins it to the last)."""
-    values = col.values.copy()
-    if unwrap_period is not None:
-        edges = np.flatnonzero(np.diff(np.concatenate([[0], col.valid.astype(np.int8), [0]])))
-        for a, b in zip(edges[::2], edges[1::2]):
-            values[a:b] = np.unwrap(values[a:b], period=unwrap_period)
-    return np.ma.masked_array(values, mask=~col.valid)
+def _masked(col: Column) -> np.ma.MaskedArray[Any, Any]:
+    """The column with its empty rows masked."""
+    return np.ma.masked_array(col.values, mask=~col.valid)
+
+
+def _wrapped(x: np.ndarray, col: Column, period: float) -> tuple[np.ndarray, np.ma.MaskedArray[Any, Any]]:
+    """An angle column as the CSV has it, in (-180, 180] degrees (or (-pi, pi]), its line broken where it wraps.
+
+    The plot and the CSV agree: an angle is never unwrapped. Where it passes +-180 between two
+    rows, an empty point between them keeps the line from crossing the panel.
+    """
+    values = _masked(col)
+    jumps = np.flatnonzero(col.valid[:-1] & col.valid[1:] & (np.abs(np.diff(col.values)) > period / 2))
+    if jumps.size == 0:
+        return x, values
+    xs = np.insert(x.astype(float), jumps + 1, (x[jumps] + x[jumps + 1]) / 2)
+    ys = np.insert(values.filled(np.nan), jumps + 1, np.nan)
+    return xs, np.ma.masked_invalid(ys)
 
 
 def _robust_limits(ax: Axes, values: list[np.ndarray], axis: str) -> bool:
@@ -77,9 +86,11 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
     shown: list[np.ndarray] = []
     for col in result.columns:
         if col.kind in kinds:
-            wrap = 360.0 if col.kind == "angle" and result.scene.units.angle == "deg" else (
-                2 * np.pi if col.kind == "angle" else None)
-            ax.plot(x, _masked(col, wrap), lw=1.2, label=col.name)
+            if col.kind == "angle":
+                ax.plot(*_wrapped(x, col, 360.0 if result.scene.units.angle == "deg" else 2 * np.pi), lw=1.2,
+                        label=col.name)
+            else:
+                ax.plot(x, _masked(col), lw=1.2, label=col.name)
             shown.append(col.values[col.valid])
             lines += 1
     sliders = [c for c in result.columns if c.kind == slider_kind and c.name != result.input.name]
@@ -220,8 +231,13 @@ def _centrode_panel(ax: Axes, result: SweepResult) -> None:
         _draw_skeleton(ax, result, only=link)
     seed = _seed_row(result)
     if seed is not None and fx.valid[seed]:
-        ax.plot([fx.values[seed]], [fy.values[seed]], "ko", ms=5, mfc="none",
-                label=f"{name} at the scene's input, where the centrodes touch")
+        at = complex(fx.values[seed], fy.values[seed])
+        if abs(at - center) < reach:
+            touch = ", where the centrodes touch" if pose is not None else ""
+            ax.plot([at.real], [at.imag], "ko", ms=5, mfc="none", label=f"{name} at the scene's input{touch}")
+        else:  # said in the legend, not promised on the plot
+            ax.plot([], [], " ", label=f"{name} at the scene's input lies outside the plot, at "
+                                       f"({at.real:.4g}, {at.imag:.4g}) {result.scene.units.length}")
     ax.set_xlim(center.real - reach, center.real + reach)
     ax.set_ylim(center.imag - reach, center.imag + reach)
     ax.set_title(f"centrodes of link {link}: {name} (within {_REACH:g} x the mechanism's size)", fontsize=9)

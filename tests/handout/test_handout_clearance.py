@@ -1,0 +1,28 @@
+"""No label touches another label, a line, an arrow or a symbol on any page of the handouts, and no text
+leaves the page: every example and layout scene in English, the six-bars, the Whitworth and the toggle
+press also in Turkish and Romanian (the longest words). The measure is tests/render/clearance.py."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from tests.render.clearance import conflicts
+from tests.scenes import EXAMPLES
+
+import kinepoly
+from kinepoly.handout import handout_sheets, load_catalogue
+
+LAYOUT_SCENES = Path(__file__).resolve().parent.parent / "render" / "scenes"
+SCENES = sorted(EXAMPLES.glob("*.toml")) + sorted(LAYOUT_SCENES.glob("*.toml"))
+CROWDED = ("centers-six-bar", "triad", "stephenson", "whitworth", "toggle-press")
+CASES = [(p, "en") for p in SCENES] + [(p, lang) for p in SCENES if p.stem in CROWDED for lang in ("tr", "ro")]
+
+
+@pytest.mark.parametrize(("path", "lang"), CASES, ids=lambda v: v.stem if isinstance(v, Path) else v)
+def test_no_label_touches_anything_on_any_page(path: Path, lang: str) -> None:
+    solution = kinepoly.solve(kinepoly.load_scene(path))
+    handout, sheets = handout_sheets(solution, load_catalogue(lang))
+    assert len(sheets) == len(handout.pages) >= 3
+    found = [f"page {k}: {c}" for k, sheet in enumerate(sheets, 1) for c in conflicts(sheet)]
+    assert not found, "\n".join(dict.fromkeys(found))

@@ -1,0 +1,69 @@
+"""No label touches another label, a line, an arrow or a symbol, and none leaves the page: every example's
+drawing, the layout test scenes (a Whitworth quick return, a Stephenson six-bar), and the measure itself
+shown to fail where labels do overlap."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from tests.render.clearance import conflicts
+from tests.scenes import EXAMPLES
+
+import kinepoly
+from kinepoly.render import labels
+from kinepoly.render.primitives import Arrow, Layer, Sheet, Stroke, Text
+from kinepoly.render.primitives import Path as Line
+from kinepoly.render.sheet import build_sheet
+from kinepoly.render.text import plain_runs
+
+LAYOUT_SCENES = Path(__file__).resolve().parent / "scenes"
+SCENES = sorted(EXAMPLES.glob("*.toml")) + sorted(LAYOUT_SCENES.glob("*.toml"))
+
+
+def _sheet(path: Path) -> Sheet:
+    return build_sheet(kinepoly.solve(kinepoly.load_scene(path)))
+
+
+@pytest.mark.parametrize("path", SCENES, ids=lambda p: p.stem)
+def test_no_label_touches_anything_on_the_drawing(path: Path) -> None:
+    found = conflicts(_sheet(path))
+    assert not found, "\n".join(map(str, found))
+
+
+def test_the_layout_scenes_include_six_bars_and_the_whitworth() -> None:
+    names = {p.stem for p in SCENES}
+    assert {"centers-six-bar", "triad", "stephenson", "whitworth", "toggle-press", "shaper"} <= names
+
+
+def _label(x: float, y: float, text: str = "v_B") -> Text:
+    return Text(x, y, plain_runs(text, 2.6), role=f"tip {text}", anchor=(x, y))
+
+
+def _one_layer(*items: Text | Arrow | Line) -> Sheet:
+    return Sheet(100.0, 80.0, "test", (Layer("mechanism", tuple(items)),))
+
+
+def test_the_measure_sees_a_label_on_an_arrow_a_label_a_block_and_the_page_edge() -> None:
+    arrow = Arrow((10.0, 20.0), (40.0, 20.0), "#000000", 0.35, 2.6, 0.75, role="vector v_A")
+    block = Line(((60.0, 50.0), (70.0, 50.0), (70.0, 56.0), (60.0, 56.0)), Stroke(), fill="#ffffff", closed=True,
+                 role="block 4")
+    assert not conflicts(_one_layer(arrow, block, _label(20.0, 25.0)))  # clear of both: nothing to report
+    on_arrow = conflicts(_one_layer(arrow, _label(20.0, 19.5)))
+    assert [c.other for c in on_arrow] == ["Arrow 'vector v_A'"]
+    on_label = conflicts(_one_layer(_label(20.0, 40.0, "a"), _label(21.0, 40.5, "b")))
+    assert len(on_label) == 1 and "text 'b'" in on_label[0].other
+    inside_block = conflicts(_one_layer(block, _label(62.0, 52.0, "4")))  # inside the block's outline, touching no stroke
+    assert [c.other for c in inside_block] == ["Path 'block 4'"]
+    off_page = conflicts(_one_layer(_label(98.0, 40.0, "long label")))
+    assert [c.other for c in off_page] == ["the page's edge"]
+    near = conflicts(_one_layer(arrow, _label(20.0, 20.0 + 0.175 + 0.1 + 0.24 * 2.6)))  # 0.1 mm above the shaft
+    assert near, "a label 0.1 mm from a line is too close"
+
+
+def test_the_measure_fails_on_a_real_sheet_whose_labels_are_placed_blindly(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Every label at its first candidate place, free or not: the shaper's sheet then has overlaps, and they are seen."""
+    monkeypatch.setattr(labels.Placer, "_free_of", lambda self, boxes, avoid_fill: (self._inside(b) for b in boxes))
+    found = conflicts(_sheet(EXAMPLES / "shaper.toml"))
+    assert len(found) >= 5
+    assert any("text" in c.other for c in found) and any("Arrow" in c.other for c in found)
