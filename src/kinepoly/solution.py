@@ -25,6 +25,7 @@ from kinepoly.check.analytic import AnalyticSolution, solve_analytic
 from kinepoly.check.compare import CheckReport, Quantity, compare
 from kinepoly.engine.centers import InstantCenters, find_instant_centers, plan_instant_centers
 from kinepoly.engine.construct import Wanted, construct_row
+from kinepoly.engine.contacts import Contact, contact_links, contacts_at
 from kinepoly.engine.plan import PositionPlan, make_plan
 from kinepoly.engine.position import describe_input
 from kinepoly.engine.row import AccelerationPolygon, SliderValues, VelocityPolygon
@@ -92,6 +93,8 @@ class Solution:
     accuracy: AccuracyReport | None = None
     centers: InstantCenters | None = None
     sliders: dict[str, SliderValues] = field(default_factory=dict)
+    contacts: dict[str, Contact] = field(default_factory=dict)
+    """Each higher pair's contact (``engine.contacts``), in the user's frame."""
 
     def _repr_svg_(self) -> str:
         """A notebook shows the solution as its drawing."""
@@ -107,6 +110,8 @@ class Solution:
 
     def position(self, label: str) -> Vec:
         point, _, _ = label.partition("@")
+        if point in self.pose.marks:
+            return self.pose.marks[point]
         owner = next(link for link in self.mechanism.links_of_point(point) if link in self.pose.links)
         return self.pose.links[owner].world(self.mechanism.local(owner, point))
 
@@ -150,7 +155,7 @@ def needed_links(mechanism: Mechanism, asked: Asked) -> set[str]:
     for name in asked.sliders:
         spec = mechanism.slider(name)
         links.update((spec.block, spec.guide))
-    return links
+    return links | contact_links(mechanism)
 
 
 def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
@@ -199,8 +204,9 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
                               f"(the error estimate of {worst} is {estimate.of_kind(worst):.2g})"))
     timing = {"load_s": load_s, "position_s": t1 - t0, "construction_s": t2 - t1, "check_s": t3 - t2,
               "total_s": load_s + (t3 - t0)}
+    contacts = contacts_at(inner, pose, velocity, frame.origin)
     return Solution(scene, mechanism, asked, plan, frame.pose_to_user(pose), velocity, acceleration, check,
-                    tuple(notices), timing, Inside(frame, inner, pose), accuracy, centers, built.sliders)
+                    tuple(notices), timing, Inside(frame, inner, pose), accuracy, centers, built.sliders, contacts)
 
 
 def _finite(mechanism: Mechanism, velocity: VelocityPolygon | None, acceleration: AccelerationPolygon | None) -> None:

@@ -54,10 +54,38 @@ instant_centers = "all"
 """
 
 
+OFFSET_BLOCK_TRIAD = """
+title = "A triad whose block slides on the frame by a point off its pin (no Assur-point construction)"
+[links]
+1 = { points = { A0 = [0, 0], E = [150, 100] } }
+2 = { points = { A0 = [0, 0], A = [30, 0] } }
+3 = { points = { D = [0, 0], B = [40.0, 30.0], C = [30.0, -30.0] } }
+4 = { points = { E = [0, 0], B = [44.721359549995796, 0] } }
+5 = { points = { C = [0, 0], G = [0, -10] } }
+6 = { points = { A = [0, 0], D = [60.01602943086692, 0] } }
+[[sliders]]
+block = "5"
+guide = "1"
+point = "G"
+line = { through = [110, 0], angle = 90 }
+[input]
+link = "2"
+angle = 60
+omega = 5
+alpha = 2
+[guess]
+D = [71, 49]
+B = [109, 81]
+C = [100, 20]
+"""
+
+
 @cache
 def _solved(name: str) -> Solution:
     if name == "driven-slider-crank":
         return kinepoly.solve(kinepoly.loads_scene(DRIVEN))
+    if name == "offset-block-triad":
+        return kinepoly.solve(kinepoly.loads_scene(OFFSET_BLOCK_TRIAD))
     return kinepoly.solve(kinepoly.load_scene(EXAMPLES / f"{name}.toml"))
 
 
@@ -69,8 +97,8 @@ def _check_words(sentence: str, say: Catalogue) -> None:
     assert sentence.strip(), "an empty sentence"
     assert not UNFILLED.search(sentence), sentence
     assert not NOT_A_NUMBER.search(sentence), sentence
-    if say.code != "en":
-        assert not ENGLISH_WORDS.search(sentence), sentence
+    if say.code != "en":  # a polygon segment such as "(of = 35 mm)", pole o to tip f, is not a word
+        assert not ENGLISH_WORDS.search(re.sub(r"\(\w+ = ", "(", sentence)), sentence
 
 
 def _quoted(step: Step) -> list[tuple[str, float]]:
@@ -107,9 +135,11 @@ def test_every_step_of_every_example_has_a_sentence_with_its_numbers(name: str, 
 
 def test_every_kind_of_step_is_covered() -> None:
     """The examples (and the slider-driven crank) hold every topic the construction makes, and linear-solve."""
-    topics = {step.topic or step.kind for name in [*NAMES, "driven-slider-crank"] for step in _solved(name).steps}
+    topics = {step.topic or step.kind for name in [*NAMES, "driven-slider-crank", "offset-block-triad"]
+              for step in _solved(name).steps}
     assert topics >= {"input-rate", "driven-slider", "given-point", "relative", "image", "proportional",
-                      "intersection", "read", "coriolis", "normals", "given-normal", "linear-solve"}
+                      "intersection", "read", "coriolis", "normals", "given-normal", "linear-solve", "assur-point",
+                      "assur-tip"}
     centers = [_solved(name).centers for name in ("centers-six-bar", "driven-slider-crank")]
     hows = {o.how for found in centers if found is not None for o in found.omegas}
     assert hows >= {"ratio", "velocity", "translating"}
@@ -158,14 +188,14 @@ def test_the_normal_terms_say_omega_squared_times_the_length() -> None:
 
 
 def test_a_linear_solve_gives_every_tip_and_rate_it_finds() -> None:
-    solution = _solved("triad")
+    solution = _solved("offset-block-triad")
     assert solution.velocity is not None
     step = next(s for s in solution.steps if s.kind == "linear-solve" and s.polygon == "velocity")
     sentence = step_sentence(step, english(), _context(solution))
     say = english()
     for tip in ("D", "B", "C"):
         assert f"v_{tip} = {say.number(norm(solution.velocity.tips[tip]))} mm/s" in sentence
-    for link in ("3", "4", "5", "6"):
+    for link in ("3", "4", "6"):
         assert f"ω1{link} = {say.number(solution.velocity.omega[link])} rad/s" in sentence
 
 

@@ -101,6 +101,20 @@ def with_input(mechanism: Mechanism, t: float, guess: Guess | None = None) -> Me
     return replace(mechanism, scene=scene)
 
 
+def _moved(spec: LinkInput | SliderInput, tau: float) -> LinkInput | SliderInput:
+    """An input ``tau`` seconds on, moving at its rate and acceleration."""
+    if isinstance(spec, LinkInput):
+        return replace(spec, angle_rad=spec.angle_rad + spec.omega * tau + 0.5 * spec.alpha * tau * tau)
+    return replace(spec, s=spec.s + spec.s_dot * tau + 0.5 * spec.s_ddot * tau * tau)
+
+
+def at_time(mechanism: Mechanism, tau: float) -> Mechanism:
+    """The mechanism ``tau`` seconds on, every input moving at its own rate and acceleration."""
+    scene = mechanism.scene
+    moved = [_moved(spec, tau) for spec in scene.inputs if isinstance(spec, LinkInput | SliderInput)]
+    return replace(mechanism, scene=replace(scene, input=moved[0], more_inputs=tuple(moved[1:])))
+
+
 def _label_and_what(key: str) -> tuple[str, str, str]:
     family, rest = key.split(".", 1)
     name, what = rest.rsplit(".", 1)
@@ -211,23 +225,22 @@ def _wrap(d: float) -> float:
 
 
 def _finite_differences(setting: Setting, step: float) -> Method:
+    """Positions a time step before and after, every input moving at its own rate: central differences.
+
+    The time step is the input step ``step`` (in the input's unit) over the first input's rate."""
     sol = setting.solution
-    h = step * setting.input_unit
     inp = setting.mechanism.scene.input
-    rate, accel = (inp.omega, inp.alpha) if isinstance(inp, LinkInput) else (inp.s_dot, inp.s_ddot)  # type: ignore[union-attr]
+    rate = inp.omega if isinstance(inp, LinkInput) else inp.s_dot  # type: ignore[union-attr]
+    h = step * setting.input_unit / (abs(rate) if rate else 1.0)
 
     def run(mechanism: Mechanism) -> Values:
-        t = mechanism.scene.input.angle_rad if isinstance(mechanism.scene.input, LinkInput) \
-            else mechanism.scene.input.s  # type: ignore[union-attr]
-        poses = [pose_row(position_at_input(with_input(mechanism, t + d), sol.plan)) for d in (-h, 0.0, h)]
+        poses = [pose_row(position_at_input(at_time(mechanism, d), sol.plan)) for d in (-h, 0.0, h)]
         motion = {}
         for link, mid in poses[1].links.items():
             lo, hi = poses[0].links[link], poses[2].links[link]
-            first = [(hi.x - lo.x) / (2 * h), (hi.y - lo.y) / (2 * h), _wrap(hi.theta - lo.theta) / (2 * h)]
-            second = [(hi.x - 2 * mid.x + lo.x) / (h * h), (hi.y - 2 * mid.y + lo.y) / (h * h),
-                      (_wrap(hi.theta - mid.theta) - _wrap(mid.theta - lo.theta)) / (h * h)]
-            v = [d * rate for d in first]
-            a = [dd * rate * rate + d * accel for d, dd in zip(first, second, strict=True)]
+            v = [(hi.x - lo.x) / (2 * h), (hi.y - lo.y) / (2 * h), _wrap(hi.theta - lo.theta) / (2 * h)]
+            a = [(hi.x - 2 * mid.x + lo.x) / (h * h), (hi.y - 2 * mid.y + lo.y) / (h * h),
+                 (_wrap(hi.theta - mid.theta) - _wrap(mid.theta - lo.theta)) / (h * h)]
             motion[link] = LinkMotion(mid.x, mid.y, mid.theta, v[0], v[1], v[2], a[0], a[1], a[2])
         return evaluate(mechanism, motion, list(setting.keys), Trig(math.cos, math.sin), setting.origin)
     return Method(f"finite differences h={step:g}", "finite differences", False, _per_position(setting, run),

@@ -59,8 +59,12 @@ def input_rates(mechanism: Mechanism) -> tuple[float, float, float]:
 class _Equations:
     """Phi(q, t) in mpmath (real or complex), for the mechanism's moving links."""
 
-    def __init__(self, mechanism: Mechanism, mp: Any) -> None:
+    def __init__(self, mechanism: Mechanism, mp: Any, first: Any = None) -> None:
+        """``first``: the first input's value (the scene's by default); ``phi`` takes time, every input
+        moving from its value at its own rate and acceleration."""
         self.mp = mp
+        self.drives = [(d, mp.mpf(d.value()) if d.index or first is None else first, mp.mpf(d.rate(1)),
+                        mp.mpf(d.rate(2))) for d in mechanism.drives]
         self.mechanism = mechanism
         ground = mechanism.ground
         assert ground is not None
@@ -90,12 +94,12 @@ class _Equations:
             rows += [a[0] - b[0], a[1] - b[1]]
         for slider in mech.sliders:
             rows += self._slider_rows(q, slider.name, t)
-        inp = mech.scene.input
-        if isinstance(inp, LinkInput):
-            rows.append(self._pose(q, inp.link)[2] - t)
-        else:
-            assert isinstance(inp, SliderInput)
-            rows.append(self._along(q, inp.slider, normal=False) - t)
+        for drive, value, rate, accel in self.drives:
+            target = value + rate * t + accel * t * t / 2
+            if isinstance(drive.spec, LinkInput):
+                rows.append(self._pose(q, drive.moving)[2] - self._pose(q, drive.base)[2] - target)
+            else:
+                rows.append(self._along(q, drive.spec.slider, normal=False) - target)
         return [mp.mpmathify(r) for r in rows]
 
     def _slider_rows(self, q: list[Any], name: str, t: Any) -> list[Any]:
@@ -175,21 +179,22 @@ def _reference(mechanism: Mechanism, start: Pose, keys: list[str], t: float | No
     import mpmath  # type: ignore[import-untyped]
 
     mp = mpmath.mp
-    t0, t_dot, t_ddot = input_rates(mechanism)
+    t0, _, _ = input_rates(mechanism)
     with mp.workdps(_WORK_DIGITS):
-        eq = _Equations(mechanism, mp)
         tt = mp.mpf(_on_turn_of(mechanism, start, t0 if t is None else t))
+        eq = _Equations(mechanism, mp, tt)  # phi in time: every input at its own rate from its value
         q = [mp.mpf(v) for k in eq.moving for v in (start.links[k].x, start.links[k].y, start.links[k].theta)]
         size = max([mp.mpf(1)] + [abs(v) for v in q])
-        q, jac = _newton(eq, q, tt, size)
+        now = mp.mpf(0)
+        q, jac = _newton(eq, q, now, size)
         zero = [mp.mpf(0)] * len(q)
-        q1 = list(mp.lu_solve(jac, mp.matrix([-v for v in _complex_step(eq, q, tt, zero, mp.mpf(1))])))
+        q1 = list(mp.lu_solve(jac, mp.matrix([-v for v in _complex_step(eq, q, now, zero, mp.mpf(1))])))
         delta = mp.mpf(10) ** -27
-        ahead = _complex_step(eq, [a + delta * b for a, b in zip(q, q1, strict=True)], tt + delta, q1, mp.mpf(1))
-        behind = _complex_step(eq, [a - delta * b for a, b in zip(q, q1, strict=True)], tt - delta, q1, mp.mpf(1))
+        ahead = _complex_step(eq, [a + delta * b for a, b in zip(q, q1, strict=True)], now + delta, q1, mp.mpf(1))
+        behind = _complex_step(eq, [a - delta * b for a, b in zip(q, q1, strict=True)], now - delta, q1, mp.mpf(1))
         g = [(a - b) / (2 * delta) for a, b in zip(ahead, behind, strict=True)]
         q2 = list(mp.lu_solve(jac, mp.matrix([-v for v in g])))
-        rate, accel = mp.mpf(t_dot), mp.mpf(t_ddot)
+        rate, accel = mp.mpf(1), mp.mpf(0)  # q1, q2 are already time derivatives
         motion = {eq.ground: LinkMotion(*([mp.mpf(0)] * 9))}
         for link, k in eq.column.items():
             v = [q1[k + m] * rate for m in range(3)]

@@ -25,7 +25,17 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinepoly.check.constraints import constraints_of
-from kinepoly.check.coordinates import J, Layout, Vec, as_array, as_pair, mechanism_size, plain_float, rotation
+from kinepoly.check.coordinates import (
+    J,
+    Layout,
+    Vec,
+    as_array,
+    as_pair,
+    bodies,
+    mechanism_size,
+    plain_float,
+    rotation,
+)
 from kinepoly.check.given import RIGID_REL_TOL, solve_given
 from kinepoly.check.newton import (
     NEWTON_REL_TOL,
@@ -36,6 +46,7 @@ from kinepoly.check.newton import (
     singular_error,
     solve_scaled,
 )
+from kinepoly.check.rolling import rolling_constraints
 from kinepoly.check.start import complete_start
 from kinepoly.errors import SceneError
 from kinepoly.model.mechanism import Mechanism
@@ -184,15 +195,19 @@ def solve_analytic(mechanism: Mechanism, start: dict[str, LinkPose], *, with_acc
     ground = mechanism.ground
     moving = tuple(name for name in mechanism.link_names if name != ground)
     layout = IndexedLayout(moving, ground, mechanism_size(mechanism))
-    system = System(tuple(constraints_of(mechanism)), layout, _where(mechanism), mechanism.scene.source)
+    poses0 = complete_start(mechanism, start) if mechanism.scene.gears else {}
+    q0 = np.array([v for link in moving for v in (poses0[link].x, poses0[link].y, poses0[link].theta)]) if poses0 else None
+    rolling = rolling_constraints(mechanism, bodies(layout, q0)) if q0 is not None else []
+    system = System((*constraints_of(mechanism), *rolling), layout, _where(mechanism), mechanism.scene.source)
     if len(system.row_scale) != layout.n:
         raise SceneError(
             f"{system.source}: links: {len(system.row_scale)} constraint equations for {layout.n} body "
-            "coordinates; expected a mechanism of mobility one with one input"
+            "coordinates; expected as many inputs as the mechanism has degrees of freedom"
         )
 
-    poses0 = complete_start(mechanism, start)
-    q0 = np.array([v for link in moving for v in (poses0[link].x, poses0[link].y, poses0[link].theta)])
+    if q0 is None:
+        poses0 = complete_start(mechanism, start)
+        q0 = np.array([v for link in moving for v in (poses0[link].x, poses0[link].y, poses0[link].theta)])
     q, residual = newton(system, q0)
 
     jac = system.scaled_jacobian(q)

@@ -6,7 +6,8 @@
   e_g = (cos c, sin c), n_g = J e_g (2 rows):
   theta_b - theta_g - c = 0  and  n . d = 0,
   where n = A_g n_g, d = r_b + A_b s_b - r_g - A_g t_g; the slider variable is s = e . d, e = A_g e_g
-* driver (1 row): theta_link - angle = 0 (``LinkInput``) or e . d - s = 0 (``SliderInput``).
+* driver (1 row per input): theta_link - theta_base - angle = 0 (``LinkInput``; the base is the frame
+  or the ``relative_to`` link) or e . d - s = 0 (``SliderInput``, the guide the frame or a moving link).
 
 Velocity: Phi_q q_dot = nu (nu = omega or s_dot for the driver row, 0 elsewhere).
 Acceleration: Phi_q q_ddot = gamma, gamma = (driver's alpha or s_ddot) - (the terms of
@@ -169,20 +170,23 @@ class _LineCoordinate:
 
 @dataclass(frozen=True)
 class _AngleDriver:
-    """theta_link - angle = 0, modulo a turn: Phi_q 1 by theta_link; nu = omega; gamma = alpha."""
+    """theta_link - theta_base - angle = 0, modulo a turn: Phi_q 1 by theta_link, -1 by theta_base;
+    nu = omega; gamma = alpha (the base is the frame, whose theta is 0, or a moving link)."""
 
     link: str
+    base: str
     angle: float
     omega: float
     alpha: float
     angle_rows: tuple[bool, ...] = (True,)
 
     def phi(self, b: dict[str, Body]) -> np.ndarray:
-        return np.array([math.remainder(b[self.link].theta - self.angle, math.tau)])
+        return np.array([math.remainder(b[self.link].theta - b[self.base].theta - self.angle, math.tau)])
 
     def jacobian(self, b: dict[str, Body], layout: Layout) -> np.ndarray:
         out = np.zeros((1, layout.n))
         _put(out, layout, self.link, np.zeros((1, 2)), np.array([1.0]))
+        _put(out, layout, self.base, np.zeros((1, 2)), np.array([-1.0]))
         return out
 
     def nu(self) -> np.ndarray:
@@ -207,10 +211,11 @@ def _slider_constraints(mechanism: Mechanism, slider: SliderSpec) -> list[Constr
     ]
 
 
-def _driver(mechanism: Mechanism) -> Constraint:
-    inp = mechanism.scene.input
+def _driver(mechanism: Mechanism, inp: LinkInput | SliderInput) -> Constraint:
     if isinstance(inp, LinkInput):
-        return _AngleDriver(inp.link, inp.angle_rad, inp.omega, inp.alpha)
+        base = inp.relative_to or mechanism.ground
+        assert base is not None
+        return _AngleDriver(inp.link, base, inp.angle_rad, inp.omega, inp.alpha)
     if isinstance(inp, SliderInput):
         slider = mechanism.slider(inp.slider)
         c = slider.angle_rad
@@ -224,17 +229,18 @@ def _driver(mechanism: Mechanism) -> Constraint:
             inp.s_dot,
             inp.s_ddot,
         )
-    raise TypeError(f"no driver for input {inp!r}")
 
 
 def constraints_of(mechanism: Mechanism) -> list[Constraint]:
-    """Revolutes (2 rows each), sliders (2 rows each), then the driver (1 row)."""
+    """Revolutes (2 rows each), sliders (2 rows each), then the drivers (1 row each)."""
     out: list[Constraint] = []
     for pin in mechanism.revolutes:
         out.append(_pin(mechanism, pin))
     for slider in mechanism.sliders:
         out.extend(_slider_constraints(mechanism, slider))
-    out.append(_driver(mechanism))
+    for inp in mechanism.scene.inputs:
+        assert isinstance(inp, LinkInput | SliderInput)
+        out.append(_driver(mechanism, inp))
     return out
 
 

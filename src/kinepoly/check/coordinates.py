@@ -108,8 +108,6 @@ def mechanism_size(mechanism: Mechanism) -> float:
     """L: the largest distance of any named point (or slider line point) from its link's origin."""
     lengths = [math.hypot(*p.local) for link in mechanism.scene.links for p in link.points]
     lengths += [math.hypot(*s.through) for s in mechanism.sliders]
-    inp = mechanism.scene.input
-    if isinstance(inp, SliderInput):
-        lengths.append(abs(inp.s))
+    lengths += [abs(inp.s) for inp in mechanism.scene.inputs if isinstance(inp, SliderInput)]
     size = max(lengths, default=0.0)
     return size if size > 0.0 else 1.0

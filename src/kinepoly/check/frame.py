@@ -57,7 +57,7 @@ class LocalFrame:
                 continue
             arm = rotate(self.anchors.get(link, (0.0, 0.0)), p.theta)
             out[link] = LinkPose(p.x + self.origin[0] - arm[0], p.y + self.origin[1] - arm[1], p.theta)
-        return Pose(out)
+        return Pose(out, {name: self.to_user(at) for name, at in pose.marks.items()})
 
 
 def _extent(points: list[Vec]) -> tuple[float, float]:

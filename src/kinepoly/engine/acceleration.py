@@ -16,11 +16,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinepoly.engine.carry import relative_acceleration
 from kinepoly.engine.closures import other_side
-from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.engine.plan import DriveGroup, Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
 from kinepoly.engine.steps import Direction, DrawnVector, Step
-from kinepoly.engine.velocity import VelocityResult, lay_driven_slider, link_length, read_rate, slide_direction
+from kinepoly.engine.velocity import (
+    VelocityResult,
+    drive_geometry,
+    lay_driven_slider,
+    link_length,
+    read_rate,
+    record_added_rate,
+    record_drive_term,
+    slide_direction,
+)
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines
 from kinepoly.model.mechanism import Revolute
@@ -94,8 +104,8 @@ class _Context:
         return (end, slide_direction(self.b.positions, slider), 1.0), coriolis
 
     def lay_coriolis(self, slider: SliderSpec, start: Points, moving: str, frame: str,
-                     point: str) -> tuple[Points, list[DrawnVector]]:
-        """Lay 2 omega_frame x v_{point of moving}/{point of frame} from ``start``, with its step.
+                     point: str, sign: float = 1.0) -> tuple[Points, list[DrawnVector]]:
+        """Lay 2 omega_frame x v_{point of moving}/{point of frame} (times ``sign``) from ``start``, with its step.
 
         Nothing is laid where the slider's guide cannot turn: then there is no Coriolis term at all.
         """
@@ -104,11 +114,13 @@ class _Context:
             return start, []
         w = b.omega_of(frame)
         v_rel = self.v_tip(moving, point) - self.v_tip(frame, point)
-        term = np.asarray((self.rules.coriolis * 2.0 * w) * (1j * v_rel))
+        term = np.asarray((sign * self.rules.coriolis * 2.0 * w) * (1j * v_rel))
         end = np.asarray(start + term)
         if not b.record:
             return end, []
         on_moving, on_frame = b.label(moving, point), b.label(frame, point)
+        if sign < 0.0:  # laid the other way: the term of the frame's point over the moving one's
+            on_moving, on_frame = on_frame, on_moving
         label = f"a^c_{on_moving}/{on_frame}"
         vector = DrawnVector(label, b.vec(start), b.vec(end), "coriolis")
         omega = b.num(w)
@@ -256,9 +268,18 @@ def _dyad(ctx: _Context, dyad: Dyad) -> None:
 
 
 def _drive(ctx: _Context) -> None:
+    mech = ctx.b.mechanism
+    if isinstance(mech.scene.input, GivenInput):
+        _given(ctx, mech.scene.input)
+        return
+    for drive in mech.drives:
+        if drive.on_frame:
+            _frame_drive(ctx, drive.spec)
+
+
+def _frame_drive(ctx: _Context, inp: LinkInput | SliderInput) -> None:
     b = ctx.b
     mech = b.mechanism
-    inp = mech.scene.input
     if isinstance(inp, LinkInput):
         b.set_rate(inp.link, np.full(b.n, inp.alpha))
         if b.record:
@@ -266,12 +287,79 @@ def _drive(ctx: _Context) -> None:
                         result=f"alpha{mech.ground}{inp.link}", value=(inp.alpha,), topic="input-rate",
                         params=(("link", inp.link), ("ground", mech.ground or ""), ("rate", abs(inp.alpha)),
                                 ("sense", sense(inp.alpha)))))
-    elif isinstance(inp, SliderInput):
+    else:
         slider = mech.slider(inp.slider)
         ctx.sliding[slider.name] = lay_driven_slider(b, slider, inp.s_ddot)
         ctx.coriolis[slider.name] = b.zero
-    elif isinstance(inp, GivenInput):
-        _given(ctx, inp)
+
+
+def _drive_group(ctx: _Context, group: DriveGroup) -> None:
+    """A link placed on a known one by a driven joint: a motor adds its alpha; a cylinder's block point
+    gets the Coriolis term 2 omega x s_dot e, then s_ddot along the slide."""
+    b, drive = ctx.b, group.drive
+    if isinstance(drive.joint, SliderSpec):
+        slider = drive.joint
+        start = b.tip(group.known, slider.point)
+        moving = slider.block if group.known == slider.guide else slider.guide
+        sign = 1.0 if moving == slider.block else -1.0
+        end, _ = ctx.lay_coriolis(slider, start, slider.block, slider.guide, slider.point, sign)
+        ctx.sliding[slider.name] = lay_driven_slider(b, slider, drive.rate(2), group.known, end)
+        ctx.coriolis[slider.name] = np.asarray(sign * (end - start))
+        return
+    b.tip(group.known, drive.joint.point)
+    known_rate = b.rate_of(group.known)
+    assert known_rate is not None
+    sign = 1.0 if group.link == drive.moving else -1.0
+    b.set_rate(group.link, np.asarray(known_rate + sign * drive.rate(2)))
+    if b.record:
+        record_added_rate(b, group.link, group.known, drive.moving, drive.base)
+
+
+def _carried(ctx: _Context, dyad: Dyad) -> None:
+    """A carried RRR dyad: the carrier's normal term and the drive's relative acceleration laid from the
+    carrier's known tip, then the line perpendicular to the carrier's span; the second link as in any RRR."""
+    b, i, j, carrier, drive = ctx.b, dyad.first, dyad.second, dyad.carrier, dyad.drive
+    assert carrier is not None and drive is not None
+    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
+    assert isinstance(dyad.second_joint, Revolute)
+    p1, p2, p3 = dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point
+    k1, k2 = other_side(dyad.first_joint, carrier), other_side(dyad.second_joint, j)
+    at, pin, slide = drive_geometry(b, dyad)
+    omega_i, omega_c = b.omega_of(i), b.omega_of(carrier)
+    rel = relative_acceleration(drive, i, at, pin, slide, omega_i, omega_c, omega_c)
+    on_carrier = b.label(carrier, p2)
+    (start, direction, _), n1, label1 = ctx.normal_line(k1, p1, p2, carrier, rigid=False)
+    if n1 is not None:
+        n1 = DrawnVector(f"a^n_{on_carrier}/{p1}", n1.start, n1.end, "normal")
+    moved = np.asarray(start + rel)
+    line1: Line = (moved, direction, None)
+    line2, n2, label2 = ctx.normal_line(k2, p3, p2, j)
+    vectors = [v for v in (n1, n2) if v is not None]
+    if b.record:
+        _normals_step(ctx, vectors)
+        record_drive_term(b, drive, f"a_{p2}/{on_carrier}", start, moved, p2, carrier,
+                          n1.label if n1 is not None else b.label(k1, p1).lower())
+    crossing = b.cross_lines(line1, line2, p2, dyad.name, (label1, label2))
+    b.add_tip(i, p2, crossing.point)
+    b.add_tip(carrier, p2, np.asarray(crossing.point - rel))
+    if b.record:
+        drawn = vectors + [DrawnVector(f"a_{p2}/{on_carrier}", b.vec(start), b.vec(moved), "relative")]
+        _record(ctx, p2, f"a_{p2} = a_{p1} + a^n_{on_carrier}/{p1} + a_{p2}/{on_carrier} + a^t_{on_carrier}/{p1} = "
+                f"a_{p3} + a^n_{p2}/{p3} + a^t_{p2}/{p3}", line1, line2, (label1, label2), crossing, drawn,
+                (Direction(f"a^t_{on_carrier}/{p1}", "perpendicular", f"{p1}{p2}", b.label(k1, p1).lower(),
+                           after=f"a_{p2}/{on_carrier}"),
+                 _along_normal(ctx, f"a^t_{p2}/{p3}", k2, p3, p2, n2)))
+    read_rate(b, carrier, p1, on_carrier, crossing.along_first)
+    if isinstance(drive.joint, Revolute):
+        sign = 1.0 if i == drive.moving else -1.0
+        b.set_rate(i, np.asarray(crossing.along_first + sign * drive.rate(2)))
+        if b.record:
+            record_added_rate(b, i, carrier, drive.moving, drive.base)
+    else:
+        assert slide is not None
+        ctx.sliding[drive.joint.name] = np.asarray(drive.rate(2) * slide)
+        ctx.coriolis[drive.joint.name] = np.asarray(2.0 * omega_c * (1j * drive.rate(1) * slide))
+    read_rate(b, j, p3, p2, crossing.along_second())
 
 
 def _given(ctx: _Context, given: GivenInput) -> None:
@@ -318,6 +406,9 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
                            crossing: CrossLines = cross_lines) -> AccelerationResult:
     """Construct the acceleration polygon at every row for every group of ``plan``, on top of its velocity polygon."""
     from kinepoly.engine.group import acceleration_by_linear_solve
+    from kinepoly.engine.plan import GearGroup
+    from kinepoly.engine.rolling import acceleration_by_rolling
+    from kinepoly.engine.triad import acceleration_by_assur_point, triad_of
 
     positions = velocity.polygon.positions
     polygon = Polygon(positions, "acceleration", omega=velocity.omega, unit=unit, record=record, strict=strict,
@@ -326,8 +417,16 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
     ctx = _Context(polygon, velocity, rules)
     _drive(ctx)
     for group in plan.groups:
-        if isinstance(group, Dyad):
+        if isinstance(group, Dyad) and group.carrier is not None:
+            _carried(ctx, group)
+        elif isinstance(group, Dyad):
             _dyad(ctx, group)
+        elif isinstance(group, DriveGroup):
+            _drive_group(ctx, group)
+        elif isinstance(group, GearGroup):
+            acceleration_by_rolling(ctx, group)
+        elif (triad := triad_of(polygon.mechanism, group)) is not None:
+            acceleration_by_assur_point(ctx, triad)
         else:
             acceleration_by_linear_solve(ctx, group)
     for link, point in wanted:

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -41,6 +41,11 @@ Vec = tuple[float, float]
 
 def _row_poses(poses: Mapping[str, ArrayPose], row: int) -> dict[str, LinkPose]:
     return {link: LinkPose(*pose.row(row)) for link, pose in poses.items()}
+
+
+def _row_values(placed: Placement, row: int) -> dict[int, float]:
+    """Each input's value at ``row``, by input index."""
+    return {index: float(values[row]) for index, values in enumerate(placed.values)}
 
 
 def _known_points(mechanism: Mechanism, poses: Mapping[str, LinkPose]) -> dict[str, complex]:
@@ -106,8 +111,7 @@ class NearestGuess:
         assert chosen is not None
         notice = self._default_notice(mechanism, closure, pick)
         before = len(placed.notices)
-        return Placement(chosen.poses, chosen.ok, chosen.failures, chosen.near,
-                         (*chosen.notices[:before], notice, *chosen.notices[before:]))
+        return replace(chosen, notices=(*chosen.notices[:before], notice, *chosen.notices[before:]))
 
     def _default_notice(self, mechanism: Mechanism, closure: Closure, pick: int) -> Notice:
         point, chosen_at, other_at = _telling_point(mechanism, closure, pick)
@@ -130,13 +134,13 @@ class NearestGuess:
                 f"link {missing} has no guessed or known point: add [guess] positions for its points")
         size = group_size(mechanism, group, points)
         found, residual = newton_row(mechanism, group, _row_poses({k: placed.poses[k] for k in group.known_links()},
-                                                                    0), start, size)
+                                                                    0), start, size, _row_values(placed, 0))
         if found is None:
             raise AssemblyError(
                 f"group {group.name} does not close at {describe_input(mechanism)}: Newton's method stopped with a "
                 f"joint residual of {residual:.3g}; the group cannot be assembled there, or [guess] is far from it")
         poses = {**placed.poses, **{link: ArrayPose.of_rows([pose]) for link, pose in found.items()}}
-        return Placement(poses, placed.ok, placed.failures, placed.near, placed.notices)
+        return replace(placed, poses=poses)
 
 
 def _telling_point(mechanism: Mechanism, closure: Closure, pick: int) -> tuple[str, complex, complex]:
@@ -235,7 +239,8 @@ class Continuity:
                     guess = last if len(history) == 1 else {k: 2.0 * v - history[-2][k] for k, v in last.items()}
                     known = _row_poses({k: placed.poses[k] for k in known_links}, row)
                     start, _ = start_poses(mechanism, group, {**guess, **_known_points(mechanism, known)})
-                    found = None if start is None else newton_row(mechanism, group, known, start, size)[0]
+                    found = None if start is None else newton_row(mechanism, group, known, start, size,
+                                                                  _row_values(placed, row))[0]
                 if found is None:
                     continue
                 for link, pose in found.items():
@@ -251,7 +256,7 @@ class Continuity:
             failures = (*failures, Failure(group.name, "", ok & ~closed, lambda _: (
                 f"Newton's method does not close group {group.name} from the rows before it "
                 "(the group cannot be assembled there)")))
-        return Placement(poses, ok & closed, failures, placed.near, placed.notices)
+        return replace(placed, poses=poses, ok=ok & closed, failures=failures)
 
 
 def position_at_input(mechanism: Mechanism, plan: PositionPlan, origin: Vec = (0.0, 0.0)) -> Positions:

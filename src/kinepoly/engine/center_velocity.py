@@ -10,7 +10,8 @@ side of I_ij.
 Centers at infinity: I_1j at infinity means link j translates (omega_1j = 0) with the velocity v;
 I_ij at infinity means links i and j turn alike (omega_1j = omega_1i). Starting from the input
 link, every link whose centers I_1j and I_ij (for a link i already known) were found gets its
-omega. Nothing here reads the polygons: it is a third, independent check of them.
+omega. Nothing here reads the polygons: it is a third, independent check of them. Only inputs on
+the frame start the chain: a motor or a cylinder between moving links gives a relative motion alone.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from kinepoly.geom.tolerances import COINCIDENT_SIN
 from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, scale, sub, unit
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import Pose
-from kinepoly.scene.spec import LinkInput, SliderInput
+from kinepoly.scene.spec import LinkInput
 
 if TYPE_CHECKING:
     from kinepoly.engine.centers import InstantCenter
@@ -78,21 +79,26 @@ class CenterOmega:
     motion: Motion
 
 
-def _input_motion(mechanism: Mechanism, pose: Pose) -> tuple[str, Motion] | None:
+def _input_motions(mechanism: Mechanism, pose: Pose) -> list[tuple[str, Motion]]:
+    """The motion each input on the frame gives its link (an input between two moving links gives only a
+    relative motion: the chain of ratios cannot start there)."""
     ground = mechanism.ground
     assert ground is not None
-    inp = mechanism.scene.input
-    if isinstance(inp, LinkInput):
-        pivot = mechanism.input_pivot().point
-        at = pose.links[ground].world(mechanism.local(ground, pivot))
-        return inp.link, Motion(inp.omega, at, (0.0, 0.0), pair_name((ground, inp.link)))
-    if isinstance(inp, SliderInput):
-        slider = mechanism.slider(inp.slider)
-        e = rotate((1.0, 0.0), pose.links[slider.guide].theta + slider.angle_rad)
-        moving = slider.block if slider.guide == ground else slider.guide
-        v = scale(inp.s_dot if moving == slider.block else -inp.s_dot, e)
-        return moving, Motion(0.0, (0.0, 0.0), v)
-    return None
+    out = []
+    for drive in mechanism.drives:
+        inp = drive.spec
+        if not drive.on_frame:
+            continue
+        if isinstance(inp, LinkInput):
+            at = pose.links[ground].world(mechanism.local(ground, mechanism.input_pivot(inp).point))
+            out.append((inp.link, Motion(inp.omega, at, (0.0, 0.0), pair_name((ground, inp.link)))))
+        else:
+            slider = mechanism.slider(inp.slider)
+            e = rotate((1.0, 0.0), pose.links[slider.guide].theta + slider.angle_rad)
+            moving = slider.block if slider.guide == ground else slider.guide
+            v = scale(inp.s_dot if moving == slider.block else -inp.s_dot, e)
+            out.append((moving, Motion(0.0, (0.0, 0.0), v)))
+    return out
 
 
 class _Omegas:
@@ -157,11 +163,11 @@ def omegas_from_centers(mechanism: Mechanism, pose: Pose, centers: dict[Edge, In
     """
     if mechanism.ground is None:
         return ()
-    start = _input_motion(mechanism, pose)
-    if start is None:
+    starts = _input_motions(mechanism, pose)
+    if not starts:
         return ()
     finder = _Omegas(mechanism, centers, size)
-    motions: dict[str, Motion] = {start[0]: start[1]}
+    motions: dict[str, Motion] = dict(starts)
     out: list[CenterOmega] = []
     while True:
         found: list[CenterOmega] = []

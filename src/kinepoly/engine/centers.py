@@ -32,6 +32,7 @@ from kinepoly.errors import SceneError
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute, joint_links
 from kinepoly.model.pose import Pose
+from kinepoly.scene.spec import GearSpec
 
 __all__ = [
     "CenterPlan",
@@ -51,11 +52,13 @@ def _asked_edge(source: str, key: str, links: tuple[str, ...]) -> Edge:
         raise SceneError(f"{source}: find.instant_centers: {key!r} is not a pair of links of the scene") from None
 
 
-def _joints(mechanism: Mechanism) -> dict[Edge, Joint]:
+def _joints(mechanism: Mechanism) -> dict[Edge, Joint | GearSpec]:
     """Each primary center's joint: a pin is the center of every two links it joins (a compound
     hinge of k links gives k (k - 1) / 2 of them), a slider the center of its block and guide."""
     links = mechanism.link_names
-    out: dict[Edge, Joint] = {}
+    out: dict[Edge, Joint | GearSpec] = {}
+    for gear in mechanism.scene.gears:  # a rolling pair's center is its pitch point
+        out.setdefault(edge(*gear.links, links), gear)
     for joint in mechanism.joints:
         a, b = joint_links(joint)
         out.setdefault(edge(a, b, links), joint)
@@ -67,8 +70,11 @@ def _joints(mechanism: Mechanism) -> dict[Edge, Joint]:
     return out
 
 
-def _joint_links_needed(mechanism: Mechanism, joint: Joint, solved_index: dict[str, int]) -> set[str]:
-    """A pin's place needs one of its links solved, a slide's direction one of its two; the ground none."""
+def _joint_links_needed(mechanism: Mechanism, joint: Joint | GearSpec, solved_index: dict[str, int]) -> set[str]:
+    """A pin's place needs one of its links solved, a slide's direction one of its two; the ground none;
+    a pitch point both gears."""
+    if isinstance(joint, GearSpec):
+        return {link for link in joint.links if link != mechanism.ground}
     a, b = joint_links(joint)
     if mechanism.ground in (a, b):
         return set()
@@ -91,7 +97,8 @@ def plan_instant_centers(mechanism: Mechanism) -> CenterPlan:
             "frame as a link with an [input] to find the centers of a mechanism"
         )
     if wanted == "all":
-        asked = tuple((pair_name(e), e) for e in combinations(links, 2))
+        shown = [link for link in links if link not in scene.equivalent_links]
+        asked = tuple((pair_name(e), e) for e in combinations(shown, 2))
     else:
         asked = tuple((key, _asked_edge(scene.source, key, links)) for key in wanted)
     joints = _joints(mechanism)

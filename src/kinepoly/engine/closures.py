@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from kinepoly.engine.carry import carried_local, relative_turn
 from kinepoly.engine.plan import Dyad
 from kinepoly.geom.arrays import Bools, Points, Reals, circle_circle, circle_line, cross_lines, length, turn
 from kinepoly.geom.tolerances import ASSEMBLY_REL_TOL, NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
@@ -291,9 +292,57 @@ def _two_slides(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Clo
                    lambda _: lines, name, lambda _: 0j)
 
 
+def _carried_rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...]) -> Closure:
+    """An RRR dyad whose first side is the carrier and ``first`` held together by a driven joint: the
+    inner joint lies at a known distance from the carrier's outer joint at each row."""
+    i, j, carrier, drive = dyad.first, dyad.second, dyad.carrier, dyad.drive
+    assert carrier is not None and drive is not None
+    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.second_joint, Revolute)
+    assert isinstance(dyad.inner, Revolute)
+    p1, p2, p3 = dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point
+    value = values[drive.index]
+    w1 = _outer_world(mech, poses, dyad.first_joint, carrier, p1)
+    w3 = _outer_world(mech, poses, dyad.second_joint, j, p3)
+    local1 = _local(mech, carrier, p1)
+    local2 = carried_local(mech, drive, i, _local(mech, i, p2), value)  # in the carrier's frame
+    span = local2 - local1
+    r1 = length(span)
+    r2 = abs(_local(mech, j, p2) - _local(mech, j, p3))
+    left, right, slack, d, h = circle_circle(w1, r1, w3, r2)
+    singular = np.asarray(~(d > ASSEMBLY_REL_TOL * np.maximum(r1, r2)))
+    ok = _closes(slack, np.maximum(d, np.maximum(r1, r2))) & ~singular & (r1 > 0)
+    turn_i = relative_turn(drive, i, value)
+
+    def place(choice: Choice) -> dict[str, ArrayPose]:
+        at = pick(choice, left, right)
+        rotation = np.asarray((at - w1) * span.conjugate() / (r1 * r1))
+        pose_carrier = ArrayPose(np.asarray(w1 - rotation * local1), rotation)
+        pose_i = pose_from_point(mech.local(i, p2), at, np.asarray(rotation * turn_i))
+        return {carrier: pose_carrier, i: pose_i,
+                j: pose_from_two_points(mech.local(j, p3), mech.local(j, p2), w3, at, rigid=True)}
+
+    def why(k: int) -> str:
+        dk, rk = float(d[k]), float(r1[k])
+        held = f"|{p1}{p2}| = {rk:.6g} (links {carrier} and {i} held by {drive.name})"
+        if rk == 0.0:
+            return f"the driven joint puts {p2} on {p1} ({drive.name}), so link {j}'s pin {p2} has no circle to run on"
+        if singular[k]:
+            return (f"the pins {p1} and {p3} coincide (|{p1} {p3}| = {dk:.3g}), so {p2} may lie anywhere on a "
+                    f"circle about them (a change point of the linkage)")
+        if dk > rk + r2:
+            return f"|{p1} {p3}| = {dk:.6g} > {held} + |{p2}{p3}| = {r2:.6g}, sum {rk + r2:.6g}"
+        return f"|{p1} {p3}| = {dk:.6g} < | {held} - |{p2}{p3}| = {r2:.6g} | = {abs(rk - r2):.6g}"
+
+    labels = (f"{p2} left of {p1}->{p3}", f"{p2} right of {p1}->{p3}")
+    return Closure(dyad, (left, right), labels, ok, singular, 2.0 * h, place, why, p2, _inner_at(mech, i, p2))
+
+
 _KINDS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _two_slides, "RPP": _two_slides}
 
 
-def close_dyad(mechanism: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
-    """Every assembly of ``dyad`` at every row, its known links placed by ``poses``."""
+def close_dyad(mechanism: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...] = ()) -> Closure:
+    """Every assembly of ``dyad`` at every row, its known links placed by ``poses`` (``values``: each
+    input's value at every row, for a carried dyad)."""
+    if dyad.carrier is not None:
+        return _carried_rrr(mechanism, poses, dyad, values)
     return _KINDS[dyad.kind](mechanism, poses, dyad)

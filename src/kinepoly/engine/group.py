@@ -88,6 +88,25 @@ def _system(polygon: Polygon, group: NewtonGroup, extra: dict[tuple[str, str], P
         known = known + extra.get(("slide", joint.name), polygon.zero)
         rows.append(normal.real[:, None] * row_x + normal.imag[:, None] * row_y)
         rhs.append(-(normal.real * known.real + normal.imag * known.imag))
+    order = 1 if polygon.kind == "velocity" else 2
+    for drive in group.drives:  # one more equation each: the input's rate
+        if isinstance(drive.joint, Revolute):  # omega_moving - omega_base = omega of the motor
+            rate_row, known_rate = np.zeros((n, size)), np.full(n, -drive.rate(order))
+            for link, sign in ((drive.moving, 1.0), (drive.base, -1.0)):
+                if link in links:
+                    rate_row[:, 3 * links.index(link) + 2] += sign
+                elif (value := polygon.rate_of(link)) is not None:
+                    known_rate = known_rate + sign * value
+            rows.append(rate_row)
+            rhs.append(-known_rate)
+            continue
+        slider = drive.joint  # e . (tip of the block's point - tip of the guide's) = s_dot (s_ddot)
+        row_x, row_y = np.zeros((n, size)), np.zeros((n, size))
+        known = term(slider.block, slider.point, 1.0, row_x, row_y) + term(slider.guide, slider.point, -1.0, row_x,
+                                                                            row_y)
+        along = polygon.positions.poses[slider.guide].rotation * turn(slider.angle_rad)
+        rows.append(along.real[:, None] * row_x + along.imag[:, None] * row_y)
+        rhs.append(drive.rate(order) - (along.real * known.real + along.imag * known.imag))
     return np.stack(rows, axis=1), np.stack(rhs, axis=1)
 
 

@@ -31,14 +31,17 @@ from kinepoly.engine.circle_diagram import (
     split_pair,
     triangle_name,
 )
+from kinepoly.engine.gears import mesh
 from kinepoly.engine.position import describe_input
 from kinepoly.errors import SingularityError
 from kinepoly.geom.homogeneous import LocalFrame, Place, Projective, Wedge, canonical_direction, wedge
 from kinepoly.geom.tolerances import LOUD_ERROR, NEAR_SINGULAR_SIN
 from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, sub
+from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
+from kinepoly.scene.spec import GearSpec
 
 __all__ = ["KennedyResult", "derive_centers"]
 
@@ -87,8 +90,17 @@ def _frame(mechanism: Mechanism, pose: Pose, offset: Vec) -> LocalFrame:
     return LocalFrame(origin, size if size > 0.0 else 1.0, offset)
 
 
-def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame, joint: Joint) -> tuple[Projective, Place] | None:
-    """A pin's point, or the point at infinity perpendicular to a slide; None when its links were not solved."""
+def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame,
+                  joint: Joint | GearSpec) -> tuple[Projective, Place] | None:
+    """A pin's point, the point at infinity perpendicular to a slide, or a gear pair's pitch point; None
+    when its links were not solved."""
+    if isinstance(joint, GearSpec):
+        if not all(link in pose.links for link in joint.links):
+            return None
+        arrays = {link: ArrayPose.of_rows([pose.links[link]]) for link in joint.links}
+        pitch = complex(mesh(mechanism, joint, arrays).point[0])
+        value = frame.point((pitch.real, pitch.imag))
+        return value, Place((pitch.real, pitch.imag), None, value.error)
     if isinstance(joint, Revolute):
         owner = next((link for link in joint.links if link in pose.links), None)
         if owner is None:
@@ -106,7 +118,9 @@ def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame, joint: Jo
     return value, Place(None, canonical_direction(perp(slide)), value.error)
 
 
-def _joint_name(joint: Joint) -> str:
+def _joint_name(joint: Joint | GearSpec) -> str:
+    if isinstance(joint, GearSpec):
+        return f"pitch point of gears {joint.name}"
     return f"pin {joint.point}" if isinstance(joint, Revolute) else f"slider {joint.name}"
 
 

@@ -2,7 +2,7 @@
 
 Unknowns are the poses (x, y, theta) of the group's links; equations are the joints that touch
 the group (a pin: two equations; a slider: the block turns with its guide, and its point lies on
-the guide's line). The Jacobian is in closed form; the step is a least-squares solve, halved
+the guide's line; an input driving a joint of the group: its angle or stroke). The Jacobian is in closed form; the step is a least-squares solve, halved
 until the residual falls, and the iteration goes on to the rounding level (until no step lowers
 the residual). A row that cannot close makes the residual stall at its least-squares floor:
 after three steps in a row that do not halve it, far from closing, the row is given up.
@@ -13,7 +13,6 @@ Where each row starts is the assembly policy's business (``engine.assembly``): f
 
 from __future__ import annotations
 
-import cmath
 import math
 from collections.abc import Mapping
 
@@ -21,7 +20,8 @@ import numpy as np
 
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.geom.arrays import Reals
-from kinepoly.model.mechanism import Mechanism, Revolute
+from kinepoly.geom.vec import phase
+from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import SliderSpec
 
@@ -40,7 +40,8 @@ class _RowSystem:
     the guide's line, n . (s - t) = 0.
     """
 
-    def __init__(self, mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], size: float) -> None:
+    def __init__(self, mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], size: float,
+                 values: Mapping[int, float]) -> None:
         self.known = known
         self.index = {link: 3 * k for k, link in enumerate(group.links)}
         self.size = 3 * len(group.links)
@@ -53,7 +54,9 @@ class _RowSystem:
                 self.pins.append((a, mechanism.local(a, joint.point), b, mechanism.local(b, joint.point)))
             else:
                 self.slides.append((joint, mechanism.local(joint.block, joint.point)))
-        self.count = 2 * (len(self.pins) + len(self.slides))
+        self._block_point = {slider.name: local for slider, local in self.slides}
+        self.drives = [(drive, values[drive.index]) for drive in group.drives]
+        self.count = 2 * (len(self.pins) + len(self.slides)) + len(self.drives)
 
     def _point(self, q: Reals, link: str, local: tuple[float, float]) -> tuple[float, float, float, float, float]:
         """World point of ``local`` on ``link``, its lever r = R local, and the link's theta."""
@@ -100,7 +103,34 @@ class _RowSystem:
                 jac[row, k + 2] -= self.scale
                 jac[row + 1, k:k + 3] += (-nx, -ny, -(ex * (sx - tx) + ey * (sy - ty)) + nx * ly - ny * lx)
             row += 2
+        for drive, value in self.drives:
+            self._drive_row(q, drive, value, row, out, jac)
+            row += 1
         return out, jac
+
+    def _drive_row(self, q: Reals, drive: Drive, value: float, row: int, out: Reals, jac: Reals) -> None:
+        """A motor: (theta_moving - theta_base - value) times the size; a cylinder: e . (s - t) - value."""
+        joint = drive.joint
+        if isinstance(joint, Revolute):
+            theta_m = self._point(q, drive.moving, (0.0, 0.0))[4]
+            theta_b = self._point(q, drive.base, (0.0, 0.0))[4]
+            out[row] = self.scale * math.remainder(theta_m - theta_b - value, math.tau)
+            for link, sign in ((drive.moving, 1.0), (drive.base, -1.0)):
+                k = self.index.get(link)
+                if k is not None:
+                    jac[row, k + 2] += sign * self.scale
+            return
+        local = self._block_point[joint.name]
+        sx, sy, bx, by, _ = self._point(q, joint.block, local)
+        tx, ty, lx, ly, theta_g = self._point(q, joint.guide, joint.through)
+        ex, ey = math.cos(theta_g + joint.angle_rad), math.sin(theta_g + joint.angle_rad)
+        out[row] = ex * (sx - tx) + ey * (sy - ty) - value
+        k = self.index.get(joint.block)
+        if k is not None:
+            jac[row, k:k + 3] += (ex, ey, -ex * by + ey * bx)
+        k = self.index.get(joint.guide)
+        if k is not None:
+            jac[row, k:k + 3] += (-ex, -ey, (-ey * (sx - tx) + ex * (sy - ty)) + ex * ly - ey * lx)
 
 
 def group_size(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex]) -> float:
@@ -121,17 +151,17 @@ def start_poses(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, c
         if not pts:
             return None, link
         (la, wa), (lb, wb) = pts[0], pts[1] if len(pts) > 1 else pts[0]
-        theta = cmath.phase(wb - wa) - cmath.phase(lb - la) if len(pts) > 1 else 0.0
+        theta = phase(wb - wa) - phase(lb - la) if len(pts) > 1 else 0.0
         origin = wa - la * complex(math.cos(theta), math.sin(theta))
         q += [origin.real, origin.imag, theta]
     return np.array(q), ""
 
 
 def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], start: Reals,
-               size: float) -> tuple[dict[str, LinkPose] | None, float]:
+               size: float, values: Mapping[int, float] | None = None) -> tuple[dict[str, LinkPose] | None, float]:
     """Close the group at one row from ``start``: the poses (None where it does not close) and the
-    final joint residual."""
-    system = _RowSystem(mechanism, group, known, size)
+    final joint residual. ``values``: the inputs' values at the row, by input index (for driven joints)."""
+    system = _RowSystem(mechanism, group, known, size, values or {})
     q = start
     r, jac = system.evaluate(q)
     norm_r = float(np.linalg.norm(r))

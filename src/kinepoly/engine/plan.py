@@ -6,6 +6,11 @@ inner, outer of j, with R for a pin and P for a slider, normalised so that only 
 PRP and RPP occur (PRR and PPR are the same groups read from the other end). What is left
 when no dyad can be found is one group solved by damped Newton.
 
+Inputs may drive any joint. An input on the frame places its link at once. An input between two
+moving links (a motor on a link, a cylinder) either places its link on an already-known one
+(``DriveGroup``), or makes the two links one body of a known shape at each row: a dyad whose
+first side is that composite is a *carried* dyad (``Dyad.carrier``), closed like any other.
+
 The plan is made backwards from what is asked: only the groups on the path to an asked
 link are kept.
 """
@@ -15,11 +20,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from kinepoly.errors import MobilityError
-from kinepoly.model.mechanism import Joint, Mechanism, Revolute, joint_links
-from kinepoly.scene.spec import SliderSpec
+from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
+from kinepoly.scene.spec import GearSpec, PitchCircle, SliderSpec
 
 __all__ = [
+    "DriveGroup",
     "Dyad",
+    "GearGroup",
     "NewtonGroup",
     "PositionPlan",
     "SlideRoles",
@@ -36,7 +43,11 @@ def joint_kind(joint: Joint) -> str:
 
 @dataclass(frozen=True)
 class Dyad:
-    """Two links solved together in closed form."""
+    """Two links solved together in closed form.
+
+    A *carried* dyad's first side is two links held together by a driven joint: ``carrier`` has the
+    outer joint, ``drive`` joins it to ``first``, which has the inner joint (an RRR dyad only).
+    """
 
     kind: str
     first: str
@@ -44,19 +55,71 @@ class Dyad:
     first_joint: Joint
     inner: Joint
     second_joint: Joint
+    carrier: str | None = None
+    drive: Drive | None = None
 
     @property
-    def links(self) -> tuple[str, str]:
-        return (self.first, self.second)
+    def links(self) -> tuple[str, ...]:
+        return (self.first, self.second) if self.carrier is None else (self.carrier, self.first, self.second)
+
+    @property
+    def outer_first(self) -> str:
+        """The link that has the first outer joint: ``first``, or the carrier of a carried dyad."""
+        return self.first if self.carrier is None else self.carrier
 
     def known_links(self) -> tuple[str, str]:
-        a = next(x for x in joint_links(self.first_joint) if x != self.first)
+        a = next(x for x in joint_links(self.first_joint) if x != self.outer_first)
         b = next(x for x in joint_links(self.second_joint) if x != self.second)
         return (a, b)
 
     @property
     def name(self) -> str:
+        if self.carrier is not None and self.drive is not None:
+            return f"{self.carrier}+{self.first}-{self.second} ({self.kind}, {self.drive.name} driven)"
         return f"{self.first}-{self.second} ({self.kind})"
+
+
+@dataclass(frozen=True)
+class DriveGroup:
+    """One link placed on a known one by a driven joint between them (a motor on a link, a cylinder)."""
+
+    drive: Drive
+    link: str
+    known: str
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        return (self.link,)
+
+    def known_links(self) -> tuple[str, ...]:
+        return (self.known,)
+
+    @property
+    def name(self) -> str:
+        return f"{self.link} on {self.known} ({self.drive.name} driven)"
+
+
+@dataclass(frozen=True)
+class GearGroup:
+    """A gear placed by rolling on a known gear: ``link`` is pinned at its pitch centre to the known
+    ``carrier`` (the frame, an arm), or is a rack sliding on it; ``known`` carries the other pitch curve."""
+
+    gear: GearSpec
+    link: str
+    known: str
+    carrier: str
+    joint: Joint
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        return (self.link,)
+
+    def known_links(self) -> tuple[str, ...]:
+        return (self.known, self.carrier)
+
+    @property
+    def name(self) -> str:
+        return f"{self.link} rolling on {self.known} (gears {self.gear.name})"
 
 
 @dataclass(frozen=True)
@@ -126,10 +189,12 @@ def two_slide_roles(dyad: Dyad, mechanism: Mechanism) -> TwoSlideRoles:
 
 @dataclass(frozen=True)
 class NewtonGroup:
-    """Links that form no dyad: solved together by damped Newton from the guess."""
+    """Links that form no dyad: solved together by damped Newton from the guess. ``drives``: the inputs
+    that drive joints of the group (each one more equation)."""
 
     links: tuple[str, ...]
     joints: tuple[Joint, ...]
+    drives: tuple[Drive, ...] = ()
 
     @property
     def name(self) -> str:
@@ -139,7 +204,7 @@ class NewtonGroup:
         return tuple(sorted({x for j in self.joints for x in joint_links(j) if x not in self.links}))
 
 
-Group = Dyad | NewtonGroup
+Group = Dyad | DriveGroup | GearGroup | NewtonGroup
 
 
 @dataclass(frozen=True)
@@ -150,39 +215,42 @@ class PositionPlan:
     groups: tuple[Group, ...]
 
     def describe(self) -> list[str]:
-        lines = [f"input: link(s) {', '.join(self.driven)}"]
+        lines = [f"input: link(s) {', '.join(self.driven)}"] if self.driven else []
         lines += [f"group {g.name}" for g in self.groups]
         return lines
 
 
-def _driven_links(mechanism: Mechanism) -> tuple[str, ...]:
+def _frame_drives(mechanism: Mechanism) -> tuple[str, ...]:
+    """The links the inputs on the frame place at once."""
     if mechanism.ground is None:
         return ()
-    if mechanism.input_link is not None:
-        mechanism.input_pivot()  # raises when the input link does not turn about the frame
-        return (mechanism.input_link,)
-    slider = mechanism.input_slider
-    assert slider is not None
-    if slider.guide == mechanism.ground:
-        return (slider.block,)
-    if slider.block == mechanism.ground:
-        return (slider.guide,)
-    raise MobilityError(
-        f"{mechanism.scene.source}: input.slider: slider {slider.name} joins links {slider.block} and "
-        f"{slider.guide}, neither of which is the frame; expected a driven slider on the frame link"
-    )
+    out = []
+    for drive in mechanism.drives:
+        if not drive.on_frame:
+            continue
+        if isinstance(drive.joint, Revolute):
+            out.append(drive.moving)
+        else:  # a slider on the frame: whichever side is not the frame
+            out.append(drive.base if drive.moving == mechanism.ground else drive.moving)
+    return tuple(out)
+
+
+def _free_joints(mechanism: Mechanism, link: str) -> list[Joint]:
+    """The joints of ``link`` that no input drives."""
+    driven = {d.joint for d in mechanism.drives if not d.on_frame}
+    return [joint for joint in mechanism.joints_of(link) if joint not in driven]
 
 
 def _find_dyad(mechanism: Mechanism, known: set[str]) -> Dyad | None:
     unknown = [n for n in mechanism.link_names if n not in known]
     for i in unknown:
-        for inner in mechanism.joints_of(i):
+        for inner in _free_joints(mechanism, i):
             j = [x for x in joint_links(inner) if x != i]
             if not j or j[0] in known:
                 continue
             j_name = j[0]
-            outer_i = [jt for jt in mechanism.joints_of(i) if any(x in known for x in joint_links(jt))]
-            outer_j = [jt for jt in mechanism.joints_of(j_name) if any(x in known for x in joint_links(jt))]
+            outer_i = [jt for jt in _free_joints(mechanism, i) if any(x in known for x in joint_links(jt))]
+            outer_j = [jt for jt in _free_joints(mechanism, j_name) if any(x in known for x in joint_links(jt))]
             if len(outer_i) != 1 or len(outer_j) != 1:
                 continue
             kind = joint_kind(outer_i[0]) + joint_kind(inner) + joint_kind(outer_j[0])
@@ -197,20 +265,78 @@ def _find_dyad(mechanism: Mechanism, known: set[str]) -> Dyad | None:
     return None
 
 
+def _find_drive(mechanism: Mechanism, known: set[str]) -> DriveGroup | None:
+    """A driven joint between a known link and an unknown one."""
+    for drive in mechanism.drives:
+        if drive.on_frame:
+            continue
+        if drive.base in known and drive.moving not in known:
+            return DriveGroup(drive, drive.moving, drive.base)
+        if drive.moving in known and drive.base not in known:
+            return DriveGroup(drive, drive.base, drive.moving)
+    return None
+
+
+def _find_gear(mechanism: Mechanism, known: set[str]) -> GearGroup | None:
+    """A gear not yet placed that meshes with a placed one and is held at its pitch centre by one pin
+    (a rack: one slider) to a placed link."""
+    for gear in mechanism.scene.gears:
+        for side in (0, 1):
+            link, other = gear.links[side], gear.links[1 - side]
+            if link in known or other not in known:
+                continue
+            outer = [jt for jt in _free_joints(mechanism, link) if any(x in known for x in joint_links(jt))]
+            if len(outer) != 1:
+                continue
+            joint, curve = outer[0], gear.pitch[side]
+            centred = isinstance(curve, PitchCircle) and isinstance(joint, Revolute) and joint.point == curve.center
+            if isinstance(curve, PitchCircle) != centred:
+                continue
+            if isinstance(joint, SliderSpec) and joint.block != link:
+                continue
+            return GearGroup(gear, link, other, _far_side(joint, link), joint)
+    return None
+
+
+def _find_carried(mechanism: Mechanism, known: set[str]) -> Dyad | None:
+    """An RRR dyad whose first side is two unknown links held together by a driven joint."""
+    for drive in mechanism.drives:
+        if drive.on_frame or drive.moving in known or drive.base in known:
+            continue
+        for carrier, first in ((drive.moving, drive.base), (drive.base, drive.moving)):
+            outer = [jt for jt in _free_joints(mechanism, carrier) if any(x in known for x in joint_links(jt))]
+            rest = [jt for jt in _free_joints(mechanism, first) if jt not in outer]
+            inner = [jt for jt in rest if all(x not in known for x in joint_links(jt))]
+            if len(outer) != 1 or len(inner) != 1 or any(jt for jt in rest if jt not in inner):
+                continue
+            second = next(x for x in joint_links(inner[0]) if x != first)
+            if second == carrier:
+                continue
+            outer_second = [jt for jt in _free_joints(mechanism, second) if any(x in known for x in joint_links(jt))]
+            if len(outer_second) != 1:
+                continue
+            if not all(isinstance(jt, Revolute) for jt in (outer[0], inner[0], outer_second[0])):
+                continue
+            return Dyad("RRR", first, second, outer[0], inner[0], outer_second[0], carrier, drive)
+    return None
+
+
 def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
-    driven = _driven_links(mechanism)
+    driven = _frame_drives(mechanism)
     known: set[str] = {mechanism.ground, *driven} if mechanism.ground is not None else set(mechanism.link_names)
     groups: list[Group] = []
     while True:
-        dyad = _find_dyad(mechanism, known)
-        if dyad is None:
+        group: Group | None = (_find_drive(mechanism, known) or _find_gear(mechanism, known)
+                               or _find_dyad(mechanism, known) or _find_carried(mechanism, known))
+        if group is None:
             break
-        groups.append(dyad)
-        known.update(dyad.links)
+        groups.append(group)
+        known.update(group.links)
     rest = tuple(n for n in mechanism.link_names if n not in known)
     if rest:
         joints = tuple(j for j in mechanism.joints if any(x in rest for x in joint_links(j)))
-        groups.append(NewtonGroup(rest, joints))
+        drives = tuple(d for d in mechanism.drives if not d.on_frame and (d.moving in rest or d.base in rest))
+        groups.append(NewtonGroup(rest, joints, drives))
     return driven, groups
 
 

@@ -31,6 +31,7 @@ from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross, cross_lines
 from kinepoly.geom.lines import Line as StepLine
 from kinepoly.geom.tolerances import COLLINEAR_SIN, PARALLEL_SIN
+from kinepoly.geom.vec import phase
 from kinepoly.model.mechanism import Mechanism, point_label
 
 __all__ = ["CrossLines", "JointSolve", "Line", "LineCrossing", "Polygon", "sense"]
@@ -164,6 +165,11 @@ class Polygon:
         self._register(label, value, point, links)
         return label
 
+    def add_virtual_tip(self, link: str, name: str, value: Points) -> None:
+        """The tip of a point the construction found on ``link`` (not a named point: a triad's Assur point,
+        whose place the positions were told)."""
+        self._register(name, value, name, [link])
+
     def tip(self, link: str, point: str) -> Points:
         """The tip of ``point`` as a point of ``link``, constructing it when it is not known yet."""
         label = self.label(link, point)
@@ -287,8 +293,8 @@ class Polygon:
             self.step(Step(polygon=self.kind, kind="image", equation=equation, result=self.tip_name(label),
                            value=self.vec(value), topic="image-translating", params=common))
             return
-        angle_a = cmath.phase(at - wa) - cmath.phase(side)
-        angle_b = cmath.phase(at - wb) - cmath.phase(-side)
+        angle_a = phase(at - wa) - phase(side)
+        angle_b = phase(at - wb) - phase(-side)
         line_a = StepLine(self.vec(a), self.vec(polygon_side * cmath.exp(1j * angle_a)),
                           f"from {la.lower()} at angle {lb}{la}{label}")
         line_b = StepLine(self.vec(b), self.vec(-polygon_side * cmath.exp(1j * angle_b)),
@@ -349,7 +355,7 @@ def _similar(wa: complex, wb: complex, at: complex, label: str, link: str) -> co
         raise SingularityError(f"image of {label}: two known points of link {link} coincide")
     ratio = (at - wa) / side
     ratio_b = (at - wb) / (wa - wb)
-    turn_a, turn_b = cmath.exp(1j * cmath.phase(ratio)), cmath.exp(1j * cmath.phase(ratio_b))  # 1 at a corner
+    turn_a, turn_b = cmath.exp(1j * phase(ratio)), cmath.exp(1j * phase(ratio_b))  # 1 at a corner
     crossing = cross_lines(np.zeros(1, np.complex128), np.array([turn_a]), 1.0 + 0j, np.array([-turn_b]))
     if not abs(float(crossing.sin_angle[0])) >= COLLINEAR_SIN:
         return ratio

@@ -10,13 +10,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 import numpy as np
 
+from kinepoly.engine.carry import drive_values, place_on
 from kinepoly.engine.closures import Choice, Closure, close_dyad
-from kinepoly.engine.plan import Group, NewtonGroup, PositionPlan
+from kinepoly.engine.gears import Rolled, place_rolling
+from kinepoly.engine.plan import DriveGroup, GearGroup, Group, NewtonGroup, PositionPlan
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.model.array_pose import ArrayPose, pose_from_point, still_pose
 from kinepoly.model.mechanism import Mechanism
@@ -46,6 +48,10 @@ class Placement:
     failures: tuple[Failure, ...] = ()
     near: tuple[Failure, ...] = ()
     notices: tuple[Notice, ...] = ()
+    values: tuple[Reals, ...] = ()
+    """Each input's value at every row (``engine.carry.drive_values``)."""
+    rolled: dict[str, Rolled] = field(default_factory=dict)
+    """The gears placed by rolling, with how far each has rolled (``engine.gears``)."""
 
 
 @dataclass
@@ -58,6 +64,10 @@ class Positions:
     failures: tuple[Failure, ...] = ()
     near: tuple[Failure, ...] = ()
     notices: tuple[Notice, ...] = ()
+    values: tuple[Reals, ...] = ()
+    """Each input's value at every row: theta (rad) or s (length)."""
+    marks: dict[str, Points] = field(default_factory=dict)
+    """Points the construction found on the mechanism (a triad's Assur point), by name."""
     _points: dict[str, Points] = field(default_factory=dict)
 
     @property
@@ -76,21 +86,30 @@ class Positions:
     def world(self, link: str, point: str) -> Points:
         return self.poses[link].world(self.mechanism.local(link, point))
 
+    def add_point(self, name: str, at: Points) -> None:
+        """A point the construction finds on the mechanism (a triad's Assur point), by name."""
+        self._points[name] = at
+        self.marks[name] = at
+
     def row(self, k: int) -> dict[str, LinkPose]:
         """The poses of row k as scalar values."""
         return {link: LinkPose(*pose.row(k)) for link, pose in self.poses.items()}
 
 
 def describe_input(mechanism: Mechanism) -> str:
-    """The input as a textbook names it: ``theta12 = 60 deg`` or ``s14 = 130 mm``."""
+    """The inputs as a textbook names them: ``theta12 = 60 deg``, ``s14 = 130 mm``, ``theta32 = -50 deg``."""
     scene = mechanism.scene
-    inp = scene.input
-    if isinstance(inp, LinkInput):
-        value = math.degrees(inp.angle_rad) if scene.units.angle == "deg" else inp.angle_rad
-        return f"theta{scene.ground}{inp.link} = {value:.15g} {scene.units.angle}"
-    if isinstance(inp, SliderInput):
-        return f"s{inp.slider} = {inp.s:.15g} {scene.units.length}"
-    return "the given motion"
+    if isinstance(scene.input, GivenInput):
+        return "the given motion"
+    out = []
+    for drive in mechanism.drives:
+        inp = drive.spec
+        if isinstance(inp, LinkInput):
+            value = math.degrees(inp.angle_rad) if scene.units.angle == "deg" else inp.angle_rad
+            out.append(f"{drive.name} = {value:.15g} {scene.units.angle}")
+        else:
+            out.append(f"{drive.name} = {inp.s:.15g} {scene.units.length}")
+    return ", ".join(out)
 
 
 def input_values(mechanism: Mechanism) -> Reals:
@@ -100,22 +119,33 @@ def input_values(mechanism: Mechanism) -> Reals:
     return np.array([value], np.float64)
 
 
-def driver_poses(mechanism: Mechanism, inputs: Reals) -> dict[str, ArrayPose]:
-    """The frame and the input link at every row; ``inputs`` are theta (rad) or s (length)."""
-    n = len(inputs)
+def driver_poses(mechanism: Mechanism, values: tuple[Reals, ...]) -> dict[str, ArrayPose]:
+    """The frame and the links the inputs on the frame drive, at every row; ``values`` are each input's
+    theta (rad) or s (length)."""
+    n = len(values[0])
     ground = mechanism.ground
     if ground is None:  # a [given] body: its own frame is the frame
         return {mechanism.link_names[0]: still_pose(n)}
     poses = {ground: still_pose(n)}
-    inp = mechanism.scene.input
+    for drive in mechanism.drives:
+        if drive.on_frame:
+            _place_frame_drive(mechanism, drive.spec, values[drive.index], poses)
+    return poses
+
+
+def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, inputs: Reals,
+                       poses: dict[str, ArrayPose]) -> None:
+    n = len(inputs)
+    ground = mechanism.ground
+    assert ground is not None
     if isinstance(inp, LinkInput):
-        pivot = mechanism.input_pivot().point
+        pivot = mechanism.input_pivot(inp).point
         x, y = mechanism.local(ground, pivot)
         rotation = np.empty(n, np.complex128)
         rotation.real = np.cos(inputs)
         rotation.imag = np.sin(inputs)
         poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), np.full(n, complex(x, y)), rotation)
-    elif isinstance(inp, SliderInput):
+    else:
         slider = mechanism.slider(inp.slider)
         direction = turn(slider.angle_rad)
         along = np.asarray(complex(*slider.through) + inputs * direction, np.complex128)
@@ -126,7 +156,6 @@ def driver_poses(mechanism: Mechanism, inputs: Reals) -> dict[str, ArrayPose]:
             block_point = np.full(n, complex(*mechanism.local(ground, slider.point)))
             poses[slider.guide] = ArrayPose(block_point - np.conjugate(direction) * along,
                                             np.full(n, np.conjugate(direction)))
-    return poses
 
 
 class Policy(Protocol):
@@ -150,7 +179,18 @@ def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placem
         if isinstance(group, NewtonGroup):
             placed = policy.newton(mechanism, group, placed)
             continue
-        closure = close_dyad(mechanism, placed.poses, group)
+        if isinstance(group, GearGroup):
+            pose, rolled = place_rolling(mechanism, group.gear, group.link, group.joint, group.carrier,
+                                         placed.poses, placed.rolled, placed.values)
+            turned = placed.rolled if rolled is None else {**placed.rolled, group.link: rolled}
+            placed = replace(placed, poses={**placed.poses, group.link: pose}, rolled=turned)
+            continue
+        if isinstance(group, DriveGroup):
+            pose = place_on(mechanism, group.drive, group.link, placed.poses[group.known],
+                            placed.values[group.drive.index])
+            placed = replace(placed, poses={**placed.poses, group.link: pose})
+            continue
+        closure = close_dyad(mechanism, placed.poses, group, placed.values)
         failures, ok = placed.failures, placed.ok
         near = placed.near
         if closure.near is not None:
@@ -160,7 +200,7 @@ def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placem
             policy.failed(mechanism, closure, bad)
             failures = (*failures, Failure(group.name, closure.joint, bad, closure.why))
             ok = ok & closure.ok
-        placed = Placement(placed.poses, ok, failures, near, placed.notices)
+        placed = replace(placed, ok=ok, failures=failures, near=near)
         choice: Choice = 0
         if len(closure.telling) == 2:
             rest = groups[index + 1:]
@@ -168,23 +208,22 @@ def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placem
 
             def later(label: int, base: Placement = base, rest: tuple[Group, ...] = rest,
                       closure: Closure = closure) -> Placement:
-                step = Placement({**base.poses, **closure.place(label)}, base.ok, base.failures, base.near,
-                                 base.notices)
+                step = replace(base, poses={**base.poses, **closure.place(label)})
                 return place_groups(mechanism, rest, step, policy)
 
             chosen = policy.choose(mechanism, closure, placed, later)
             if isinstance(chosen, Placement):
                 return chosen
             choice = chosen
-        placed = Placement({**placed.poses, **closure.place(choice)}, placed.ok, placed.failures, placed.near,
-                           placed.notices)
+        placed = replace(placed, poses={**placed.poses, **closure.place(choice)})
     return placed
 
 
 def solve_positions(mechanism: Mechanism, plan: PositionPlan, inputs: Reals, policy: Policy) -> Positions:
     """Poses of the driven links and of every group in the plan at each input, as ``policy`` chooses."""
-    start = Placement(driver_poses(mechanism, inputs), np.ones(len(inputs), np.bool_))
+    values = drive_values(mechanism, inputs)
+    start = Placement(driver_poses(mechanism, values or (inputs,)), np.ones(len(inputs), np.bool_), values=values)
     if isinstance(mechanism.scene.input, GivenInput):
         return Positions(mechanism, start.poses, start.ok)
     placed = place_groups(mechanism, plan.groups, start, policy)
-    return Positions(mechanism, placed.poses, placed.ok, placed.failures, placed.near, placed.notices)
+    return Positions(mechanism, placed.poses, placed.ok, placed.failures, placed.near, placed.notices, values)

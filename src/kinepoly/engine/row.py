@@ -67,7 +67,7 @@ def _rates(values: dict[str, Reals], k: int) -> dict[str, float]:
 
 
 def pose_row(positions: Positions, k: int = 0) -> Pose:
-    return Pose(positions.row(k))
+    return Pose(positions.row(k), _vectors(positions.marks, k))
 
 
 def velocity_row(result: VelocityResult, k: int = 0) -> VelocityPolygon:

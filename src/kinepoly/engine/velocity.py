@@ -14,14 +14,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinepoly.engine.carry import relative_velocity
 from kinepoly.engine.closures import other_side
-from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.engine.plan import DriveGroup, Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
 from kinepoly.engine.position import Positions
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines, turn
-from kinepoly.model.mechanism import Mechanism, Revolute
+from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
 
 __all__ = ["VelocityResult", "construct_velocity", "link_length", "read_rate", "slide_direction"]
@@ -78,7 +79,16 @@ def read_rate(polygon: Polygon, link: str, first: str, second: str, along: Reals
 
 def _drive(polygon: Polygon, sliding: dict[str, Points]) -> None:
     mech = polygon.mechanism
-    inp = mech.scene.input
+    if isinstance(mech.scene.input, GivenInput):
+        _given(polygon, mech.scene.input)
+        return
+    for drive in mech.drives:
+        if drive.on_frame:
+            _frame_drive(polygon, drive.spec, sliding)
+
+
+def _frame_drive(polygon: Polygon, inp: LinkInput | SliderInput, sliding: dict[str, Points]) -> None:
+    mech = polygon.mechanism
     if isinstance(inp, LinkInput):
         polygon.set_rate(inp.link, np.full(polygon.n, inp.omega))
         if polygon.record:
@@ -86,29 +96,34 @@ def _drive(polygon: Polygon, sliding: dict[str, Points]) -> None:
                               result=f"omega{mech.ground}{inp.link}", value=(inp.omega,), topic="input-rate",
                               params=(("link", inp.link), ("ground", mech.ground or ""), ("rate", abs(inp.omega)),
                                       ("sense", sense(inp.omega)))))
-    elif isinstance(inp, SliderInput):
+    else:
         slider = mech.slider(inp.slider)
         sliding[slider.name] = lay_driven_slider(polygon, slider, inp.s_dot)
-    elif isinstance(inp, GivenInput):
-        _given(polygon, inp)
 
 
-def lay_driven_slider(polygon: Polygon, slider: SliderSpec, amount: float) -> Points:
-    """The tip of a driven slider's point: ``amount`` (s_dot or s_ddot) along the slide, from o.
+def lay_driven_slider(polygon: Polygon, slider: SliderSpec, amount: float, known: str | None = None,
+                      start: Points | None = None) -> Points:
+    """The tip of a driven slider's point: ``amount`` (s_dot or s_ddot) along the slide, from the tip
+    ``start`` of the point on the ``known`` side (by default the frame's side, from o).
 
-    Returns the block's motion relative to the guide (the guide or the block is the frame).
+    Returns the block's motion relative to the guide, ``amount`` along the slide.
     """
     rel = np.asarray(amount * slide_direction(polygon.positions, slider))
-    moving = slider.block if slider.guide == polygon.mechanism.ground else slider.guide
-    value = rel if moving == slider.block else -rel
+    known = known if known is not None else polygon.mechanism.ground
+    moving = slider.block if slider.guide == known else slider.guide
+    origin = polygon.zero if start is None else start
+    value = np.asarray(origin + (rel if moving == slider.block else -rel))
     label = polygon.add_tip(moving, slider.point, value)
     if polygon.record:
         name = "s_dot" if polygon.kind == "velocity" else "s_ddot"
         symbol = polygon.symbol
+        term = f"{symbol}_{label}" if start is None or known is None else (
+            f"{symbol}_{label}/{polygon.label(known, slider.point)}")
         polygon.step(Step(polygon=polygon.kind, kind="known",
-                          equation=f"{symbol}_{label} = {name}{slider.name} along the slide", result=label.lower(),
-                          known=((f"{symbol}_{label}", "magnitude and direction"),),
-                          vectors=(DrawnVector(f"{symbol}_{label}", (0.0, 0.0), polygon.vec(value), "absolute"),),
+                          equation=f"{term} = {name}{slider.name} along the slide", result=label.lower(),
+                          known=((term, "magnitude and direction"),),
+                          vectors=(DrawnVector(term, polygon.vec(origin), polygon.vec(value),
+                                               "absolute" if start is None else "relative"),),
                           value=polygon.vec(value), topic="driven-slider",
                           params=(("slider", slider.name), ("point", label), ("amount", amount))))
     return rel
@@ -170,8 +185,9 @@ def _parallel_label(slider: SliderSpec, through: str) -> str:
 
 def _record_intersection(polygon: Polygon, label: str, equation: str, first: Line, second: Line,
                          line_labels: tuple[str, str], crossing: Crossing, known: tuple[tuple[str, str], ...],
-                         directions: tuple[Direction, Direction]) -> None:
+                         directions: tuple[Direction, Direction], vectors: tuple[DrawnVector, ...] = ()) -> None:
     polygon.step(Step(polygon="velocity", kind="intersection", equation=equation, result=label.lower(), known=known,
+                      vectors=vectors,
                       lines=(polygon.step_line(first, line_labels[0]), polygon.step_line(second, line_labels[1])),
                       value=polygon.vec(crossing.point), topic="intersection", params=(("point", label),),
                       directions=directions))
@@ -268,6 +284,103 @@ def _dyad(polygon: Polygon, dyad: Dyad, sliding: dict[str, Points], sines: dict[
     sines[dyad.name] = crossing.sin_angle
 
 
+def _drive_group(polygon: Polygon, group: DriveGroup, sliding: dict[str, Points]) -> None:
+    """A link placed on a known one by a driven joint: a motor adds its omega, a cylinder its s_dot."""
+    drive = group.drive
+    if isinstance(drive.joint, SliderSpec):
+        slider = drive.joint
+        start = polygon.tip(group.known, slider.point)
+        sliding[slider.name] = lay_driven_slider(polygon, slider, drive.rate(1), group.known, start)
+        return
+    polygon.tip(group.known, drive.joint.point)
+    known_rate = polygon.rate_of(group.known)
+    assert known_rate is not None
+    sign = 1.0 if group.link == drive.moving else -1.0
+    polygon.set_rate(group.link, np.asarray(known_rate + sign * drive.rate(1)))
+    if polygon.record:
+        record_added_rate(polygon, group.link, group.known, drive.moving, drive.base)
+
+
+def record_added_rate(polygon: Polygon, link: str, known: str, moving: str, base: str) -> None:
+    """The step that gives ``link``'s rate as the known link's plus the motor's (omega or alpha)."""
+    symbol = "omega" if polygon.kind == "velocity" else "alpha"
+    ground = polygon.ground_name()
+    value = polygon.num(polygon.rate[link])
+    sign = "+" if link == moving else "-"
+    polygon.step(Step(polygon=polygon.kind, kind="known",
+                      equation=f"{symbol}{ground}{link} = {symbol}{ground}{known} {sign} {symbol}{base}{moving}",
+                      result=f"{symbol}{ground}{link}", value=(value,), topic="added-rate",
+                      params=(("link", link), ("known", known), ("ground", ground), ("motor", f"{base}{moving}"),
+                              ("sign", sign), ("rate", abs(value)), ("sense", sense(value)))))
+
+
+def drive_geometry(polygon: Polygon, dyad: Dyad) -> tuple[Points, Points | None, Points | None]:
+    """For a carried dyad: where its inner joint is, the motor's pin (or None), the slide's direction (or None)."""
+    drive = dyad.drive
+    assert drive is not None and isinstance(dyad.inner, Revolute)
+    at = polygon.world(dyad.inner.point)
+    if isinstance(drive.joint, Revolute):
+        return at, polygon.world(drive.joint.point), None
+    return at, None, slide_direction(polygon.positions, drive.joint)
+
+
+def _carried(polygon: Polygon, dyad: Dyad, sliding: dict[str, Points], sines: dict[str, Reals]) -> None:
+    """A carried RRR dyad: the drive's relative velocity is laid from the carrier's known tip, then the
+    line perpendicular to the carrier's span; the second link's line as in any RRR dyad."""
+    i, j, carrier, drive = dyad.first, dyad.second, dyad.carrier, dyad.drive
+    assert carrier is not None and drive is not None
+    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
+    assert isinstance(dyad.second_joint, Revolute)
+    p1, p2, p3 = dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point
+    k1, k2 = other_side(dyad.first_joint, carrier), other_side(dyad.second_joint, j)
+    at, pin, slide = drive_geometry(polygon, dyad)
+    rel = relative_velocity(drive, i, at, pin, slide)
+    start = polygon.tip(k1, p1)
+    moved = np.asarray(start + rel)
+    on_carrier = polygon.label(carrier, p2)
+    line1: Line = (moved, np.asarray(1j * (at - polygon.world(p1))), None)
+    line2 = _revolute_line(polygon, k2, p3, p2, j)
+    labels = (_perpendicular_label(polygon, k1, p1, p2), _perpendicular_label(polygon, k2, p3, p2))
+    if polygon.record:
+        record_drive_term(polygon, drive, f"v_{p2}/{on_carrier}", start, moved, p2, carrier,
+                          polygon.label(k1, p1).lower())
+    crossing = polygon.cross_lines(line1, line2, p2, dyad.name, labels)
+    polygon.add_tip(i, p2, crossing.point)
+    polygon.add_tip(carrier, p2, np.asarray(crossing.point - rel))
+    if polygon.record:
+        _record_intersection(polygon, p2, f"v_{p2} = v_{p1} + v_{p2}/{on_carrier} + v_{on_carrier}/{p1} = v_{p3} + "
+                             f"v_{p2}/{p3}", line1, line2, labels, crossing,
+                             ((f"v_{p1}", "magnitude and direction"), (f"v_{p2}/{on_carrier}", "magnitude and direction"),
+                              (f"v_{on_carrier}/{p1}", "direction"), (f"v_{p3}", "magnitude and direction"),
+                              (f"v_{p2}/{p3}", "direction")),
+                             (Direction(f"v_{on_carrier}/{p1}", "perpendicular", f"{p1}{p2}",
+                                        polygon.label(k1, p1).lower(), after=f"v_{p2}/{on_carrier}"),
+                              _perpendicular(polygon, f"v_{p2}/{p3}", k2, p3, p2)),
+                             (DrawnVector(f"v_{p2}/{on_carrier}", polygon.vec(start), polygon.vec(moved), "relative"),))
+    read_rate(polygon, carrier, p1, on_carrier, crossing.along_first)
+    if isinstance(drive.joint, Revolute):
+        sign = 1.0 if i == drive.moving else -1.0
+        polygon.set_rate(i, np.asarray(crossing.along_first + sign * drive.rate(1)))
+        if polygon.record:
+            record_added_rate(polygon, i, carrier, drive.moving, drive.base)
+    else:
+        sliding[drive.joint.name] = np.asarray(drive.rate(1) * slide_direction(polygon.positions, drive.joint))
+    read_rate(polygon, j, p3, p2, crossing.along_second())
+    sines[dyad.name] = crossing.sin_angle
+
+
+def record_drive_term(polygon: Polygon, drive: Drive, term: str, start: Points, end: Points, point: str,
+                      carrier: str, after: str) -> None:
+    """The known step of a driven joint's relative term (velocity or acceleration), laid from ``start``
+    (the tip or the end of the term named ``after``)."""
+    polygon.step(Step(polygon=polygon.kind, kind="known", equation=f"{term} from {drive.name}", result=term,
+                      known=((term, "magnitude and direction"),),
+                      vectors=(DrawnVector(term, polygon.vec(start), polygon.vec(end), "relative"),),
+                      value=polygon.vec(np.asarray(end - start)), topic="drive-term",
+                      params=(("term", term), ("drive", drive.name), ("point", point), ("carrier", carrier),
+                              ("after", after), ("magnitude", abs(complex(end[0]) - complex(start[0]))))))
+
+
 def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[tuple[str, str], ...] = (), *,
                        unit: str = "mm", record: bool = False, strict: bool = False,
                        crossing: CrossLines = cross_lines) -> VelocityResult:
@@ -276,15 +389,28 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
     ``wanted`` holds (link, point) pairs: the velocity of ``point`` as a point of ``link``.
     ``record``: keep the steps of row 0; ``strict``: a parallel pair of lines raises (a solve).
     """
+    from kinepoly.engine.contacts import record_equivalent_links
     from kinepoly.engine.group import velocity_by_linear_solve
+    from kinepoly.engine.plan import GearGroup
+    from kinepoly.engine.rolling import velocity_by_rolling
+    from kinepoly.engine.triad import triad_of, velocity_by_assur_point
 
     polygon = Polygon(positions, "velocity", unit=unit, record=record, strict=strict, crossing=crossing)
     sliding: dict[str, Points] = {}
     sines: dict[str, Reals] = {}
     _drive(polygon, sliding)
+    record_equivalent_links(polygon)
     for group in plan.groups:
-        if isinstance(group, Dyad):
+        if isinstance(group, Dyad) and group.carrier is not None:
+            _carried(polygon, group, sliding, sines)
+        elif isinstance(group, Dyad):
             _dyad(polygon, group, sliding, sines)
+        elif isinstance(group, DriveGroup):
+            _drive_group(polygon, group, sliding)
+        elif isinstance(group, GearGroup):
+            velocity_by_rolling(polygon, group, sliding)
+        elif (triad := triad_of(polygon.mechanism, group)) is not None:
+            velocity_by_assur_point(polygon, triad, sliding)
         else:
             velocity_by_linear_solve(polygon, group, sliding)
     for link, point in wanted:

@@ -104,7 +104,7 @@ def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLi
                     direction1, w)
 
 
-def circle_circle(c1: PointsLike, r1: float, c2: PointsLike, r2: float) -> tuple[Points, Points, Reals, Reals,
+def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) -> tuple[Points, Points, Reals, Reals,
                                                                                   Reals]:
     """The two points where two circles meet, the one left of c1->c2 first; the slack h^2.
 

@@ -4,9 +4,14 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["Vec", "add", "angle_of", "cross", "dot", "norm", "perp", "rotate", "scale", "sub", "unit"]
+__all__ = ["Vec", "add", "angle_of", "cross", "dot", "norm", "perp", "phase", "rotate", "scale", "sub", "unit"]
 
 Vec = tuple[float, float]
+
+
+def phase(z: complex) -> float:
+    """The angle of ``z`` in (-pi, pi]: ``cmath.phase`` without its OverflowError on a subnormal part."""
+    return math.atan2(z.imag, z.real)
 
 
 def add(a: Vec, b: Vec) -> Vec:

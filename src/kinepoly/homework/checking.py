@@ -17,6 +17,7 @@ from kinepoly.homework.answers import Answer, AnswerKey, Answers, Tolerance, Val
 from kinepoly.homework.compare import Comparison, compare
 from kinepoly.homework.diagnose import Diagnosis, Recomputed, diagnose, recompute
 from kinepoly.homework.reference import Reference, prepare
+from kinepoly.present.scales import A4
 from kinepoly.scene.spec import Scene
 
 __all__ = ["CheckResult", "Checker", "Verdict", "check", "make_checker"]
@@ -69,14 +70,16 @@ class Checker:
     recomputed: tuple[Recomputed, ...]
 
 
-def make_checker(scene: Scene, answer_files: Iterable[Answers] = (), scene_text: str | None = None) -> Checker:
+def make_checker(scene: Scene, answer_files: Iterable[Answers] = (), scene_text: str | None = None,
+                 paper: tuple[float, float] = A4) -> Checker:
     """Solve ``scene`` for its [find] and every key the answer files answer; raises KinepolyError as ``solve``.
 
     ``scene_text`` is the scene's TOML as written: with it an input omega written as "300 rpm"
-    or "573 deg/s" is also tried as 300 (573) rad/s.
+    or "573 deg/s" is also tried as 300 (573) rad/s. ``paper`` is the drawing's and the handout's
+    (width, height in mm): a polygon length read off them and not divided by their kv or ka is diagnosed.
     """
     keys = dict.fromkeys(answer.key for answers in answer_files for answer in answers.answers)
-    reference = prepare(scene, keys)
+    reference = prepare(scene, keys, paper)
     written = tomllib.loads(scene_text).get("input") if scene_text is not None else None
     return Checker(reference, recompute(reference, written if isinstance(written, dict) else None))
 

@@ -24,7 +24,7 @@ from kinepoly.engine.construct import construct_row
 from kinepoly.errors import KinepolyError
 from kinepoly.geom.vec import Vec
 from kinepoly.homework.answers import AnswerKey, Direction, Value
-from kinepoly.present.scales import polygon_scales
+from kinepoly.present.scales import A4, polygon_scales
 from kinepoly.scene.spec import FindSpec, GivenInput, Scene
 from kinepoly.solution import Solution, solve, wanted
 
@@ -252,8 +252,11 @@ def _scales(solution: Solution, values: Values) -> dict[ScaleKind, float]:
             "length": size}
 
 
-def prepare(scene: Scene, keys: Iterable[AnswerKey] = ()) -> Reference:
-    """Solve ``scene`` for what its [find] asks and for ``keys``; raises KinepolyError as ``solve`` does."""
+def prepare(scene: Scene, keys: Iterable[AnswerKey] = (), paper: tuple[float, float] = A4) -> Reference:
+    """Solve ``scene`` for what its [find] asks and for ``keys``; raises KinepolyError as ``solve`` does.
+
+    kv and ka are those of the scene's drawing and handout on ``paper`` (``present.scales``).
+    """
     keys = tuple(keys)
     original = solve(scene)
     try:
@@ -261,7 +264,7 @@ def prepare(scene: Scene, keys: Iterable[AnswerKey] = ()) -> Reference:
     except KinepolyError:
         solution = _solved_for(scene, keys, everything=False)
     values = _with_fixed_links(scene, values_of(solution))
-    kv_ka = polygon_scales(original)
+    kv_ka = polygon_scales(original, paper)
     return Reference(
         scene=scene,
         solution=solution,

@@ -68,15 +68,16 @@ def scene_toml(scene: Scene, header: str = "") -> str:
             f"{slider.guide}-{slider.block}")
         if slider.name != default:
             out.append(f"name = {json.dumps(slider.name)}")
-    inp = scene.input
-    out += ["", "[input]"]
-    if isinstance(inp, LinkInput):
-        out += [f"link = {json.dumps(inp.link)}", f"angle = {_angle(scene, inp.angle_rad)}",
-                f"omega = {toml_number(inp.omega)}", f"alpha = {toml_number(inp.alpha)}"]
-    else:
-        assert isinstance(inp, SliderInput), "a [given] scene is not written here"
-        out += [f"slider = {json.dumps(inp.slider)}", f"s = {toml_number(inp.s)}", f"s_dot = {toml_number(inp.s_dot)}",
-                f"s_ddot = {toml_number(inp.s_ddot)}"]
+    for inp in scene.inputs:
+        out += ["", "[[input]]" if scene.more_inputs else "[input]"]
+        if isinstance(inp, LinkInput):
+            base = [f"relative_to = {json.dumps(inp.relative_to)}"] if inp.relative_to else []
+            out += [f"link = {json.dumps(inp.link)}", *base, f"angle = {_angle(scene, inp.angle_rad)}",
+                    f"omega = {toml_number(inp.omega)}", f"alpha = {toml_number(inp.alpha)}"]
+        else:
+            assert isinstance(inp, SliderInput), "a [given] scene is not written here"
+            out += [f"slider = {json.dumps(inp.slider)}", f"s = {toml_number(inp.s)}",
+                    f"s_dot = {toml_number(inp.s_dot)}", f"s_ddot = {toml_number(inp.s_ddot)}"]
     if scene.guess:
         out += ["", "[guess]"] + [f"{toml_key(name)} = {_pair(spot)}" for name, spot in scene.guess]
     find = scene.find

@@ -161,10 +161,12 @@ class _Solved:
 
     @property
     def crossings(self) -> dict[str, float]:
-        """Each dyad's velocity intersection: the signed sine of the angle from its first line to its second."""
+        """Each dyad's velocity intersection: the signed sine of the angle from its first line to its second
+        (a triad's construction lines are not transmission angles of a dyad and are left out)."""
         out = {}
         for step in self.solution.steps:
-            if step.polygon == "velocity" and step.kind == "intersection" and len(step.lines) == 2:
+            triad = any(key == "triad" for key, _ in step.params) or step.topic == "assur-tip"
+            if step.polygon == "velocity" and step.kind == "intersection" and len(step.lines) == 2 and not triad:
                 (a, b), (c, d) = (unit(line.direction) if norm(line.direction) > 0 else (0.0, 0.0)
                                   for line in step.lines)
                 out[step.result] = a * d - b * c

@@ -17,7 +17,7 @@ from typing import TypeVar
 from kinepoly.errors import MobilityError, SceneError
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput, SliderSpec
 
-__all__ = ["Joint", "Mechanism", "Revolute", "build_mechanism", "point_label"]
+__all__ = ["Drive", "Joint", "Mechanism", "Revolute", "build_mechanism", "point_label"]
 
 Vec = tuple[float, float]
 T = TypeVar("T")
@@ -45,6 +45,37 @@ def joint_links(joint: Joint) -> tuple[str, str]:
     if isinstance(joint, Revolute):
         return joint.links
     return (joint.block, joint.guide)
+
+
+@dataclass(frozen=True)
+class Drive:
+    """One input as the joint it drives: ``moving`` turns (about ``joint``'s pin) or slides (the block of
+    ``joint``) on ``base``, which is the frame or a moving link. ``index`` 0 is the first input, the one
+    a sweep varies."""
+
+    spec: LinkInput | SliderInput
+    moving: str
+    base: str
+    joint: Revolute | SliderSpec
+    index: int
+    on_frame: bool
+
+    @property
+    def name(self) -> str:
+        """theta32 or s34: the driven variable as a textbook writes it."""
+        if isinstance(self.spec, SliderInput):
+            return f"s{self.spec.slider}"
+        return f"theta{self.base}{self.moving}"
+
+    def value(self) -> float:
+        """The scene's value: theta (rad) or s (length)."""
+        return self.spec.angle_rad if isinstance(self.spec, LinkInput) else self.spec.s
+
+    def rate(self, order: int) -> float:
+        """omega or s_dot (order 1), alpha or s_ddot (order 2), relative to ``base``."""
+        if isinstance(self.spec, LinkInput):
+            return self.spec.omega if order == 1 else self.spec.alpha
+        return self.spec.s_dot if order == 1 else self.spec.s_ddot
 
 
 def point_label(point: str, link: str | None = None) -> str:
@@ -179,16 +210,46 @@ class Mechanism:
         inp = self.scene.input
         return inp.link if isinstance(inp, LinkInput) else None
 
-    def input_pivot(self) -> Revolute:
-        """The revolute joint of the input link with the ground."""
-        link = self.input_link
-        for joint in self.revolutes:
-            if link in joint.links and self.ground in joint.links:
+    @cached_property
+    def drives(self) -> tuple[Drive, ...]:
+        """Every input of the scene as the joint it drives, the first input first."""
+        out = []
+        for index, spec in enumerate(self.scene.inputs):
+            if isinstance(spec, SliderInput):
+                slider = self.slider(spec.slider)
+                on_frame = self.ground in (slider.block, slider.guide)
+                out.append(Drive(spec, slider.block, slider.guide, slider, index, on_frame))
+            elif isinstance(spec, LinkInput):
+                base = spec.relative_to or self.ground
+                assert base is not None
+                out.append(Drive(spec, spec.link, base, self._pin_between(spec.link, base, index), index,
+                                 base == self.ground))
+        return tuple(out)
+
+    def _pin_between(self, link: str, base: str, index: int) -> Revolute:
+        for joint in self.joints_of(link):
+            if isinstance(joint, Revolute) and base in joint.links:
                 return joint
+        shared = [p for p in self.links_of_point_names(link) if base in self.links_of_point(p)]
+        where = "input" if len(self.scene.inputs) == 1 else f"input.{index + 1}"
+        if shared:
+            return Revolute(shared[0], (link, base))
+        frame = " (the frame)" if base == self.ground else ""
         raise SceneError(
-            f"{self.scene.source}: input.link: link {link} has no joint with the frame link {self.ground}; "
-            "expected the input link to turn about a point it shares with the frame"
+            f"{self.scene.source}: {where}.link: link {link} has no pin with link {base}{frame}; "
+            f"expected the input link to turn about a point it shares with link {base}"
         )
+
+    def links_of_point_names(self, link: str) -> tuple[str, ...]:
+        return tuple(p.name for p in self.scene.link(link).points)
+
+    def input_pivot(self, spec: LinkInput | None = None) -> Revolute:
+        """The pin about which an input link (the first input's, by default) turns on its base."""
+        wanted = spec if spec is not None else self.scene.input
+        for drive in self.drives:
+            if drive.spec is wanted and isinstance(drive.joint, Revolute):
+                return drive.joint
+        raise SceneError(f"{self.scene.source}: input: the input does not turn a link")
 
 
 def _revolutes(scene: Scene) -> tuple[Revolute, ...]:
@@ -214,16 +275,42 @@ def build_mechanism(scene: Scene) -> Mechanism:
         return mechanism
     n = len(scene.links)
     j = len(mechanism.joints)
-    mobility = 3 * (n - 1) - 2 * j
-    if mobility != 1:
+    h = len(scene.gears)
+    mobility = 3 * (n - 1) - 2 * j - h
+    inputs = len(scene.inputs)
+    if mobility != inputs:
+        _check_connected(mechanism)
+        given = "one input" if inputs == 1 else f"{inputs} inputs"
+        formula = (f"3(n - 1) - 2j = 3*({n} - 1) - 2*{j}" if not h else
+                   f"3(n - 1) - 2j - h = 3*({n} - 1) - 2*{j} - {h}")
+        pairs = f" and h = {h} rolling pairs" if h else ""
         raise MobilityError(
-            f"{scene.source}: links: Gruebler's count gives mobility 3(n - 1) - 2j = 3*({n} - 1) - 2*{j} = "
+            f"{scene.source}: links: Gruebler's count gives mobility {formula} = "
             f"{mobility} for n = {n} links and j = {j} joints ({len(mechanism.revolutes)} revolute, "
-            f"{len(scene.sliders)} sliding{_compound_text(mechanism)}); kinepoly needs mobility 1 "
-            + ("(add a link or remove a joint)" if mobility < 1 else "(add a joint or a link with two joints)")
+            f"{len(scene.sliders)} sliding{_compound_text(mechanism)}){pairs}, but the scene gives {given}; "
+            + ("add a link or remove a joint" if mobility < inputs else
+               "add a joint or a link with two joints, or an [[input]] table per further degree of freedom")
+            + _loose_text(mechanism)
         )
     _check_connected(mechanism)
+    mechanism.drives  # noqa: B018 - raises SceneError when an input link has no pin with its base
     return mechanism
+
+
+def _loose_text(mechanism: Mechanism) -> str:
+    """The links held by one joint only (free to turn or slide about it), and the points that could
+    join them: their points that no other link has."""
+    out = []
+    driven = {name for spec in mechanism.scene.inputs if isinstance(spec, LinkInput) for name in (spec.link,)}
+    for link in mechanism.link_names:
+        joints = mechanism.joints_of(link)
+        if link == mechanism.ground or len(joints) != 1 or link in driven:
+            continue
+        alone = [p for p in mechanism.links_of_point_names(link) if len(mechanism.links_of_point(p)) == 1]
+        hint = (f"; its point(s) {', '.join(alone)} are on no other link (did you mean to add one to the frame "
+                f"{mechanism.ground} or to another link?)") if alone else ""
+        out.append(f"link {link} is joined only at {joints[0].name}{hint}")
+    return ("\n  " + "\n  ".join(out)) if out else ""
 
 
 def _compound_text(mechanism: Mechanism) -> str:
@@ -237,11 +324,12 @@ def _check_connected(mechanism: Mechanism) -> None:
     frontier = [mechanism.ground]
     while frontier:
         link = frontier.pop()
-        for joint in mechanism.joints_of(link or ""):
-            for other in joint_links(joint):
-                if other not in seen:
-                    seen.add(other)
-                    frontier.append(other)
+        others = [x for joint in mechanism.joints_of(link or "") for x in joint_links(joint)]
+        others += [x for gear in mechanism.scene.gears if link in gear.links for x in gear.links]
+        for other in others:
+            if other not in seen:
+                seen.add(other)
+                frontier.append(other)
     loose = [name for name in mechanism.link_names if name not in seen]
     if loose:
         raise MobilityError(f"{mechanism.scene.source}: links: link(s) {', '.join(loose)} are not joined "

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 __all__ = ["LinkPose", "Pose"]
 
@@ -33,6 +33,8 @@ class Pose:
     """Poses of the links that were solved (only those the question needs)."""
 
     links: dict[str, LinkPose]
+    marks: dict[str, Vec] = field(default_factory=dict)
+    """Points the construction found on the mechanism that no link names (a triad's Assur point)."""
 
     def world(self, mechanism_local: Vec, link: str) -> Vec:
         return self.links[link].world(mechanism_local)

@@ -56,6 +56,10 @@ class Catalogue:
         degrees = math.degrees(math.remainder(radians, 2.0 * math.pi))
         return f"{self.number(180.0 if degrees <= -180.0 + 1e-9 else degrees)}°"
 
+    def degrees(self, degrees: float) -> str:
+        """An angle given in degrees, written in (-180, 180] with the degree sign: -342.1 as 17.9°."""
+        return self.angle(math.radians(degrees))
+
     def pair(self, x: float, y: float) -> str:
         """Coordinates: ``(12.5, 3)``, or ``(12,5; 3)`` where the decimal mark is a comma."""
         separator = "; " if self.decimal == "," else ", "

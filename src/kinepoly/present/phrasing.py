@@ -27,15 +27,20 @@ from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.geom.vec import Vec, norm, sub
 from kinepoly.present.catalogue import Catalogue, load_catalogue
+from kinepoly.present.clean import Noise, noise_of
+from kinepoly.present.scales import PolygonScale
 from kinepoly.solution import Solution
 
 __all__ = [
     "Context",
     "Words",
+    "canonical_terms",
+    "canonical_text",
     "center_omega_sentence",
     "english",
     "kennedy_sentence",
     "kennedy_words",
+    "scale_note",
     "segment",
     "step_sentence",
     "step_words",
@@ -43,6 +48,8 @@ __all__ = [
 ]
 
 _TINY = 1e-12
+_FLAT_MM = 0.01
+"""An image point stood off the line of two tips by less than this on the paper is drawn on that line."""
 
 
 @cache
@@ -77,6 +84,56 @@ def segment(first: str, second: str) -> str:
     return first.partition("@")[0] + second.partition("@")[0]
 
 
+_TERM = re.compile(r"^([va](?:\^[nt])?_)([^/@\s]+)/(\S+)$")
+_TOKEN = re.compile(r"[va](?:\^[nt])?_[^\s/|,;()=]+/[^\s|,;()=]+")
+
+
+def _canonical(label: str, solution: Solution, tips: set[str]) -> str:
+    """``a^n_A/B0`` as ``a^n_A@4/B0`` where A is no point of a link that carries B0 but A@4 is a tip.
+
+    A relative term belongs to the link that carries both its points: where the point named is the
+    point of another link (A, the block's pin, over the slotted link 4), it is the coincident
+    point of that link (A@4), as the equation of the step that crosses its line names it.
+    """
+    m = _TERM.match(label)
+    if m is None:
+        return label
+    head, point, reference = m.groups()
+    mechanism = solution.mechanism
+    base = reference.partition("@")[0]
+    links = [link.name for link in solution.scene.links]
+    if any(mechanism.has_point(k, point) and mechanism.has_point(k, base) for k in links):
+        return label
+    carriers = [k for k in links if k != mechanism.ground and mechanism.has_point(k, base) and f"{point}@{k}" in tips]
+    return f"{head}{point}@{carriers[0]}/{reference}" if len(carriers) == 1 else label
+
+
+def canonical_terms(solution: Solution) -> dict[str, str]:
+    """Each relative term's label written otherwise in the steps (``a^n_A/B0``) and how every step writes it."""
+    tips = {label for polygon in (solution.velocity, solution.acceleration) if polygon is not None
+            for label in polygon.tips}
+    found: set[str] = set()
+    for step in solution.steps:
+        texts = [step.equation, *(t for t, _ in step.known), *(v.label for v in step.vectors),
+                 *(d.term for d in step.directions), *(d.after for d in step.directions),
+                 *(str(v) for k, v in step.params if k == "term")]
+        for text in texts:
+            found.update(_TOKEN.findall(text))
+    out = {}
+    for label in sorted(found):
+        canonical = _canonical(label, solution, tips)
+        if canonical != label:
+            out[label] = canonical
+    return out
+
+
+def canonical_text(text: str, terms: Mapping[str, str]) -> str:
+    """``text`` with every term of ``terms`` (``canonical_terms``) written as the steps write it."""
+    for label, canonical in terms.items():
+        text = re.sub(rf"(?<![\w@^]){re.escape(label)}(?![\w@])", canonical, text)
+    return text
+
+
 def _ends(label: str) -> tuple[str, str]:
     """The point and the reference of a relative term: ``a^n_B@4/A`` -> (``B@4``, ``A``)."""
     point, _, reference = label.partition("_")[2].partition("/")
@@ -92,6 +149,21 @@ class Words:
         self.scales = context.scales
         self.unit = context.solution.scene.units.length
         self.ground = context.solution.mechanism.ground or ""
+        self.noise: Noise = noise_of(context.solution)
+        self.terms = canonical_terms(context.solution)
+
+    def clean(self, value: str | float, kind: str) -> float:
+        """``value`` of ``kind`` (``present.clean.KINDS``), 0 where below its error estimate."""
+        return self.noise.value(float(value), kind)
+
+    def rate_kind(self, polygon: str) -> str:
+        return "omega" if polygon == "velocity" else "alpha"
+
+    def size_kind(self, polygon: str) -> str:
+        return polygon  # the magnitudes of the velocity (acceleration) polygon are velocities (accelerations)
+
+    def is_zero(self, value: str | float, kind: str) -> bool:
+        return self.clean(value, kind) == 0.0
 
     def unit_of(self, polygon: str) -> str:
         return f"{self.unit}/s" if polygon == "velocity" else f"{self.unit}/s²"
@@ -112,7 +184,7 @@ class Words:
         """``magnitude`` of a vector of ``polygon`` as mm on the paper."""
         if polygon not in self.scales:
             raise KeyError(f"no scale for the {polygon} polygon; Context.scales has {sorted(self.scales)}")
-        return self.say.number(abs(magnitude) * self.scales[polygon])
+        return self.say.number(abs(self.clean(magnitude, self.size_kind(polygon))) * self.scales[polygon])
 
     def tips(self, polygon: str) -> dict[str, Vec]:
         found = self.solution.velocity if polygon == "velocity" else self.solution.acceleration
@@ -129,11 +201,25 @@ class Words:
     def sense(self, code: str | float) -> str:
         return self.say.say(f"sense.{code}")
 
-    def sense_of(self, value: float) -> str:
+    def sense_of(self, value: float, kind: str = "omega") -> str:
+        value = self.clean(value, kind)
         return self.sense("ccw" if value > 0.0 else "cw" if value < 0.0 else "zero")
 
-    def n(self, value: str | float) -> str:
-        return self.say.number(float(value))
+    def n(self, value: str | float, kind: str | None = None) -> str:
+        """A number as the catalogue writes it; with ``kind``, 0 where below that kind's error estimate."""
+        return self.say.number(float(value) if kind is None else self.clean(value, kind))
+
+    def rate_found(self, polygon: str, name: str, value: float) -> str:
+        """``Found: ω13 = 1.2 rad/s, clockwise.``, or ``Found: ω13 = 0 rad/s.`` (a zero has no sense)."""
+        kind = self.rate_kind(polygon)
+        if self.is_zero(value, kind):
+            return self.say.say("result.rate_zero", rate_name=name, unit=self.rate_unit(polygon))
+        return self.say.say("result.rate", rate_name=name, value=self.n(value, kind), unit=self.rate_unit(polygon),
+                            sense=self.sense_of(value, kind))
+
+    def term(self, label: str) -> str:
+        """A term's label as every step writes it (``canonical_terms``)."""
+        return self.terms.get(label, label)
 
     def angle_of(self, value: Vec) -> str:
         return self.say.angle(math.atan2(value[1], value[0]))
@@ -156,8 +242,8 @@ class Words:
             raise KeyError(f"{vector.label}: no link of known ω carries {point} or {reference}")
         length = norm(sub(self.solution.position(point), self.solution.position(reference)))
         link = min(links, key=lambda k: abs(omega[k] ** 2 * length - size))
-        return {"omega_name": self.rate_name("velocity", self.ground, link), "omega": self.n(abs(omega[link])),
-                "segment": segment(reference, point), "length": self.n(length)}
+        return {"omega_name": self.rate_name("velocity", self.ground, link), "omega": self.n(abs(omega[link]), "omega"),
+                "segment": segment(reference, point), "length": self.n(length, "position")}
 
 
 def _group(words: Words, step: Step) -> NewtonGroup | None:
@@ -185,7 +271,7 @@ class _Phrase:
     def tip_fields(self, name: str, value: Vec) -> dict[str, str]:
         """A tip found: the absolute vector, its angle and length on paper (``result.tip`` and ``result.tip_item``)."""
         return {"tip": tip_name(name, self.polygon), "term": f"{self.w.symbol(self.polygon)}_{name}",
-                "magnitude": self.w.n(norm(value)), "angle": self.w.angle_of(value),
+                "magnitude": self.w.n(norm(value), self.w.size_kind(self.polygon)), "angle": self.w.angle_of(value),
                 "paper": self.w.paper(self.polygon, norm(value)), **self.common()}
 
     def found_tip(self) -> str:
@@ -196,7 +282,7 @@ class _Phrase:
         name = next((k for k in tips if k.lower() == step.result), label)
         value = tips.get(name, (step.value[0], step.value[1]) if len(step.value) == 2 else (0.0, 0.0))
         fields = self.tip_fields(name, value)
-        if norm(value) == 0.0:
+        if self.w.is_zero(norm(value), self.w.size_kind(self.polygon)):
             return self.say.say("result.tip_at_pole", tip=fields["tip"], term=fields["term"], pole=fields["pole"])
         return self.say.say("result.tip", **fields)
 
@@ -212,10 +298,12 @@ class _Phrase:
         p = self.p
         name = self.w.rate_name(self.polygon, str(p["ground"]), str(p["link"]))
         key = "step.input_rate_velocity" if self.polygon == "velocity" else "step.input_rate_acceleration"
-        text = self.say.say(key, link=str(p["link"]), rate_name=name, rate=self.w.n(p["rate"]),
+        zero = self.w.is_zero(p["rate"], self.w.rate_kind(self.polygon))
+        text = self.say.say(key + ("_zero" if zero else ""), link=str(p["link"]), rate_name=name,
+                            rate=self.w.n(p["rate"], self.w.rate_kind(self.polygon)),
                             sense=self.w.sense(p["sense"]), pole=self.w.pole(self.polygon))
         value = self.step.value[0] if self.step.value else 0.0
-        return text, self.say.say("result.given", rate_name=name, value=self.w.n(value),
+        return text, self.say.say("result.given", rate_name=name, value=self.w.n(value, self.w.rate_kind(self.polygon)),
                                   unit=self.w.rate_unit(self.polygon))
 
     def _driven_slider(self) -> tuple[str, str]:
@@ -224,15 +312,40 @@ class _Phrase:
         amount = float(p["amount"])
         text = self.say.say("step.driven_slider", slider=str(p["slider"]),
                             term=f"{self.w.symbol(self.polygon)}_{p['point']}", rate_name=name,
-                            amount=self.w.n(amount), paper=self.w.paper(self.polygon, amount),
+                            amount=self.w.n(amount, self.w.size_kind(self.polygon)),
+                            paper=self.w.paper(self.polygon, amount),
                             tip=tip_name(str(p["point"]), self.polygon), **self.common())
         return text, self.found_tip()
+
+    def _drive_term(self) -> tuple[str, str]:
+        p = self.p
+        term, after = str(p["term"]), str(p["after"])
+        start = self.w.tip_or_pole(self.polygon, after) if "^" not in after else after
+        key = "drive.term_velocity" if self.polygon == "velocity" else "drive.term_acceleration"
+        text = self.say.say(key, term=term, drive=str(p["drive"]), point=str(p["point"]), carrier=str(p["carrier"]),
+                            magnitude=self.w.n(p["magnitude"]), paper=self.w.paper(self.polygon, float(p["magnitude"])),
+                            from_tip=start, **self.common())
+        value = self.step.value
+        return text, self._vector_result(term, (value[0], value[1]))
+
+    def _added_rate(self) -> tuple[str, str]:
+        p = self.p
+        ground = str(p["ground"])
+        name = self.w.rate_name(self.polygon, ground, str(p["link"]))
+        known = self.w.rate_name(self.polygon, ground, str(p["known"]))
+        motor = f"{'ω' if self.polygon == 'velocity' else 'α'}{p['motor']}"
+        text = self.say.say("drive.added_rate", link=str(p["link"]), known_link=str(p["known"]), rate_name=name,
+                            known_name=known, motor=motor, sign=str(p["sign"]))
+        value = self.step.value[0] if self.step.value else 0.0
+        return text, self.say.say("result.rate", rate_name=name, value=self.w.n(value),
+                                  unit=self.w.rate_unit(self.polygon), sense=self.w.sense_of(value))
 
     def _given_point(self) -> tuple[str, str]:
         p = self.p
         value = self.step.value
         text = self.say.say("step.given_point", term=f"{self.w.symbol(self.polygon)}_{p['point']}",
-                            magnitude=self.w.n(p["magnitude"]), angle=self.w.angle_of((value[0], value[1])),
+                            magnitude=self.w.n(p["magnitude"], self.w.size_kind(self.polygon)),
+                            angle=self.w.angle_of((value[0], value[1])),
                             paper=self.w.paper(self.polygon, float(p["magnitude"])),
                             tip=tip_name(str(p["point"]), self.polygon), **self.common())
         return text, self.found_tip()
@@ -240,23 +353,30 @@ class _Phrase:
     def _relative(self) -> tuple[str, str]:
         p = self.p
         point, reference = str(p["point"]), str(p["reference"])
+        rate_kind = self.w.rate_kind(self.polygon)
         fields = {"point": point, "reference": reference, "link": str(p["link"]),
-                  "segment": segment(reference, point), "length": self.w.n(p["length"]),
-                  "length_unit": self.w.unit, "sense": self.w.sense(p["sense"]), "rate": self.w.n(p["rate"]),
+                  "segment": segment(reference, point), "length": self.w.n(p["length"], "position"),
+                  "length_unit": self.w.unit, "sense": self.w.sense(p["sense"]), "rate": self.w.n(p["rate"], rate_kind),
                   "from_tip": self.w.tip_or_pole(self.polygon, reference), "tip": tip_name(point, self.polygon),
                   **self.common()}
+        zero_rate = self.w.is_zero(p["rate"], rate_kind)
         if self.polygon == "velocity":
-            text = self.say.say("step.relative_velocity", term=f"v_{point}/{reference}",
+            key = "step.relative_velocity_zero" if zero_rate else "step.relative_velocity"
+            text = self.say.say(key, term=f"v_{point}/{reference}",
                                 rate_name=self.w.rate_name("velocity", str(p["ground"]), str(p["link"])),
-                                magnitude=self.w.n(p["magnitude"]),
+                                magnitude=self.w.n(p["magnitude"], "velocity"),
                                 paper=self.w.paper("velocity", float(p["magnitude"])), **fields)
         else:
-            text = self.say.say("step.relative_acceleration", normal_term=f"a^n_{point}/{reference}",
+            zero_omega = self.w.is_zero(p["omega"], "omega")
+            key = ("step.relative_acceleration_zero" if zero_omega and zero_rate else
+                   "step.relative_acceleration_no_normal" if zero_omega else
+                   "step.relative_acceleration_no_tangential" if zero_rate else "step.relative_acceleration")
+            text = self.say.say(key, normal_term=f"a^n_{point}/{reference}",
                                 tangential_term=f"a^t_{point}/{reference}",
                                 omega_name=self.w.rate_name("velocity", str(p["ground"]), str(p["link"])),
                                 rate_name=self.w.rate_name("acceleration", str(p["ground"]), str(p["link"])),
-                                omega=self.w.n(p["omega"]), normal=self.w.n(p["normal"]),
-                                tangential=self.w.n(p["tangential"]),
+                                omega=self.w.n(p["omega"], "omega"), normal=self.w.n(p["normal"], "acceleration"),
+                                tangential=self.w.n(p["tangential"], "acceleration"),
                                 normal_paper=self.w.paper(self.polygon, float(p["normal"])),
                                 tangential_paper=self.w.paper(self.polygon, float(p["tangential"])), **fields)
         return text, self.found_tip()
@@ -271,8 +391,8 @@ class _Phrase:
 
     def _image(self) -> tuple[str, str]:
         p = self.p
-        text = self.say.say("step.image", angle_first=f"{self.w.n(p['angle_first'])}°",
-                            angle_second=f"{self.w.n(p['angle_second'])}°", **self._image_fields())
+        text = self.say.say("step.image", angle_first=self.say.degrees(float(p["angle_first"])),
+                            angle_second=self.say.degrees(float(p["angle_second"])), **self._image_fields())
         return text, self.found_tip()
 
     def _image_translating(self) -> tuple[str, str]:
@@ -280,14 +400,38 @@ class _Phrase:
         return self.say.say(key, **self._image_fields()), self.found_tip()
 
     def _proportional(self) -> tuple[str, str]:
+        """A point of a flat triangle: on the line of two tips (collinear), or stood off it by a height."""
         p = self.p
         fields = self._image_fields()
-        if abs(float(p["height"])) > 1e-9:
-            text = self.say.say("step.proportional_offset", ratio=self.w.n(p["ratio"]),
-                                height=self.w.n(p["height"]), **fields)
-        else:
-            text = self.say.say("step.proportional", ratio=self.w.n(p["ratio"]), **fields)
+        ratio, height = float(p["ratio"]), float(p["height"])
+        tips = self.w.tips(self.polygon)
+        first, second = tips.get(str(p["first"]), (0.0, 0.0)), tips.get(str(p["second"]), (0.0, 0.0))
+        side = norm(sub(second, first)) * self.w.scales.get(self.polygon, 1.0)  # mm on the paper
+        if abs(height) * side < _FLAT_MM or abs(height) <= 1e-9:
+            return self._collinear(ratio, side, fields), self.found_tip()
+        text = self.say.say("step.proportional_offset", ratio=self.w.n(ratio), height=self.w.n(height),
+                            foot_paper=self.say.number(abs(ratio) * side), offset_paper=self.say.number(abs(height) * side),
+                            **fields)
         return text, self.found_tip()
+
+    def _collinear(self, ratio: float, side: float, fields: dict[str, str]) -> str:
+        """A point on the line of two points of its link: its tip divides theirs in the same proportion."""
+        p = self.p
+        first, second = str(p["first"]), str(p["second"])
+        solution = self.w.solution
+        length = norm(sub(solution.position(second), solution.position(first)))
+        first_tip, second_tip = (self.w.tip_or_pole(self.polygon, label) for label in (first, second))
+        first, second, point = (label.partition("@")[0] for label in (first, second, str(p["point"])))
+        where = ("collinear_between" if 0.0 <= ratio <= 1.0 else "collinear_beyond_second" if ratio > 1.0
+                 else "collinear_beyond_first")
+        toward = "collinear_toward" if ratio >= 0.0 else "collinear_away"
+        return self.say.say("step.collinear", where=self.say.say(f"step.{where}", first=first, second=second),
+                            where_tip=self.say.say(f"step.{toward}", second_tip=second_tip),
+                            ratio=self.w.n(abs(ratio)), length=self.w.n(length, "position"), length_unit=self.w.unit,
+                            part=self.w.n(abs(ratio) * length, "position"), side=self.say.number(side),
+                            distance=self.say.number(abs(ratio) * side),
+                            **{**fields, "first": first, "second": second, "point": point,
+                               "first_tip": first_tip, "second_tip": second_tip})
 
     def _line(self, direction: Direction) -> str:
         through = direction.through
@@ -307,37 +451,87 @@ class _Phrase:
         parts = []
         for direction, line in zip(step.directions, step.lines, strict=True):
             size = norm(sub((step.value[0], step.value[1]), line.through))
-            parts.append(self.say.say("result.term", term=direction.term, magnitude=self.w.n(size),
+            parts.append(self.say.say("result.term", term=direction.term, magnitude=self.w.n(size, self.w.size_kind(self.polygon)),
                                       unit=self.w.unit_of(self.polygon)))
         return text, f"{self.found_tip()} {self.say.say('result.terms', terms='; '.join(parts))}"
+
+    def _rolling(self) -> tuple[str, str]:
+        """A gear's pitch-point tip: the rolling condition's line crossed with the gear's own line."""
+        p = self.p
+        point, known = str(p["point"]), str(p["known_point"])
+        pitch = point.partition("@")[0]
+        how = (self.say.say("higher_pairs.how_rack") if p["rack"] == "yes" else
+               self.say.say("higher_pairs.how_pin", centre=str(p["through"]), pitch=pitch))
+        through = point if p["rack"] == "yes" else str(p["through"])
+        through_tip = self.w.tip_or_pole(self.polygon, str(p["through"]) if p["rack"] == "no" else through)
+        key = "higher_pairs.rolling_velocity" if self.polygon == "velocity" else "higher_pairs.rolling_acceleration"
+        text = self.say.say(key, pair=str(p["pair"]), pitch=pitch, point=point, known_point=known, link=str(p["link"]),
+                            known=str(p["known"]), known_tip=self.w.tip_or_pole(self.polygon, known),
+                            through_tip=through_tip, how=how, tip=tip_name(point, self.polygon), **self.common())
+        return text, self.found_tip()
+
+    def _equivalent_link(self) -> tuple[str, str]:
+        p = self.p
+        key = "higher_pairs.equivalent_block" if p["kind"] == "flat" else "higher_pairs.equivalent_link"
+        text = self.say.say(key, pair=str(p["pair"]), cam=str(p["cam"]), follower=str(p["follower"]),
+                            link=str(p["link"]), centre=str(p["centre"]), point=str(p["point"]),
+                            length=self.w.n(float(p["length"]), "position"), unit=self.w.unit)
+        return text, ""
+
+    def _leg_line(self, which: str) -> str:
+        p = self.p
+        if f"{which}_segment" in p:
+            return self.say.say("triad.leg_rod", segment=str(p[f"{which}_segment"]))
+        return self.say.say("triad.leg_slide", slider=str(p[f"{which}_slider"]), point=str(p[f"{which}_point"]))
+
+    def _assur_point(self) -> tuple[str, str]:
+        p = self.p
+        text = self.say.say("triad.assur_point", point=str(p["point"]), ternary=str(p["ternary"]),
+                            first=str(p["first"]), second=str(p["second"]), first_line=self._leg_line("first"),
+                            second_line=self._leg_line("second"), third=str(p["third"]))
+        return text, self.say.say("triad.assur_found", point=str(p["point"]))
+
+    def _assur_tip(self) -> tuple[str, str]:
+        step = self.step
+        point = str(self.p["point"])
+        key = "triad.assur_tip_velocity" if self.polygon == "velocity" else "triad.assur_tip_acceleration"
+        text = self.say.say(key, point=point, ternary=str(self.p["ternary"]), first=str(self.p["first"]),
+                            second=str(self.p["second"]), first_line=self._line(step.directions[0]),
+                            second_line=self._line(step.directions[1]), tip=tip_name(point, self.polygon),
+                            term=f"{self.w.symbol(self.polygon)}_{point}", **self.common())
+        return text, self.found_tip()
 
     def _read(self) -> tuple[str, str]:
         p = self.p
         name = self.w.rate_name(self.polygon, str(p["ground"]), str(p["link"]))
         first, second = str(p["first"]), str(p["second"])
-        text = self.say.say("step.read", rate_name=name, term=str(p["term"]), segment=segment(first, second),
-                            magnitude=self.w.n(p["magnitude"]), length=self.w.n(p["length"]),
-                            rate=self.w.n(p["rate"]), rate_unit=self.w.rate_unit(self.polygon),
+        rate_kind = self.w.rate_kind(self.polygon)
+        key = "step.read_zero" if self.w.is_zero(p["rate"], rate_kind) else "step.read"
+        text = self.say.say(key, rate_name=name, term=str(p["term"]), segment=segment(first, second),
+                            magnitude=self.w.n(p["magnitude"], self.w.size_kind(self.polygon)),
+                            length=self.w.n(p["length"], "position"),
+                            rate=self.w.n(p["rate"], rate_kind), rate_unit=self.w.rate_unit(self.polygon),
                             sense=self.w.sense(p["sense"]), first=first.partition("@")[0],
                             second=second.partition("@")[0], link=str(p["link"]))
         value = self.step.value[0] if self.step.value else 0.0
-        return text, self.say.say("result.rate", rate_name=name, value=self.w.n(value),
-                                  unit=self.w.rate_unit(self.polygon), sense=self.w.sense(p["sense"]))
+        return text, self.w.rate_found(self.polygon, name, value)
 
     def _coriolis(self) -> tuple[str, str]:
         p = self.p
         term = str(p["term"])
         vector = self.step.vectors[0]
-        text = self.say.say("step.coriolis", term=term, guide=str(p["guide"]),
+        key = "step.coriolis_zero" if self.w.is_zero(p["magnitude"], "acceleration") else "step.coriolis"
+        text = self.say.say(key, term=term, guide=str(p["guide"]),
                             omega_name=self.w.rate_name("velocity", str(p["ground"]), str(p["guide"])),
-                            omega=self.w.n(p["omega"]), relative=str(p["relative"]), speed=self.w.n(p["speed"]),
-                            magnitude=self.w.n(p["magnitude"]), paper=self.w.paper(self.polygon, float(p["magnitude"])),
+                            omega=self.w.n(p["omega"], "omega"), relative=str(p["relative"]),
+                            speed=self.w.n(p["speed"], "velocity"), magnitude=self.w.n(p["magnitude"], "acceleration"),
+                            paper=self.w.paper(self.polygon, float(p["magnitude"])),
                             sense=self.w.sense(p["sense"]), from_tip=self.w.tip_or_pole(self.polygon, str(p["start"])),
                             **self.common())
         return text, self._vector_result(term, sub(vector.end, vector.start))
 
     def _vector_result(self, term: str, value: Vec) -> str:
-        if norm(value) == 0.0:
+        if self.w.is_zero(norm(value), self.w.size_kind(self.polygon)):
             return self.say.say("result.vector_zero", term=term)
         return self.say.say("result.vector", term=term, magnitude=self.w.n(norm(value)), angle=self.w.angle_of(value),
                             unit=self.w.unit_of(self.polygon))
@@ -347,7 +541,8 @@ class _Phrase:
         for v in self.step.vectors:
             point, reference = _ends(v.label)
             size = norm(sub(v.end, v.start))
-            items.append(self.say.say("step.normal_item", term=v.label, magnitude=self.w.n(size),
+            key = "step.normal_item_zero" if self.w.is_zero(size, "acceleration") else "step.normal_item"
+            items.append(self.say.say(key, term=v.label, magnitude=self.w.n(size, "acceleration"),
                                       unit=self.w.unit_of(self.polygon), point=point.partition("@")[0],
                                       reference=reference.partition("@")[0], from_tip=self._normal_start(v),
                                       paper=self.w.paper(self.polygon, size), **self.w.normal_fields(v)))
@@ -370,7 +565,7 @@ class _Phrase:
         normal, tangential = self.step.vectors
         fields = self.w.normal_fields(normal)
         text = self.say.say("step.given_normal", term=normal.label, tangential=tangential.label,
-                            magnitude=self.w.n(p["magnitude"]), point=point, reference=reference,
+                            magnitude=self.w.n(p["magnitude"], "acceleration"), point=point, reference=reference,
                             from_tip=tip_name(reference, self.polygon), tip=tip_name(point, self.polygon),
                             paper=self.w.paper(self.polygon, float(p["magnitude"])), **fields, **self.common())
         return text, self._vector_result(tangential.label, sub(tangential.end, tangential.start))
@@ -399,7 +594,7 @@ class _Phrase:
         items = []
         for label in labels:
             fields = self.tip_fields(label, tips.get(label, (0.0, 0.0)))
-            if label not in tips or norm(tips[label]) == 0.0:
+            if label not in tips or self.w.is_zero(norm(tips[label]), self.w.size_kind(self.polygon)):
                 items.append(self.say.say("result.tip_item_at_pole", tip=fields["tip"], term=fields["term"],
                                           pole=fields["pole"]))
             else:
@@ -407,15 +602,19 @@ class _Phrase:
         rates = self.rates()
         for link in links:
             if link in rates:
-                items.append(self.say.say("result.rate_item", rate_name=self.w.rate_name(self.polygon, self.w.ground, link),
-                                          value=self.w.n(rates[link]), unit=self.w.rate_unit(self.polygon),
-                                          sense=self.w.sense_of(rates[link])))
+                rate_kind = self.w.rate_kind(self.polygon)
+                key = "result.rate_item_zero" if self.w.is_zero(rates[link], rate_kind) else "result.rate_item"
+                items.append(self.say.say(key, rate_name=self.w.rate_name(self.polygon, self.w.ground, link),
+                                          value=self.w.n(rates[link], rate_kind), unit=self.w.rate_unit(self.polygon),
+                                          sense=self.w.sense_of(rates[link], rate_kind)))
         return text, self.say.say("result.tips", tips="; ".join(items))
 
 
 def step_words(step: Step, say: Catalogue, context: Context) -> tuple[str, str]:
     """A construction step in words: (what to do and why, what it yields), in ``say``'s language."""
-    return _Phrase(Words(context, say), step).explain()
+    words = Words(context, say)
+    text, result = _Phrase(words, step).explain()
+    return canonical_text(text, words.terms), canonical_text(result, words.terms)
 
 
 def step_sentence(step: Step, say: Catalogue, context: Context) -> str:
@@ -477,3 +676,10 @@ def center_omega_sentence(found: CenterOmega, say: Catalogue, context: Context) 
     return say.say("kennedy.omega_velocity", velocity=say.pair(float(p["vx"]), float(p["vy"])),
                    offset=say.pair(float(p["rx"]), float(p["ry"])), cross=words.n(p["cross"]),
                    distance=words.n(p["distance"]), **fields)
+
+
+def scale_note(scale: PolygonScale, paper: tuple[float, float], say: Catalogue) -> str:
+    """Why a polygon is drawn at a smaller scale than wanted (``present.scales``), in ``say``'s language."""
+    return say.say("panel.reduced_note", symbol=scale.symbol, wanted=say.number(scale.wanted),
+                   scale=say.number(scale.value), polygon=say.say(f"polygon.{scale.kind}"),
+                   paper=f"{say.number(paper[0])} × {say.number(paper[1])} mm")

@@ -13,9 +13,9 @@ from kinepoly.engine.steps import Step
 from kinepoly.geom.vec import Vec, norm, unit
 from kinepoly.present.centers import centers_json, centers_steps_text, centers_table, kennedy_steps_json
 from kinepoly.present.clean import Noise, noise_of
-from kinepoly.present.phrasing import Context, english, step_sentence
-from kinepoly.present.scales import polygon_scales
-from kinepoly.scene.spec import LinkInput, SliderInput
+from kinepoly.present.phrasing import Context, canonical_terms, canonical_text, english, scale_note, step_sentence
+from kinepoly.present.scales import PolygonScales, decide_scales
+from kinepoly.scene.spec import GivenInput, LinkInput
 from kinepoly.solution import Solution
 
 __all__ = ["input_text", "readable_json", "steps_text", "table_text", "to_json"]
@@ -54,8 +54,13 @@ def _step_json(step: Step, k: float, context: Context) -> dict[str, Any]:
     }
 
 
-def to_json(solution: Solution) -> dict[str, Any]:
-    """The result object of the contract (``kinepoly solve --json``)."""
+def to_json(solution: Solution, scales: PolygonScales | None = None) -> dict[str, Any]:
+    """The result object of the contract (``kinepoly solve --json``).
+
+    ``scales`` are the polygon scales of the drawing (``present.scales.decide_scales``; A4 when None):
+    the polygons' ``scale``, their tips on the paper and the steps' lengths on the paper use them; a
+    scale the paper reduced is a ``scale-reduced`` warning, and its polygon has ``wanted`` too.
+    """
     scene, asked = solution.scene, solution.asked
     out: dict[str, Any] = {"title": scene.title, "units": {"length": scene.units.length, "angle": scene.units.angle}}
     links: dict[str, dict[str, float]] = {}
@@ -90,18 +95,27 @@ def to_json(solution: Solution) -> dict[str, Any]:
                 entry["coriolis"] = _pair(values.coriolis)
             sliders[name] = entry
         out["sliders"] = sliders
-    scales = polygon_scales(solution)
+    if solution.contacts:
+        out["contacts"] = {name: {"point": _pair(c.point), "normal": _pair(c.normal),
+                                  **({"sliding_velocity": _pair(c.sliding_velocity)}
+                                     if c.sliding_velocity is not None else {})}
+                           for name, c in solution.contacts.items()}
+    decided = scales if scales is not None else decide_scales(solution)
     polygons: dict[str, Any] = {}
-    for kind, k in scales.items():
+    for scale in decided.polygons:
+        k = scale.value
         tips: dict[str, list[float]] = {"o": [0.0, 0.0]}
-        tips.update({label.lower(): _pair((k * v[0], k * v[1])) for label, v in _shown_tips(solution, kind).items()})
-        polygons[kind] = {"scale": k, "points": tips}
+        tips.update({label.lower(): _pair((k * v[0], k * v[1]))
+                     for label, v in _shown_tips(solution, scale.kind).items()})
+        polygons[scale.kind] = {"scale": k, "points": tips}
+        if scale.reduced:
+            polygons[scale.kind]["wanted"] = scale.wanted
     if polygons:
         out["polygons"] = polygons
     if solution.centers is not None:
         out["instant_centers"] = centers_json(solution.centers)
-    context = Context(solution, scales)
-    out["steps"] = [_step_json(s, scales.get(s.polygon, 1.0), context) for s in solution.steps]
+    context = Context(solution, decided.as_dict())
+    out["steps"] = [_step_json(s, decided.get(s.polygon) or 1.0, context) for s in solution.steps]
     out["steps"] += kennedy_steps_json(solution.centers, context) if solution.centers is not None else []
     check = solution.check
     out["check"] = {
@@ -116,16 +130,19 @@ def to_json(solution: Solution) -> dict[str, Any]:
     out["plan"] = solution.plan.describe()
     out["timing"] = dict(solution.timing)
     out["warnings"] = [{"code": n.code, "message": n.message} for n in solution.notices]
+    out["warnings"] += [{"code": "scale-reduced", "message": scale_note(scale, decided.paper, english())}
+                        for scale in decided.reduced]
     return out
 
 
-def readable_json(solution: Solution, noise: Noise | None = None) -> dict[str, Any]:
+def readable_json(solution: Solution, noise: Noise | None = None,
+                  scales: PolygonScales | None = None) -> dict[str, Any]:
     """``to_json`` with every printed value below its error estimate set to 0 (``present.clean``).
 
     For the text meant for people (the table, the title block); the JSON keeps the computed floats.
     """
     noise = noise if noise is not None else noise_of(solution)
-    data = to_json(solution)
+    data = to_json(solution, scales)
     degrees = solution.scene.units.angle == "deg"
     for entry in data.get("links", {}).values():
         entry["angle"] = noise.degrees(entry["angle"]) if degrees else noise.value(entry["angle"], "angle")
@@ -142,6 +159,11 @@ def readable_json(solution: Solution, noise: Noise | None = None) -> dict[str, A
                 entry[key] = noise.value(entry[key], kind)
         if "coriolis" in entry:
             entry["coriolis"] = list(noise.pair(entry["coriolis"], "acceleration"))
+    for entry in data.get("contacts", {}).values():
+        entry["point"] = list(noise.pair(entry["point"], "position"))
+        entry["normal"] = [0.0 if abs(x) < 1e-12 else x for x in entry["normal"]]  # a unit vector
+        if "sliding_velocity" in entry:
+            entry["sliding_velocity"] = list(noise.pair(entry["sliding_velocity"], "velocity"))
     return data
 
 
@@ -196,14 +218,21 @@ def _fmt(x: float) -> str:
 
 
 def input_text(solution: Solution) -> str:
-    inp, ground = solution.scene.input, solution.mechanism.ground
-    if isinstance(inp, LinkInput):
-        return (f"theta{ground}{inp.link} = {_fmt(_angle(solution, inp.angle_rad))} {solution.scene.units.angle}, "
-                f"omega{ground}{inp.link} = {_fmt(inp.omega)} rad/s, alpha{ground}{inp.link} = {_fmt(inp.alpha)} rad/s^2")
-    if isinstance(inp, SliderInput):
-        u = solution.scene.units.length
-        return f"s{inp.slider} = {_fmt(inp.s)} {u}, s_dot = {_fmt(inp.s_dot)} {u}/s, s_ddot = {_fmt(inp.s_ddot)} {u}/s^2"
-    return "given motion of " + ", ".join(p.name for p in inp.points)
+    """Every input as a textbook writes it, ``theta12 = ...`` or ``s14 = ...``, separated by semicolons."""
+    inp = solution.scene.input
+    if isinstance(inp, GivenInput):
+        return "given motion of " + ", ".join(p.name for p in inp.points)
+    out = []
+    for drive in solution.mechanism.drives:
+        spec, pair = drive.spec, f"{drive.base}{drive.moving}"
+        if isinstance(spec, LinkInput):
+            out.append(f"theta{pair} = {_fmt(_angle(solution, spec.angle_rad))} {solution.scene.units.angle}, "
+                       f"omega{pair} = {_fmt(spec.omega)} rad/s, alpha{pair} = {_fmt(spec.alpha)} rad/s^2")
+        else:
+            u = solution.scene.units.length
+            out.append(f"s{spec.slider} = {_fmt(spec.s)} {u}, s_dot = {_fmt(spec.s_dot)} {u}/s, "
+                       f"s_ddot = {_fmt(spec.s_ddot)} {u}/s^2")
+    return "; ".join(out)
 
 
 def _rows(header: list[str], rows: list[list[str]]) -> list[str]:
@@ -215,10 +244,10 @@ def _rows(header: list[str], rows: list[list[str]]) -> list[str]:
     return [line(header), "  ".join("-" * w for w in widths), *(line(r) for r in rows)]
 
 
-def table_text(solution: Solution) -> str:
-    """A readable summary: links, points, sliders, scales, warnings, and the cross-check footer."""
+def table_text(solution: Solution, scales: PolygonScales | None = None) -> str:
+    """A readable summary: links, points, sliders, scales (``to_json``'s), warnings, and the cross-check footer."""
     noise = noise_of(solution)
-    data = readable_json(solution, noise)
+    data = readable_json(solution, noise, scales)
     u, au = solution.scene.units.length, solution.scene.units.angle
     out = [solution.scene.title, f"input: {input_text(solution)}", ""]
     if "links" in data:
@@ -240,6 +269,12 @@ def table_text(solution: Solution) -> str:
                  f"({_fmt(v['coriolis'][0])}, {_fmt(v['coriolis'][1])})" if "coriolis" in v else ""]
                 for name, v in data["sliders"].items()]
         out += _rows(["slider", f"s ({u})", f"s_dot ({u}/s)", f"s_ddot ({u}/s^2)", "coriolis"], rows) + [""]
+    if "contacts" in data:
+        rows = [[name, f"({_fmt(v['point'][0])}, {_fmt(v['point'][1])})",
+                 f"({_fmt(v['normal'][0])}, {_fmt(v['normal'][1])})",
+                 f"({_fmt(v['sliding_velocity'][0])}, {_fmt(v['sliding_velocity'][1])})" if "sliding_velocity" in v
+                 else ""] for name, v in data["contacts"].items()]
+        out += _rows(["contact", f"point ({u})", "normal", f"sliding velocity ({u}/s)"], rows) + [""]
     if solution.centers is not None:
         out += centers_table(solution.centers, u, data["check"]["relative"].get("instant_center"), noise) + [""]
     for kind, poly in data.get("polygons", {}).items():
@@ -259,16 +294,26 @@ def table_text(solution: Solution) -> str:
     return "\n".join(out)
 
 
-def steps_text(solution: Solution) -> str:
-    """The construction, one numbered step after another (the sentences from ``present.phrasing``, in English)."""
-    context = Context(solution, polygon_scales(solution))
+def steps_text(solution: Solution, scales: PolygonScales | None = None) -> str:
+    """The construction, one numbered step after another (the sentences from ``present.phrasing``, in English).
+
+    The lengths on the paper are at ``scales`` (``present.scales.decide_scales``; A4 when None).
+    """
+    decided = scales if scales is not None else decide_scales(solution)
+    context = Context(solution, decided.as_dict())
     out = [f"{solution.scene.title}: the construction, step by step", ""]
     out += [f"position: {line}" for line in solution.plan.describe()] + [""]
+    terms = canonical_terms(solution)
+    for symbol, scale in (("kv", decided.get("velocity")), ("ka", decided.get("acceleration"))):
+        if scale is not None:
+            per = f"{solution.scene.units.length}/s" + ("" if symbol == "kv" else "^2")
+            out.append(f"scale: {symbol} = {scale:g} mm of paper per {per}")
+    out += [""] if decided.polygons else []
     for n, step in enumerate(solution.steps, 1):
-        out.append(f"{n:>2}. [{step.polygon}, {step.kind}] {step.equation}")
+        out.append(f"{n:>2}. [{step.polygon}, {step.kind}] {canonical_text(step.equation, terms)}")
         out.append(f"    {step_sentence(step, english(), context)}")
         if step.known:
-            out.append("    known: " + "; ".join(f"{t} ({what})" for t, what in step.known))
+            out.append("    known: " + "; ".join(f"{canonical_text(t, terms)} ({what})" for t, what in step.known))
     if solution.centers is not None:
         out += centers_steps_text(solution.centers, len(solution.steps) + 1, context)
     return "\n".join(out)

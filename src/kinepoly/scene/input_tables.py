@@ -1,8 +1,10 @@
 """The motion a scene gives: an ``[input]`` driver (a link turning or a slider sliding) or ``[given.P]`` points.
 
-A scene has exactly one of them. ``[input]`` names a link (angle, omega, alpha) or a slider
-(s, s_dot, s_ddot); ``[given]`` gives the velocity (and acceleration) of two or more points
-of a scene's single link.
+A scene has exactly one of them. ``[input]`` names a link (angle, omega, alpha; turning on the
+frame or, with ``relative_to``, on another link) or a slider (s, s_dot, s_ddot; on the frame or
+between two moving links, a cylinder); ``[[input]]``, an array of such tables, gives one input per
+degree of freedom. ``[given]`` gives the velocity (and acceleration) of two or more points of a
+scene's single link.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from kinepoly.scene.values import Vector, check_keys, read_name, read_table, req
 
 __all__ = ["InputTables"]
 
-_LINK_INPUT_KEYS = ("link", "angle", "omega", "alpha")
+_LINK_INPUT_KEYS = ("link", "relative_to", "angle", "omega", "alpha")
 _SLIDER_INPUT_KEYS = ("slider", "s", "s_dot", "s_ddot")
 _GIVEN_KEYS = ("velocity", "acceleration")
 
@@ -25,24 +27,48 @@ _GIVEN_KEYS = ("velocity", "acceleration")
 class InputTables(ReaderState):
     """Reads ``[input]`` or ``[given]``, checking the names they use against the links and sliders."""
 
-    def read_input(self, data: Table) -> InputSpec | None:
+    def read_input(self, data: Table) -> tuple[InputSpec, ...] | None:
+        """Every input, the first one first (a sweep varies it)."""
         has_input, has_given = "input" in data, "given" in data
         if has_input and has_given:
             self.report.add(("given",), "both [input] and [given]; expected exactly one of them")
-            self.read_driver(data["input"])
+            self.read_drivers(data["input"])
             return None
         if has_given:
-            return self.read_given(data["given"])
+            given = self.read_given(data["given"])
+            return None if given is None else (given,)
         if has_input:
-            return self.read_driver(data["input"])
+            return self.read_drivers(data["input"])
         self.report.add(
             ("input",),
             'missing; expected an [input] table (link = "2" or slider = "14") or [given.P] tables',
         )
         return None
 
-    def read_driver(self, value: object) -> LinkInput | SliderInput | None:
-        path = ("input",)
+    def read_drivers(self, value: object) -> tuple[LinkInput | SliderInput, ...] | None:
+        """``[input]`` (one table) or ``[[input]]`` (an array of them, one per degree of freedom)."""
+        if not isinstance(value, list):
+            one = self.read_driver(("input",), value)
+            return None if one is None else (one,)
+        if not value:
+            self.report.add(("input",), "an empty [[input]] array; expected one table per input")
+            return None
+        drivers = [self.read_driver(("input", str(k)), item) for k, item in enumerate(value, start=1)]
+        found = tuple(d for d in drivers if d is not None)
+        self.check_distinct_drivers(found)
+        return found if len(found) == len(drivers) else None
+
+    def check_distinct_drivers(self, drivers: tuple[LinkInput | SliderInput, ...]) -> None:
+        seen: set[tuple[str, str]] = set()
+        for k, driver in enumerate(drivers, start=1):
+            key = ("slider", driver.slider) if isinstance(driver, SliderInput) else (
+                "link", f"{driver.link}/{driver.relative_to or ''}")
+            if key in seen:
+                self.report.add(("input", str(k)), f"{key[0]} {key[1].rstrip('/')} is driven twice; expected "
+                                "each input to drive a different joint")
+            seen.add(key)
+
+    def read_driver(self, path: KeyPath, value: object) -> LinkInput | SliderInput | None:
         table = read_table(self.report, path, value, 'an [input] table with link = "NAME" or slider = "NAME"')
         if table is None:
             return None
@@ -68,19 +94,42 @@ class InputTables(ReaderState):
 
     def read_link_input(self, path: KeyPath, table: Table) -> LinkInput | None:
         link = read_name(self.report, path + ("link",), table["link"], "a link name", "2")
+        base = self.read_relative_to(path, table, link)
         if link is not None and not self.has_link(link):
             self.report.add(path + ("link",), no_such("link", link, self.links or {}))
         elif link is not None and link == self.ground:
             self.report.add(
                 path + ("link",),
-                f'link "{link}" is the ground; expected a moving link turning about its joint with the ground',
+                f'link "{link}" is the ground; expected a moving link turning about a pin',
             )
         angle = self.required_quantity(path, table, "angle", self.kinds.angle)
         omega = self.required_quantity(path, table, "omega", self.kinds.omega)
         alpha = quantity(self.report, path + ("alpha",), table.get("alpha", 0.0), self.kinds.alpha)
         if link is None or angle is None or omega is None or alpha is None:
             return None
-        return LinkInput(link, angle, omega, alpha, self.report.line(path))
+        return LinkInput(link, angle, omega, alpha, self.report.line(path), base)
+
+    def read_relative_to(self, path: KeyPath, table: Table, link: str | None) -> str | None:
+        """The link the input link turns on (None: the ground); it must share a pin with it."""
+        if "relative_to" not in table:
+            return None
+        key = path + ("relative_to",)
+        base = read_name(self.report, key, table["relative_to"], "a link name", "4")
+        if base is None:
+            return None
+        if not self.has_link(base):
+            self.report.add(key, no_such("link", base, self.links or {}))
+            return None
+        if base == link:
+            self.report.add(key, f'link "{base}" cannot turn relative to itself; expected the link it turns on')
+            return None
+        if self.links is not None and link in self.links:
+            shared = set(self.links[link].point_names) & set(self.links[base].point_names)
+            if not shared:
+                self.report.add(key, f'links "{link}" and "{base}" share no point; expected the link that '
+                                f'"{link}" is pinned to (a relative rotation turns about their common pin)')
+                return None
+        return None if base == self.ground else base
 
     def read_slider_input(self, path: KeyPath, table: Table) -> SliderInput | None:
         slider = read_name(self.report, path + ("slider",), table["slider"], "a slider name", "14")

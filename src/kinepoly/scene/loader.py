@@ -28,19 +28,22 @@ import os
 from pathlib import Path
 from typing import Literal, cast
 
+from kinepoly.scene.equivalent import with_equivalent_links
+from kinepoly.scene.higher_pair_tables import HigherPairTables
 from kinepoly.scene.input_tables import InputTables
 from kinepoly.scene.lines import KeyPath, scan_lines
 from kinepoly.scene.mechanism_tables import MechanismTables
 from kinepoly.scene.problems import ProblemReport, quoted, show_value, suggest
 from kinepoly.scene.request_tables import RequestTables
 from kinepoly.scene.source import Table, decode_text, fail, parse_toml, read_bytes
-from kinepoly.scene.spec import Scene, Units
+from kinepoly.scene.spec import GivenInput, Scene, Units
 from kinepoly.scene.units import ANGLE_UNITS, LENGTH_UNITS, kinds_for, quantity
 from kinepoly.scene.values import check_keys, check_showable, read_table
 
 __all__ = ["ProblemReport", "load_scene", "loads_scene", "parse_located", "read_quantity", "show_value", "suggest"]
 
-_TOP_KEYS = ("title", "units", "ground", "links", "sliders", "input", "given", "guess", "find", "draw", "vary")
+_TOP_KEYS = ("title", "units", "ground", "links", "sliders", "gears", "cams", "input", "given", "guess", "find", "draw",
+             "vary")
 _UNITS_KEYS = ("length", "angle")
 
 
@@ -76,7 +79,7 @@ def loads_scene(text: str, source: str = "<string>") -> Scene:
 # The scene, section by section
 
 
-class _SceneReader(MechanismTables, InputTables, RequestTables):
+class _SceneReader(MechanismTables, HigherPairTables, InputTables, RequestTables):
     """Reads one parsed scene; each method checks one section and reports what is wrong."""
 
     # -- the whole
@@ -89,28 +92,33 @@ class _SceneReader(MechanismTables, InputTables, RequestTables):
         self.links = self.read_links(data.get("links"))
         self.sliders = self.read_sliders(data.get("sliders"))
         self.check_joints()
+        gears = self.read_gears(data.get("gears"))
+        cams = self.read_cams(data.get("cams"))
         given_scene = "given" in data and "input" not in data
         self.ground = self.read_ground(data.get("ground"), given_scene)
-        spec_input = self.read_input(data)
+        spec_inputs = self.read_input(data)
         guess = self.read_guess(data.get("guess"))
         find = self.read_find(data.get("find"))
         draw = self.read_draw(data.get("draw"))
         if "vary" in data:  # read by `kinepoly variants` (kinepoly.homework.vary); only its shape here
             read_table(self.report, ("vary",), data["vary"], "a [vary] table of ranges like angle = [30, 150]")
-        if self.report.problems or spec_input is None or self.links is None:
+        if self.report.problems or spec_inputs is None or self.links is None:
             return None
-        return Scene(
+        return with_equivalent_links(Scene(
             title=title,
             units=units,
             ground=self.ground,
             links=tuple(self.links.values()),
             sliders=tuple(self.sliders),
-            input=spec_input,
+            input=spec_inputs[0],
             guess=guess,
             find=find,
             draw=draw,
             source=self.report.source,
-        )
+            more_inputs=tuple(i for i in spec_inputs[1:] if not isinstance(i, GivenInput)),
+            gears=tuple(gears),
+            cams=tuple(cams),
+        ))
 
     # -- title, units
 

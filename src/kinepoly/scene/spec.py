@@ -12,13 +12,17 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 __all__ = [
+    "CamSpec",
     "DrawSpec",
     "FindSpec",
+    "GearSpec",
     "GivenInput",
     "GivenPoint",
     "InputSpec",
     "LinkInput",
     "LinkSpec",
+    "PitchCircle",
+    "PitchLine",
     "PointSpec",
     "Scene",
     "SliderInput",
@@ -83,14 +87,70 @@ class SliderSpec:
 
 
 @dataclass(frozen=True)
+class PitchCircle:
+    """A gear's pitch circle: centred on ``center`` (a point of the gear's link), radius ``radius``."""
+
+    center: str
+    radius: float
+
+
+@dataclass(frozen=True)
+class PitchLine:
+    """A rack's pitch line, in the rack link's own frame."""
+
+    through: Vector
+    angle_rad: float
+
+
+@dataclass(frozen=True)
+class GearSpec:
+    """Two pitch curves rolling without slip (``[[gears]]``): ``links[k]`` carries ``pitch[k]``.
+
+    ``phase[k]``: at the reference mesh, a circle's x-axis turned by phase (rad) points at the pitch
+    point; a line's ``through`` moved by phase (a length) along it lies at the pitch point."""
+
+    name: str
+    links: tuple[str, str]
+    pitch: tuple[PitchCircle | PitchLine, PitchCircle | PitchLine]
+    internal: bool = False
+    phase: tuple[float, float] = (0.0, 0.0)
+    line: int = 0
+
+
+@dataclass(frozen=True)
+class CamSpec:
+    """A circle profile on ``cam`` touching ``follower`` (``[[cams]]``): by a roller (``roller`` a point of
+    the follower and ``roller_radius``), a flat face (``flat``: through, angle in the follower's frame) or a
+    knife edge (``knife``, a point of the follower). ``equivalent``: the link the pair is replaced by."""
+
+    name: str
+    cam: str
+    follower: str
+    center: Vector
+    radius: float
+    kind: Literal["roller", "flat", "knife"]
+    point: str | None = None
+    roller_radius: float = 0.0
+    flat: tuple[Vector, float] | None = None
+    inside: bool = False
+    line: int = 0
+    equivalent: str = ""
+    """The name of the equivalent link (a binary link or a block), set when the scene is made."""
+    center_point: str = ""
+    """The name of the profile's centre as a point of the cam (and of the equivalent link)."""
+
+
+@dataclass(frozen=True)
 class LinkInput:
-    """Input: ``link`` turns about its joint with the ground; theta, omega, alpha given."""
+    """Input: ``link`` turns about its pin with ``relative_to`` (None: the ground); theta, omega, alpha
+    given, relative to that link (theta_43 = angle of 3's x-axis from 4's x-axis, omega_43 = omega_3 - omega_4)."""
 
     link: str
     angle_rad: float
     omega: float
     alpha: float
     line: int = 0
+    relative_to: str | None = None
 
 
 @dataclass(frozen=True)
@@ -160,10 +220,22 @@ class Scene:
     links: tuple[LinkSpec, ...]
     sliders: tuple[SliderSpec, ...]
     input: InputSpec
+    """The first input: the one a sweep varies (``inputs`` holds every one)."""
     guess: tuple[tuple[str, Vector], ...] = ()
     find: FindSpec = field(default_factory=FindSpec)
     draw: DrawSpec = field(default_factory=DrawSpec)
     source: str = "<scene>"
+    more_inputs: tuple[LinkInput | SliderInput, ...] = ()
+    """The inputs after the first, one per further degree of freedom (``[[input]]`` tables)."""
+    gears: tuple[GearSpec, ...] = ()
+    cams: tuple[CamSpec, ...] = ()
+    equivalent_links: tuple[str, ...] = ()
+    """Links the scene did not write: each cam pair's equivalent link (not reported, not asked)."""
+
+    @property
+    def inputs(self) -> tuple[InputSpec, ...]:
+        """Every input, the first one first."""
+        return (self.input, *self.more_inputs)
 
     def link(self, name: str) -> LinkSpec:
         return self._links_by_name[name]  # KeyError for an unknown name

@@ -65,10 +65,11 @@ class InputGrid:
 
 
 def input_name(mechanism: Mechanism) -> str:
-    """``theta_2`` for link 2's angle, ``s_14`` for slider 14: the first column of the CSV."""
+    """``theta_2`` for link 2's angle, ``theta_23`` for link 3's angle on link 2 (a motor), ``s_14`` for
+    slider 14: the first column of the CSV."""
     inp = mechanism.scene.input
     if isinstance(inp, LinkInput):
-        return f"theta_{inp.link}"
+        return f"theta_{inp.relative_to}{inp.link}" if inp.relative_to else f"theta_{inp.link}"
     assert isinstance(inp, SliderInput)
     return f"s_{inp.slider}"
 

@@ -1,0 +1,116 @@
+"""The polygons of a gear placed by rolling, by two direction lines like any dyad.
+
+At the pitch point P the gears roll without slipping: the two gears' points at P have the same
+velocity, and their accelerations differ only along the common normal (the line of centres). So the
+tip of P as a point of the unknown gear lies
+
+* on the line through the tip of P as a point of the known gear, along the common normal (the
+  tangential components are equal: for the velocity, with the centre distance kept, the tips coincide);
+* on the line of the unknown gear's own motion: through the tip of its centre (and, for the
+  acceleration, the normal term -omega^2 O P laid from it), perpendicular to O P; for a rack, through
+  the tip of the point of its guide under P (and the Coriolis term), along the slide.
+
+Their crossing gives the tip; omega (alpha) of the gear is read off as for any link.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from kinepoly.engine.gears import Mesh, mesh, pitch_label
+from kinepoly.engine.plan import GearGroup
+from kinepoly.engine.polygon import Line, Polygon
+from kinepoly.engine.steps import DrawnVector, Step
+from kinepoly.engine.velocity import read_rate, slide_direction
+from kinepoly.geom.arrays import Crossing, Points
+from kinepoly.model.mechanism import Revolute
+from kinepoly.scene.spec import SliderSpec
+
+__all__ = ["acceleration_by_rolling", "mark_pitch_point", "velocity_by_rolling"]
+
+
+def mark_pitch_point(polygon: Polygon, group: GearGroup) -> Mesh:
+    """The pair's mesh, its pitch point marked on the mechanism as ``P<pair>``."""
+    found = mesh(polygon.mechanism, group.gear, polygon.positions.poses)
+    label = pitch_label(group.gear)
+    if label not in polygon.positions.marks:
+        polygon.positions.add_point(label, found.point)
+    return found
+
+
+def _record(polygon: Polygon, group: GearGroup, tip: str, known_tip: str, first: Line, second: Line,
+            crossing: Crossing, vectors: tuple[DrawnVector, ...] = ()) -> None:
+    if not polygon.record:
+        return
+    rack = isinstance(group.joint, SliderSpec)
+    through = (polygon.label(group.carrier, pitch_label(group.gear)) if rack else
+               group.joint.point if isinstance(group.joint, Revolute) else "")
+    sym = polygon.symbol
+    own = f"{sym}{'^t' if polygon.kind == 'acceleration' and not rack else ''}_{tip}/{through}"
+    laid = "".join(f" + {v.label}" for v in vectors)
+    polygon.step(Step(polygon=polygon.kind, kind="intersection",
+                      equation=f"{sym}_{tip} = {sym}_{through}{laid} + {own} = {sym}_{known_tip} + {sym}_{tip}/{known_tip}",
+                      result=tip.lower(), vectors=vectors,
+                      lines=(polygon.step_line(first, f"line of {tip} on link {group.link}"),
+                             polygon.step_line(second, f"common normal through {known_tip.lower()}")),
+                      value=polygon.vec(crossing.point), topic="rolling",
+                      params=(("pair", group.gear.name), ("link", group.link), ("known", group.known),
+                              ("point", tip), ("known_point", known_tip), ("through", through),
+                              ("rack", "yes" if rack else "no"))))
+
+
+def velocity_by_rolling(polygon: Polygon, group: GearGroup, sliding: dict[str, Points]) -> None:
+    found = mark_pitch_point(polygon, group)
+    point = pitch_label(group.gear)
+    known_tip = polygon.tip(group.known, point)
+    known_label = polygon.label(group.known, point)
+    tip = polygon.label(group.link, point)
+    second: Line = (known_tip, found.normal, None)
+    if isinstance(group.joint, Revolute):
+        centre = group.joint.point
+        r = np.asarray(polygon.world(point) - polygon.world(centre))
+        first: Line = (polygon.tip(group.carrier, centre), np.asarray(1j * r), None)
+        crossing = polygon.cross_lines(first, second, tip, group.name)
+        polygon.add_tip(group.link, point, crossing.point)
+        _record(polygon, group, tip, known_label, first, second, crossing)
+        read_rate(polygon, group.link, centre, tip, crossing.along_first)
+        return
+    slider = group.joint
+    assert isinstance(slider, SliderSpec)
+    under = polygon.tip(group.carrier, point)
+    first = (under, slide_direction(polygon.positions, slider), 1.0)
+    crossing = polygon.cross_lines(first, second, tip, group.name)
+    polygon.add_tip(group.link, point, crossing.point)
+    _record(polygon, group, tip, known_label, first, second, crossing)
+    sliding[slider.name] = np.asarray(crossing.point - under)
+
+
+def acceleration_by_rolling(ctx: object, group: GearGroup) -> None:
+    """The acceleration polygon's part (``ctx`` is ``engine.acceleration``'s context)."""
+    b: Polygon = ctx.b  # type: ignore[attr-defined]
+    found = mark_pitch_point(b, group)
+    point = pitch_label(group.gear)
+    known_tip = b.tip(group.known, point)
+    known_label = b.label(group.known, point)
+    tip = b.label(group.link, point)
+    second: Line = (known_tip, found.normal, None)
+    if isinstance(group.joint, Revolute):
+        centre = group.joint.point
+        start = b.tip(group.carrier, centre)
+        r = np.asarray(b.world(point) - b.world(centre))
+        w = b.omega_of(group.link)
+        middle = np.asarray(start - (w * w) * r)
+        first: Line = (middle, np.asarray(1j * r), None)
+        crossing = b.cross_lines(first, second, tip, group.name)
+        b.add_tip(group.link, point, crossing.point)
+        vectors = (DrawnVector(f"a^n_{tip}/{centre}", b.vec(start), b.vec(middle), "normal"),) if b.record else ()
+        _record(b, group, tip, known_label, first, second, crossing, vectors)
+        read_rate(b, group.link, centre, tip, crossing.along_first)
+        return
+    slider = group.joint
+    assert isinstance(slider, SliderSpec)
+    line, coriolis = ctx.slide_line(slider, group.carrier, group.link, point)  # type: ignore[attr-defined]
+    crossing = b.cross_lines(line, second, tip, group.name)
+    b.add_tip(group.link, point, crossing.point)
+    _record(b, group, tip, known_label, line, second, crossing, tuple(coriolis))
+    ctx.slide_values(slider, group.link, point)  # type: ignore[attr-defined]

@@ -1,0 +1,375 @@
+"""A class-3 group (a triad) constructed through its Assur point, velocity and acceleration, over rows.
+
+The group is a ternary link T held by three legs, each joining T to a known link. Every leg
+says, for one point Q of T (or under T), that the tip of Q as a point of T is a known tip plus
+an unknown multiple of a known direction e:
+
+- a binary link L pinned to T at X and to a known link at K: Q = X, from the tip of K,
+  e perpendicular to KX (the unknown multiple is omega_L, or alpha_L);
+- a block pinned to T at X, sliding on a known guide: Q = X, from the tip of X on the guide,
+  e along the slide;
+- a block pinned to a known link at K, sliding in a slot of T: Q = K (a point under T), from
+  the tip of K, e along the slot.
+
+The line of a leg is the line through Q perpendicular to e (a binary link's own line). Where
+the lines of two legs cross is the Assur point S, a point of T. Since S - Q is perpendicular to
+e, the term omega_T x QS of T is along e too: the tip of S lies on the line through each of the
+two legs' known tips along its e, and their crossing is s. The third leg's point then lies on
+the line through s perpendicular to SQ and on its own leg's line; the other two legs' points
+on the line through that tip perpendicular to the segment between them and on their own lines.
+For accelerations the same lines are drawn after the known terms: the legs' normal or Coriolis
+terms, and T's normal terms toward S (the tangential terms of the leg and of T at S are both
+along e, so they share one line). The pair of legs whose lines cross at the larger angle is
+taken for S: the pair whose construction crosses all its lines at the steepest angles (the
+largest smallest sine), so that where the Assur point runs off to infinity (the lines parallel)
+another pair is taken; the step says which legs give S.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Literal
+
+import numpy as np
+
+from kinepoly.engine.plan import NewtonGroup
+from kinepoly.engine.polygon import Line, LineCrossing, Polygon
+from kinepoly.engine.steps import Direction, DrawnVector, Step
+from kinepoly.errors import SingularityError
+from kinepoly.geom.arrays import Points, Reals, cross_lines
+from kinepoly.geom.tolerances import PARALLEL_SIN
+from kinepoly.model.mechanism import Mechanism, Revolute, joint_links
+from kinepoly.scene.spec import SliderSpec
+
+if TYPE_CHECKING:
+    from kinepoly.engine.acceleration import _Context
+
+__all__ = ["Leg", "Triad", "acceleration_by_assur_point", "triad_of", "velocity_by_assur_point"]
+
+
+@dataclass(frozen=True)
+class Leg:
+    """One leg of a triad (see the module): its kind, its own link, the point Q, the known link it joins,
+    the outer pin K (a pin or slot leg) and the slider (a slide or slot leg)."""
+
+    kind: Literal["pin", "slide", "slot"]
+    link: str
+    point: str
+    known: str
+    pin: str | None
+    slider: SliderSpec | None
+
+
+@dataclass(frozen=True)
+class Triad:
+    """A class-3 group: ``ternary`` held by three legs; ``assur`` names its Assur point."""
+
+    ternary: str
+    legs: tuple[Leg, Leg, Leg]
+    assur: str
+
+
+def _leg(mechanism: Mechanism, ternary: str, link: str, inner: Revolute | SliderSpec,
+         outer: Revolute | SliderSpec) -> Leg | None:
+    known = next(x for x in joint_links(outer) if x != link)
+    if isinstance(inner, Revolute) and isinstance(outer, Revolute):
+        return Leg("pin", link, inner.point, known, outer.point, None)
+    if isinstance(inner, Revolute) and isinstance(outer, SliderSpec) and outer.block == link:
+        return Leg("slide", link, inner.point, known, None, outer) if outer.point == inner.point else None
+    if isinstance(inner, SliderSpec) and isinstance(outer, Revolute) and inner.guide == ternary \
+            and inner.block == link and inner.point == outer.point:
+        return Leg("slot", link, outer.point, known, outer.point, inner)
+    return None
+
+
+def triad_of(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
+    """The triad a group is, or None (a group of another shape keeps its linear solve)."""
+    if len(group.links) != 4 or len(group.joints) != 6:
+        return None
+    inside = set(group.links)
+    for ternary in group.links:
+        inner = [j for j in group.joints if ternary in joint_links(j) and set(joint_links(j)) <= inside]
+        legs_links = [next(x for x in joint_links(j) if x != ternary) for j in inner]
+        if len(inner) != 3 or len(set(legs_links)) != 3:
+            continue
+        legs = []
+        for link, joint in zip(legs_links, inner, strict=True):
+            outer = [j for j in group.joints if link in joint_links(j) and not set(joint_links(j)) <= inside]
+            leg = _leg(mechanism, ternary, link, joint, outer[0]) if len(outer) == 1 else None
+            if leg is None:
+                return None
+            legs.append(leg)
+        names = {p for link in mechanism.link_names for p in mechanism.links_of_point_names(link)}
+        assur = next(n for n in ("S", f"S{ternary}", f"S_{ternary}", "S*") if n not in names)
+        return Triad(ternary, (legs[0], legs[1], legs[2]), assur)
+    return None
+
+
+# -- the construction, shared by both polygons ----------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _LegLine:
+    """A leg's own line in the polygon (through the known tip, after its known terms, along e), and
+    where Q is on the mechanism."""
+
+    at: Points
+    start: Points
+    through: Points
+    direction: Points
+    vectors: tuple[DrawnVector, ...]
+
+
+@dataclass(frozen=True)
+class _Built:
+    """One choice of the third leg m, at every row: the tip of S, of each Q (as a point of T), how far
+    along each leg's own line (the leg's rate or slide), T's rate, and the sines of the crossings."""
+
+    s: Points
+    tips: tuple[Points, Points, Points]
+    along: tuple[Reals, Reals, Reals]
+    rate: Reals
+    sines: tuple[Reals, Reals, Reals, Reals]
+
+
+_ORDERS = ((1, 2, 0), (0, 2, 1), (0, 1, 2))
+"""(first, second, third): S from the lines of the first two legs, the third leg from S."""
+
+
+def _build(legs: list[_LegLine], s_world: Points, normal_t: Callable[[Points], Points], order: tuple[int, int, int],
+           ) -> _Built:
+    """The construction with S from legs order[0], order[1] and m = order[2]; ``normal_t(r)`` is T's
+    known term for the segment r (0 for velocities, -omega_T^2 r for accelerations)."""
+    a, b, m = order
+    la, lb, lm = legs[a], legs[b], legs[m]
+    # S: each of the two legs' lines after T's normal term from Q to S
+    first = cross_lines(la.through + normal_t(s_world - la.at), la.direction,
+                        lb.through + normal_t(s_world - lb.at), lb.direction)
+    s = first.point
+    r_m = lm.at - s_world
+    third = cross_lines(s + normal_t(r_m), 1j * r_m, lm.through, lm.direction)
+    rate = third.along_first
+    tip_m = third.point
+    tips: list[Points] = [tip_m, tip_m, tip_m]
+    along: list[Reals] = [rate, rate, rate]
+    sines = [first.sin_angle, third.sin_angle]
+    along[m] = third.along_second()
+    for k in (a, b):
+        r = legs[k].at - lm.at
+        crossing = cross_lines(tip_m + normal_t(r), 1j * r, legs[k].through, legs[k].direction)
+        tips[k] = crossing.point
+        along[k] = crossing.along_second()
+        sines.append(crossing.sin_angle)
+    return _Built(s, (tips[0], tips[1], tips[2]), (along[0], along[1], along[2]), rate,
+                  (sines[0], sines[1], sines[2], sines[3]))
+
+
+def _assur_world(legs: list[_LegLine], order: tuple[int, int, int]) -> tuple[Points, Reals]:
+    """Where the lines of legs order[0] and order[1] cross on the mechanism, and the sine of their angle."""
+    la, lb = legs[order[0]], legs[order[1]]
+    crossing = cross_lines(la.at, 1j * la.direction, lb.at, 1j * lb.direction)
+    return crossing.point, crossing.sin_angle
+
+
+def _construct(polygon: Polygon, triad: Triad, legs: list[_LegLine],
+               normal_t: Callable[[Points], Points]) -> tuple[_Built, Points, Reals, tuple[int, int, int]]:
+    """Every choice of the pair of legs, the best one taken at every row; also row 0's choice."""
+    orders = _ORDERS
+    assur = [_assur_world(legs, order) for order in orders]
+    built = [_build(legs, assur[k][0], normal_t, orders[k]) for k in range(3)]
+    quality = np.stack([np.min(np.abs(np.stack([assur[k][1], *built[k].sines])), axis=0) for k in range(3)])
+    best = np.argmax(np.where(np.isfinite(quality), quality, -1.0), axis=0)
+
+    def pick(values: list[Points] | list[Reals]) -> Points:
+        out = values[0]
+        for k in (1, 2):
+            out = np.where(best == k, values[k], out)
+        return np.asarray(out)
+
+    chosen = _Built(pick([b.s for b in built]), tuple(pick([b.tips[q] for b in built]) for q in range(3)),  # type: ignore[arg-type]
+                    tuple(pick([b.along[q] for b in built]).real for q in range(3)),  # type: ignore[arg-type]
+                    pick([b.rate for b in built]).real,
+                    tuple(pick([b.sines[q] for b in built]).real for q in range(4)))  # type: ignore[arg-type]
+    s_world = pick([a for a, _ in assur])
+    s_sin = pick([sin for _, sin in assur]).real
+    for what, sin in zip((triad.assur, *(leg.point for leg in triad.legs)), chosen.sines, strict=True):
+        polygon.crossings.append(LineCrossing(polygon.kind, _name(triad), what, np.minimum(np.abs(sin), np.abs(s_sin)),
+                                              chosen.rate))
+    if polygon.strict:
+        worst = min(abs(float(sin[0])) for sin in (s_sin, *chosen.sines))
+        if not worst > PARALLEL_SIN:
+            raise SingularityError(
+                f"singular position of the triad {_name(triad)}: its {polygon.kind} direction lines are parallel "
+                "for every pair of legs (the Assur point is at infinity for each pair, or the third leg is in "
+                f"line with it); the {polygon.kind}s of the group are not determined by the input")
+    return chosen, s_world, s_sin, orders[int(best[0])]
+
+
+def _name(triad: Triad) -> str:
+    return f"{triad.ternary}-" + "-".join(leg.link for leg in triad.legs) + " (triad)"
+
+
+# -- velocity ---------------------------------------------------------------------------------------
+
+
+def _velocity_leg(polygon: Polygon, triad: Triad, leg: Leg) -> _LegLine:
+    from kinepoly.engine.velocity import slide_direction
+
+    at = polygon.world(leg.point)
+    if leg.kind == "pin":
+        assert leg.pin is not None
+        start = polygon.tip(leg.known, leg.pin)
+        direction = np.asarray(1j * (at - polygon.world(leg.pin)))
+    else:
+        assert leg.slider is not None
+        start = polygon.tip(leg.known, leg.point)
+        direction = slide_direction(polygon.positions, leg.slider)
+    return _LegLine(at, start, start, direction, ())
+
+
+def velocity_by_assur_point(polygon: Polygon, triad: Triad, sliding: dict[str, Points]) -> None:
+    """The triad's velocity polygon through its Assur point."""
+    legs = [_velocity_leg(polygon, triad, leg) for leg in triad.legs]
+    built, s_world, _, order = _construct(polygon, triad, legs, lambda r: polygon.zero)
+    _finish(polygon, triad, legs, built, s_world, order)
+    for leg, tip in zip(triad.legs, built.tips, strict=True):
+        if leg.slider is not None:
+            on_leg, on_t = (polygon.tip(leg.link, leg.point), tip) if leg.kind == "slot" else (
+                tip, polygon.tip(leg.known, leg.point))
+            sliding[leg.slider.name] = np.asarray(on_leg - on_t)
+
+
+def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built, s_world: Points,
+            order: tuple[int, int, int]) -> None:
+    """Register the tips and rates the construction found, and record its steps (row 0)."""
+    from kinepoly.engine.velocity import read_rate
+
+    t = triad.ternary
+    polygon.positions.add_point(triad.assur, s_world)
+    polygon.add_virtual_tip(t, triad.assur, built.s)
+    labels = []
+    for leg, tip in zip(triad.legs, built.tips, strict=True):
+        labels.append(polygon.add_tip(t, leg.point, tip))
+    if polygon.record:
+        _record(polygon, triad, legs, built, order, labels)
+    read_rate(polygon, t, triad.assur, labels[order[2]], built.rate)
+    for leg, along in zip(triad.legs, built.along, strict=True):
+        if leg.kind == "pin":
+            assert leg.pin is not None
+            read_rate(polygon, leg.link, leg.pin, leg.point, along)
+
+
+def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built, order: tuple[int, int, int],
+            labels: list[str]) -> None:
+    a, b, m = order
+    s = triad.assur
+    sym = polygon.symbol
+    t = triad.ternary
+
+    def leg_direction(k: int, term: str) -> Direction:
+        leg = triad.legs[k]
+        through = polygon.label(leg.known, leg.pin if leg.kind == "pin" and leg.pin else leg.point).lower()
+        after = legs[k].vectors[-1].label if legs[k].vectors else ""
+        if leg.kind == "pin":
+            return Direction(term, "perpendicular", f"{leg.pin}{leg.point}", through, after=after)
+        assert leg.slider is not None
+        return Direction(term, "parallel", leg.slider.name, through, after=after)
+
+    def line(k: int, label: str) -> Line:
+        return (legs[k].through, legs[k].direction, None)
+
+    def leg_term(k: int) -> str:
+        leg = triad.legs[k]
+        if leg.kind == "pin":
+            return f"{sym}{'^t' if polygon.kind == 'acceleration' else ''}_{leg.point}/{leg.pin}"
+        return f"{sym}_{labels[k]}/{polygon.label(leg.known, leg.point)}"
+
+    def leg_known(k: int) -> str:
+        leg = triad.legs[k]
+        return f"{sym}_{polygon.label(leg.known, leg.pin if leg.kind == 'pin' and leg.pin else leg.point)}"
+
+    la, lb = triad.legs[a], triad.legs[b]
+    polygon.step(Step(polygon=polygon.kind, kind="known", equation=f"{s} = line of leg {la.link} x line of "
+                      f"leg {lb.link}", result=s, topic="assur-point",
+                      params=(("point", s), ("ternary", t), ("first", la.link), ("second", lb.link),
+                              *_leg_line("first", la), *_leg_line("second", lb), ("third", triad.legs[m].link))))
+    vectors = tuple(v for k in (a, b) for v in legs[k].vectors)
+    polygon.step(Step(
+        polygon=polygon.kind, kind="intersection",
+        equation=f"{sym}_{s} = {sym}_{labels[a]} + {sym}_{s}/{labels[a]} = {sym}_{labels[b]} + {sym}_{s}/{labels[b]}",
+        result=s.lower(),
+        known=tuple((v.label, "magnitude and direction") for v in vectors) + ((leg_term(a), "direction"),
+                                                                              (leg_term(b), "direction")),
+        vectors=vectors,
+        lines=(polygon.step_line(line(a, ""), ""), polygon.step_line(line(b, ""), "")),
+        value=polygon.vec(built.s), topic="assur-tip",
+        params=(("point", s), ("ternary", t), ("first", la.link), ("second", lb.link)),
+        directions=(leg_direction(a, f"{leg_term(a)} + {sym}_{s}/{labels[a]}"),
+                    leg_direction(b, f"{leg_term(b)} + {sym}_{s}/{labels[b]}"))))
+    for k, from_k in ((m, -1), (a, m), (b, m)):
+        ref = s if from_k < 0 else labels[from_k]
+        ref_point = s if from_k < 0 else triad.legs[from_k].point
+        point = triad.legs[k].point
+        start = built.s if from_k < 0 else built.tips[from_k]
+        first_term = f"{sym}{'^t' if polygon.kind == 'acceleration' else ''}_{labels[k]}/{ref}"
+        normal = f" + a^n_{labels[k]}/{ref}" if polygon.kind == "acceleration" else ""
+        laid = "".join(f" + {v.label}" for v in legs[k].vectors)
+        polygon.step(Step(
+            polygon=polygon.kind, kind="intersection",
+            equation=f"{sym}_{labels[k]} = {sym}_{ref}{normal} + {first_term} = {leg_known(k)}{laid} + {leg_term(k)}",
+            result=labels[k].lower(),
+            known=((f"{sym}_{ref}", "magnitude and direction"), (first_term, "direction"),
+                   (leg_term(k), "direction")),
+            vectors=legs[k].vectors,
+            lines=(polygon.step_line((start, np.asarray(1j * (polygon.world(point) - polygon.world(ref_point))), None),
+                                     ""), polygon.step_line(line(k, ""), "")),
+            value=polygon.vec(built.tips[k]), topic="intersection", params=(("point", labels[k]),
+                                                                            ("triad", _name(triad))),
+            directions=(Direction(first_term, "perpendicular", f"{ref_point}{point}", ref.lower()),
+                        leg_direction(k, leg_term(k)))))
+
+
+def _leg_line(which: str, leg: Leg) -> tuple[tuple[str, str], ...]:
+    """A leg's line as data: a rod's own segment (``first_segment``, from ``first_pin`` to ``first_point``),
+    or the normal to a slide through a point (``first_slider``, ``first_point``)."""
+    if leg.kind == "pin":
+        return ((f"{which}_segment", f"{leg.pin}{leg.point}"), (f"{which}_pin", str(leg.pin)),
+                (f"{which}_point", leg.point))
+    assert leg.slider is not None
+    return ((f"{which}_slider", leg.slider.name), (f"{which}_point", leg.point))
+
+
+# -- acceleration -----------------------------------------------------------------------------------
+
+
+def _acceleration_leg(ctx: _Context, triad: Triad, leg: Leg) -> _LegLine:
+    from kinepoly.engine.velocity import slide_direction
+
+    b = ctx.b
+    at = b.world(leg.point)
+    if leg.kind == "pin":
+        assert leg.pin is not None
+        (through, direction, _), normal, _ = ctx.normal_line(leg.known, leg.pin, leg.point, leg.link)
+        start = b.tip(leg.known, leg.pin)
+        return _LegLine(at, start, through, np.asarray(direction), (normal,) if normal is not None else ())
+    assert leg.slider is not None
+    start = b.tip(leg.known, leg.point)
+    if leg.kind == "slide":  # the block's point over the guide's: + 2 omega_guide x v_rel
+        end, laid = ctx.lay_coriolis(leg.slider, start, leg.link, leg.known, leg.point)
+    else:  # the point of T under K: a_K - 2 omega_T x v_rel (v_rel of the block over T)
+        end, laid = ctx.lay_coriolis(leg.slider, start, leg.link, triad.ternary, leg.point, -1.0)
+    return _LegLine(at, start, end, np.asarray(slide_direction(b.positions, leg.slider)), tuple(laid))
+
+
+def acceleration_by_assur_point(ctx: _Context, triad: Triad) -> None:
+    """The triad's acceleration polygon through its Assur point, after the known terms."""
+    b = ctx.b
+    legs = [_acceleration_leg(ctx, triad, leg) for leg in triad.legs]
+    w = b.omega_of(triad.ternary)
+    w2 = w * w
+    built, s_world, _, order = _construct(b, triad, legs, lambda r: np.asarray(b.normal_sign * w2 * r))
+    _finish(b, triad, legs, built, s_world, order)
+    for leg in triad.legs:
+        if leg.slider is not None:
+            ctx.slide_values(leg.slider, leg.link, leg.point)

@@ -1,0 +1,72 @@
+"""Each circle cam replaced by its equivalent link, permanently (a circle has one centre of curvature).
+
+The contact's common normal always passes through the disc's centre K, so the pair is, at every
+position, the same lower-pair linkage:
+
+* a roller turning on W: a binary link K W of length R + r (R - r when it runs inside a groove);
+* a knife edge at W: a binary link K W of length R (the edge rides the circle);
+* a flat face: a block pinned at K sliding on the follower along the face's line moved R toward
+  the disc. The disc touches the face on the face's left (counter-clockwise of its direction);
+  write the face's angle turned half a turn for the other side.
+
+The equivalent link and its joints are added to the scene (``Scene.equivalent_links``) so that the
+plan's dyads, the polygons, the analytic check and Kennedy's theorem use it like any other link.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from kinepoly.scene.spec import CamSpec, LinkSpec, PointSpec, Scene, SliderSpec
+
+__all__ = ["with_equivalent_links"]
+
+
+def _fresh(base: str, taken: set[str]) -> str:
+    name, k = base, 1
+    while name in taken:
+        k += 1
+        name = f"{base}{k}"
+    taken.add(name)
+    return name
+
+
+def _center_point(scene: Scene, cam: CamSpec, taken: set[str]) -> str:
+    """A point of the cam already at the disc's centre, or a new one ``K<name>``."""
+    for p in scene.link(cam.cam).points:
+        if math.hypot(p.local[0] - cam.center[0], p.local[1] - cam.center[1]) <= 1e-12 * max(1.0, cam.radius):
+            return p.name
+    return _fresh(f"K{cam.name}", taken)
+
+
+def with_equivalent_links(scene: Scene) -> Scene:
+    """``scene`` with each cam's equivalent link (and, for a flat face, its slider) added."""
+    if not scene.cams:
+        return scene
+    links = {link.name: link for link in scene.links}
+    points = {p.name for link in scene.links for p in link.points}
+    names = set(links)
+    sliders = list(scene.sliders)
+    cams = []
+    for cam in scene.cams:
+        k = _center_point(scene, cam, points)
+        if k not in scene.link(cam.cam).point_names:
+            owner = links[cam.cam]
+            links[cam.cam] = replace(owner, points=(*owner.points, PointSpec(k, cam.center, cam.line)))
+        link = _fresh(f"eq{cam.name}", names)
+        if cam.kind == "flat":
+            assert cam.flat is not None
+            (x, y), angle = cam.flat
+            left = (-math.sin(angle), math.cos(angle))
+            through = (x + cam.radius * left[0], y + cam.radius * left[1])
+            links[link] = LinkSpec(link, (PointSpec(k, (0.0, 0.0), cam.line),), cam.line)
+            sliders.append(SliderSpec(f"{cam.follower}-{link}", link, cam.follower, k, through, angle, cam.line))
+        else:
+            assert cam.point is not None
+            length = cam.radius + (-cam.roller_radius if cam.inside else cam.roller_radius)
+            links[link] = LinkSpec(link, (PointSpec(k, (0.0, 0.0), cam.line), PointSpec(cam.point, (length, 0.0),
+                                                                                          cam.line)), cam.line)
+        cams.append(replace(cam, equivalent=link, center_point=k))
+    return replace(scene, links=tuple(links.values()), sliders=tuple(sliders), cams=tuple(cams),
+                   equivalent_links=tuple(c.equivalent for c in cams))
