@@ -92,3 +92,4 @@ def test_the_json_keeps_the_computed_floats(capsys: pytest.CaptureFixture[str]) 
     assert code == 0
     x = json.loads(out)["instant_centers"]
     assert any(0.0 < abs(v) < 1e-9 for c in x.values() for v in c.get("position", [])), "the raw float is kept"
+

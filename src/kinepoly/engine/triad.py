@@ -193,7 +193,8 @@ def _construct(polygon: Polygon, triad: Triad, legs: list[_LegLine],
                     tuple(pick([b.sines[q] for b in built]).real for q in range(4)))  # type: ignore[arg-type]
     s_world = pick([a for a, _ in assur])
     s_sin = pick([sin for _, sin in assur]).real
-    for what, sin in zip((triad.assur, *(leg.point for leg in triad.legs)), chosen.sines, strict=True):
+    tips = ", ".join(leg.point for leg in triad.legs)  # which leg's crossing each sine is varies with the pair
+    for what, sin in zip((triad.assur, tips, tips, tips), chosen.sines, strict=True):
         polygon.crossings.append(LineCrossing(polygon.kind, _name(triad), what, np.minimum(np.abs(sin), np.abs(s_sin)),
                                               chosen.rate))
     if polygon.strict:

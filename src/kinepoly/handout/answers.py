@@ -112,9 +112,9 @@ def _check(solution: Solution, say: Catalogue) -> list[Part]:
 
 def answers_page(solution: Solution, say: Catalogue, scales: Mapping[str, float]) -> Page:
     """The answers of the construction and the cross-check; ``scales`` as drawn, for the lengths on paper."""
-    from kinepoly.present.report import to_json
+    from kinepoly.present.report import readable_json
 
-    data = to_json(solution)
+    data = readable_json(solution)  # a value below its error estimate is printed as 0
     unit = solution.scene.units.length
     ground = solution.mechanism.ground or ""
     first: list[Part] = [Paragraph(solution.scene.title, "title"), Paragraph(say.say("answers.title"), "heading"),
