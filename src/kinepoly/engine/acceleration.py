@@ -23,11 +23,11 @@ from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.engine.velocity import (
     VelocityResult,
+    add_motor_rate,
     drive_geometry,
     lay_driven_slider,
     link_length,
     read_rate,
-    record_added_rate,
     record_drive_term,
     slide_direction,
 )
@@ -309,10 +309,7 @@ def _drive_group(ctx: _Context, group: DriveGroup) -> None:
     b.tip(group.known, drive.joint.point)
     known_rate = b.rate_of(group.known)
     assert known_rate is not None
-    sign = 1.0 if group.link == drive.moving else -1.0
-    b.set_rate(group.link, np.asarray(known_rate + sign * drive.rate(2)))
-    if b.record:
-        record_added_rate(b, group.link, group.known, drive.moving, drive.base)
+    add_motor_rate(b, drive, group.link, group.known, known_rate)
 
 
 def _carried(ctx: _Context, dyad: Dyad) -> None:
@@ -351,10 +348,7 @@ def _carried(ctx: _Context, dyad: Dyad) -> None:
                  _along_normal(ctx, f"a^t_{p2}/{p3}", k2, p3, p2, n2)))
     read_rate(b, carrier, p1, on_carrier, crossing.along_first)
     if isinstance(drive.joint, Revolute):
-        sign = 1.0 if i == drive.moving else -1.0
-        b.set_rate(i, np.asarray(crossing.along_first + sign * drive.rate(2)))
-        if b.record:
-            record_added_rate(b, i, carrier, drive.moving, drive.base)
+        add_motor_rate(b, drive, i, carrier, crossing.along_first)
     else:
         assert slide is not None
         ctx.sliding[drive.joint.name] = np.asarray(drive.rate(2) * slide)

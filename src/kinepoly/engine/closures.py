@@ -134,32 +134,47 @@ def _closes(slack: Reals, scale: Reals | float) -> Bools:
     return np.asarray(slack >= -ASSEMBLY_REL_TOL * scale * scale)
 
 
-def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
-    i, j = dyad.first, dyad.second
+def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...] = ()) -> Closure:
+    """Two circles. A carried dyad's first side is its carrier and ``first`` held by a driven joint: the
+    inner joint lies at a distance from the carrier's outer joint that the input fixes at each row."""
+    i, j, outer, drive = dyad.first, dyad.second, dyad.outer_first, dyad.drive
     assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.second_joint, Revolute)
     assert isinstance(dyad.inner, Revolute)
     p1, p2, p3 = dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point
-    w1 = _outer_world(mech, poses, dyad.first_joint, i, p1)
+    w1 = _outer_world(mech, poses, dyad.first_joint, outer, p1)
     w3 = _outer_world(mech, poses, dyad.second_joint, j, p3)
-    r1 = abs(_local(mech, i, p2) - _local(mech, i, p1))
+    local2: complex | Points = _local(mech, i, p2)
+    if drive is not None:  # the inner joint in the carrier's frame, row by row
+        local2 = carried_local(mech, drive, i, complex(local2), values[drive.index])
+    span = local2 - _local(mech, outer, p1)
+    r1 = np.abs(span)
     r2 = abs(_local(mech, j, p2) - _local(mech, j, p3))
     left, right, slack, d, h = circle_circle(w1, r1, w3, r2)
-    singular = np.asarray(~(d > ASSEMBLY_REL_TOL * max(r1, r2)))
-    ok = _closes(slack, np.maximum(d, max(r1, r2))) & ~singular
+    singular = np.asarray(~(d > ASSEMBLY_REL_TOL * np.maximum(r1, r2)))
+    ok = _closes(slack, np.maximum(d, np.maximum(r1, r2))) & ~singular & (r1 > 0)
 
     def place(choice: Choice) -> dict[str, ArrayPose]:
         at = pick(choice, left, right)
-        return {i: pose_from_two_points(mech.local(i, p1), mech.local(i, p2), w1, at, rigid=True),
-                j: pose_from_two_points(mech.local(j, p3), mech.local(j, p2), w3, at, rigid=True)}
+        rotation = np.asarray((at - w1) * (np.conjugate(span) / (r1 * r1)))
+        placed = {outer: pose_from_point(mech.local(outer, p1), w1, rotation),
+                  j: pose_from_two_points(mech.local(j, p3), mech.local(j, p2), w3, at, rigid=True)}
+        if drive is not None:
+            placed[i] = pose_from_point(mech.local(i, p2), at, np.asarray(rotation * relative_turn(
+                drive, i, values[drive.index])))
+        return placed
 
     def why(k: int) -> str:
-        dk = float(d[k])
+        dk, rk = float(d[k]), float(np.broadcast_to(r1, d.shape)[k])
+        held = f" (|{p1}{p2}| as links {outer} and {i} are held by {drive.name})" if drive else ""
+        if rk == 0.0:
+            return f"the input puts {p2} on {p1}, so link {j}'s pin {p2} has no circle to run on"
         if singular[k]:
             return (f"the pins {p1} and {p3} coincide (|{p1} {p3}| = {dk:.3g}), so {p2} may lie anywhere on a "
-                    f"circle of radius {r1:.6g} about them (a change point of the linkage)")
-        if dk > r1 + r2:
-            return f"|{p1} {p3}| = {dk:.6g} > |{p1}{p2}| + |{p2}{p3}| = {r1:.6g} + {r2:.6g} = {r1 + r2:.6g}"
-        return f"|{p1} {p3}| = {dk:.6g} < | |{p1}{p2}| - |{p2}{p3}| | = {abs(r1 - r2):.6g}"
+                    f"circle of radius {rk:.6g} about them (a change point of the linkage)")
+        if dk > rk + r2:
+            return f"|{p1} {p3}| = {dk:.6g} > |{p1}{p2}| + |{p2}{p3}| = {rk:.6g} + {r2:.6g} = {rk + r2:.6g}{held}"
+        return (f"|{p1} {p3}| = {dk:.6g} < | |{p1}{p2}| - |{p2}{p3}| | = | {rk:.6g} - {r2:.6g} | = "
+                f"{abs(rk - r2):.6g}{held}")
 
     labels = (f"{p2} left of {p1}->{p3}", f"{p2} right of {p1}->{p3}")
     return Closure(dyad, (left, right), labels, ok, singular, 2.0 * h, place, why, p2, _inner_at(mech, i, p2))
@@ -292,57 +307,12 @@ def _two_slides(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Clo
                    lambda _: lines, name, lambda _: 0j)
 
 
-def _carried_rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...]) -> Closure:
-    """An RRR dyad whose first side is the carrier and ``first`` held together by a driven joint: the
-    inner joint lies at a known distance from the carrier's outer joint at each row."""
-    i, j, carrier, drive = dyad.first, dyad.second, dyad.carrier, dyad.drive
-    assert carrier is not None and drive is not None
-    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.second_joint, Revolute)
-    assert isinstance(dyad.inner, Revolute)
-    p1, p2, p3 = dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point
-    value = values[drive.index]
-    w1 = _outer_world(mech, poses, dyad.first_joint, carrier, p1)
-    w3 = _outer_world(mech, poses, dyad.second_joint, j, p3)
-    local1 = _local(mech, carrier, p1)
-    local2 = carried_local(mech, drive, i, _local(mech, i, p2), value)  # in the carrier's frame
-    span = local2 - local1
-    r1 = length(span)
-    r2 = abs(_local(mech, j, p2) - _local(mech, j, p3))
-    left, right, slack, d, h = circle_circle(w1, r1, w3, r2)
-    singular = np.asarray(~(d > ASSEMBLY_REL_TOL * np.maximum(r1, r2)))
-    ok = _closes(slack, np.maximum(d, np.maximum(r1, r2))) & ~singular & (r1 > 0)
-    turn_i = relative_turn(drive, i, value)
-
-    def place(choice: Choice) -> dict[str, ArrayPose]:
-        at = pick(choice, left, right)
-        rotation = np.asarray((at - w1) * span.conjugate() / (r1 * r1))
-        pose_carrier = ArrayPose(np.asarray(w1 - rotation * local1), rotation)
-        pose_i = pose_from_point(mech.local(i, p2), at, np.asarray(rotation * turn_i))
-        return {carrier: pose_carrier, i: pose_i,
-                j: pose_from_two_points(mech.local(j, p3), mech.local(j, p2), w3, at, rigid=True)}
-
-    def why(k: int) -> str:
-        dk, rk = float(d[k]), float(r1[k])
-        held = f"|{p1}{p2}| = {rk:.6g} (links {carrier} and {i} held by {drive.name})"
-        if rk == 0.0:
-            return f"the driven joint puts {p2} on {p1} ({drive.name}), so link {j}'s pin {p2} has no circle to run on"
-        if singular[k]:
-            return (f"the pins {p1} and {p3} coincide (|{p1} {p3}| = {dk:.3g}), so {p2} may lie anywhere on a "
-                    f"circle about them (a change point of the linkage)")
-        if dk > rk + r2:
-            return f"|{p1} {p3}| = {dk:.6g} > {held} + |{p2}{p3}| = {r2:.6g}, sum {rk + r2:.6g}"
-        return f"|{p1} {p3}| = {dk:.6g} < | {held} - |{p2}{p3}| = {r2:.6g} | = {abs(rk - r2):.6g}"
-
-    labels = (f"{p2} left of {p1}->{p3}", f"{p2} right of {p1}->{p3}")
-    return Closure(dyad, (left, right), labels, ok, singular, 2.0 * h, place, why, p2, _inner_at(mech, i, p2))
-
-
-_KINDS = {"RRR": _rrr, "RRP": _rrp, "RPR": _rpr, "PRP": _two_slides, "RPP": _two_slides}
+_KINDS = {"RRP": _rrp, "RPR": _rpr, "PRP": _two_slides, "RPP": _two_slides}
 
 
 def close_dyad(mechanism: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...] = ()) -> Closure:
     """Every assembly of ``dyad`` at every row, its known links placed by ``poses`` (``values``: each
     input's value at every row, for a carried dyad)."""
-    if dyad.carrier is not None:
-        return _carried_rrr(mechanism, poses, dyad, values)
+    if dyad.kind == "RRR":
+        return _rrr(mechanism, poses, dyad, values)
     return _KINDS[dyad.kind](mechanism, poses, dyad)

@@ -100,8 +100,7 @@ def triad_of(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
             if leg is None:
                 return None
             legs.append(leg)
-        names = {p for link in mechanism.link_names for p in mechanism.links_of_point_names(link)}
-        assur = next(n for n in ("S", f"S{ternary}", f"S_{ternary}", "S*") if n not in names)
+        assur = next(n for n in ("S", f"S{ternary}", f"S_{ternary}", "S*") if not mechanism.links_of_point(n))
         return Triad(ternary, (legs[0], legs[1], legs[2]), assur)
     return None
 
@@ -115,7 +114,6 @@ class _LegLine:
     where Q is on the mechanism."""
 
     at: Points
-    start: Points
     through: Points
     direction: Points
     vectors: tuple[DrawnVector, ...]
@@ -173,7 +171,7 @@ def _assur_world(legs: list[_LegLine], order: tuple[int, int, int]) -> tuple[Poi
 
 
 def _construct(polygon: Polygon, triad: Triad, legs: list[_LegLine],
-               normal_t: Callable[[Points], Points]) -> tuple[_Built, Points, Reals, tuple[int, int, int]]:
+               normal_t: Callable[[Points], Points]) -> tuple[_Built, Points, tuple[int, int, int]]:
     """Every choice of the pair of legs, the best one taken at every row; also row 0's choice."""
     orders = _ORDERS
     assur = [_assur_world(legs, order) for order in orders]
@@ -204,7 +202,7 @@ def _construct(polygon: Polygon, triad: Triad, legs: list[_LegLine],
                 f"singular position of the triad {_name(triad)}: its {polygon.kind} direction lines are parallel "
                 "for every pair of legs (the Assur point is at infinity for each pair, or the third leg is in "
                 f"line with it); the {polygon.kind}s of the group are not determined by the input")
-    return chosen, s_world, s_sin, orders[int(best[0])]
+    return chosen, s_world, orders[int(best[0])]
 
 
 def _name(triad: Triad) -> str:
@@ -226,13 +224,13 @@ def _velocity_leg(polygon: Polygon, triad: Triad, leg: Leg) -> _LegLine:
         assert leg.slider is not None
         start = polygon.tip(leg.known, leg.point)
         direction = slide_direction(polygon.positions, leg.slider)
-    return _LegLine(at, start, start, direction, ())
+    return _LegLine(at, start, direction, ())
 
 
 def velocity_by_assur_point(polygon: Polygon, triad: Triad, sliding: dict[str, Points]) -> None:
     """The triad's velocity polygon through its Assur point."""
     legs = [_velocity_leg(polygon, triad, leg) for leg in triad.legs]
-    built, s_world, _, order = _construct(polygon, triad, legs, lambda r: polygon.zero)
+    built, s_world, order = _construct(polygon, triad, legs, lambda r: polygon.zero)
     _finish(polygon, triad, legs, built, s_world, order)
     for leg, tip in zip(triad.legs, built.tips, strict=True):
         if leg.slider is not None:
@@ -352,15 +350,14 @@ def _acceleration_leg(ctx: _Context, triad: Triad, leg: Leg) -> _LegLine:
     if leg.kind == "pin":
         assert leg.pin is not None
         (through, direction, _), normal, _ = ctx.normal_line(leg.known, leg.pin, leg.point, leg.link)
-        start = b.tip(leg.known, leg.pin)
-        return _LegLine(at, start, through, np.asarray(direction), (normal,) if normal is not None else ())
+        return _LegLine(at, through, np.asarray(direction), (normal,) if normal is not None else ())
     assert leg.slider is not None
     start = b.tip(leg.known, leg.point)
     if leg.kind == "slide":  # the block's point over the guide's: + 2 omega_guide x v_rel
         end, laid = ctx.lay_coriolis(leg.slider, start, leg.link, leg.known, leg.point)
     else:  # the point of T under K: a_K - 2 omega_T x v_rel (v_rel of the block over T)
         end, laid = ctx.lay_coriolis(leg.slider, start, leg.link, triad.ternary, leg.point, -1.0)
-    return _LegLine(at, start, end, np.asarray(slide_direction(b.positions, leg.slider)), tuple(laid))
+    return _LegLine(at, end, np.asarray(slide_direction(b.positions, leg.slider)), tuple(laid))
 
 
 def acceleration_by_assur_point(ctx: _Context, triad: Triad) -> None:
@@ -369,7 +366,7 @@ def acceleration_by_assur_point(ctx: _Context, triad: Triad) -> None:
     legs = [_acceleration_leg(ctx, triad, leg) for leg in triad.legs]
     w = b.omega_of(triad.ternary)
     w2 = w * w
-    built, s_world, _, order = _construct(b, triad, legs, lambda r: np.asarray(b.normal_sign * w2 * r))
+    built, s_world, order = _construct(b, triad, legs, lambda r: np.asarray(b.normal_sign * w2 * r))
     _finish(b, triad, legs, built, s_world, order)
     for leg in triad.legs:
         if leg.slider is not None:

@@ -295,23 +295,25 @@ def _drive_group(polygon: Polygon, group: DriveGroup, sliding: dict[str, Points]
     polygon.tip(group.known, drive.joint.point)
     known_rate = polygon.rate_of(group.known)
     assert known_rate is not None
-    sign = 1.0 if group.link == drive.moving else -1.0
-    polygon.set_rate(group.link, np.asarray(known_rate + sign * drive.rate(1)))
-    if polygon.record:
-        record_added_rate(polygon, group.link, group.known, drive.moving, drive.base)
+    add_motor_rate(polygon, drive, group.link, group.known, known_rate)
 
 
-def record_added_rate(polygon: Polygon, link: str, known: str, moving: str, base: str) -> None:
-    """The step that gives ``link``'s rate as the known link's plus the motor's (omega or alpha)."""
+def add_motor_rate(polygon: Polygon, drive: Drive, link: str, known: str, known_rate: Reals) -> None:
+    """``link``'s rate (omega or alpha, as the polygon is) as ``known``'s plus the motor's, with its step."""
+    sign = 1.0 if link == drive.moving else -1.0
+    polygon.set_rate(link, np.asarray(known_rate + sign * drive.rate(1 if polygon.kind == "velocity" else 2)))
+    if not polygon.record:
+        return
     symbol = "omega" if polygon.kind == "velocity" else "alpha"
     ground = polygon.ground_name()
     value = polygon.num(polygon.rate[link])
-    sign = "+" if link == moving else "-"
+    moving, base = drive.moving, drive.base
+    sign_text = "+" if sign > 0 else "-"
     polygon.step(Step(polygon=polygon.kind, kind="known",
-                      equation=f"{symbol}{ground}{link} = {symbol}{ground}{known} {sign} {symbol}{base}{moving}",
+                      equation=f"{symbol}{ground}{link} = {symbol}{ground}{known} {sign_text} {symbol}{base}{moving}",
                       result=f"{symbol}{ground}{link}", value=(value,), topic="added-rate",
                       params=(("link", link), ("known", known), ("ground", ground), ("motor", f"{base}{moving}"),
-                              ("sign", sign), ("rate", abs(value)), ("sense", sense(value)))))
+                              ("sign", sign_text), ("rate", abs(value)), ("sense", sense(value)))))
 
 
 def drive_geometry(polygon: Polygon, dyad: Dyad) -> tuple[Points, Points | None, Points | None]:
@@ -359,10 +361,7 @@ def _carried(polygon: Polygon, dyad: Dyad, sliding: dict[str, Points], sines: di
                              (DrawnVector(f"v_{p2}/{on_carrier}", polygon.vec(start), polygon.vec(moved), "relative"),))
     read_rate(polygon, carrier, p1, on_carrier, crossing.along_first)
     if isinstance(drive.joint, Revolute):
-        sign = 1.0 if i == drive.moving else -1.0
-        polygon.set_rate(i, np.asarray(crossing.along_first + sign * drive.rate(1)))
-        if polygon.record:
-            record_added_rate(polygon, i, carrier, drive.moving, drive.base)
+        add_motor_rate(polygon, drive, i, carrier, crossing.along_first)
     else:
         sliding[drive.joint.name] = np.asarray(drive.rate(1) * slide_direction(polygon.positions, drive.joint))
     read_rate(polygon, j, p3, p2, crossing.along_second())

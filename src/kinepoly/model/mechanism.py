@@ -230,7 +230,7 @@ class Mechanism:
         for joint in self.joints_of(link):
             if isinstance(joint, Revolute) and base in joint.links:
                 return joint
-        shared = [p for p in self.links_of_point_names(link) if base in self.links_of_point(p)]
+        shared = [p for p in self.scene.link(link).point_names if base in self.links_of_point(p)]
         where = "input" if len(self.scene.inputs) == 1 else f"input.{index + 1}"
         if shared:
             return Revolute(shared[0], (link, base))
@@ -239,9 +239,6 @@ class Mechanism:
             f"{self.scene.source}: {where}.link: link {link} has no pin with link {base}{frame}; "
             f"expected the input link to turn about a point it shares with link {base}"
         )
-
-    def links_of_point_names(self, link: str) -> tuple[str, ...]:
-        return tuple(p.name for p in self.scene.link(link).points)
 
     def input_pivot(self, spec: LinkInput | None = None) -> Revolute:
         """The pin about which an input link (the first input's, by default) turns on its base."""
@@ -306,7 +303,7 @@ def _loose_text(mechanism: Mechanism) -> str:
         joints = mechanism.joints_of(link)
         if link == mechanism.ground or len(joints) != 1 or link in driven:
             continue
-        alone = [p for p in mechanism.links_of_point_names(link) if len(mechanism.links_of_point(p)) == 1]
+        alone = [p for p in mechanism.scene.link(link).point_names if len(mechanism.links_of_point(p)) == 1]
         hint = (f"; its point(s) {', '.join(alone)} are on no other link (did you mean to add one to the frame "
                 f"{mechanism.ground} or to another link?)") if alone else ""
         out.append(f"link {link} is joined only at {joints[0].name}{hint}")
