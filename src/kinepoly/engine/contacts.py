@@ -1,30 +1,41 @@
-"""The contacts of the higher pairs at one row: where they touch, the common normal, the sliding velocity.
+"""The contacts of the higher pairs over rows: where they touch, the common normal, the sliding velocity.
 
 For a cam (a circle of centre K and radius R on the cam): a roller or knife edge at W touches on the
 line K W, a flat face at the foot of the perpendicular from K; the normal points from the cam's side
 to the follower's. For gears the contact is the pitch point and the normal the line of centres, from
 the first gear's side to the second's; gears roll, so the sliding velocity is zero. The sliding
 velocity is the follower's contact point's velocity relative to the cam's, along the common tangent.
+
+Everything is computed over arrays of rows (a sweep's thousands); a solve's contacts are the same
+computation on a batch of one (``contacts_at``). The cam's pressure angle and the follower's own
+coordinate (its angle on a pivot, or its slider on the frame) are read here too, for the sweep.
 The steps record, for each cam, that its equivalent link is used and where its ends are.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+
+import numpy as np
 
 from kinepoly.engine.gears import mesh
 from kinepoly.engine.polygon import Polygon
 from kinepoly.engine.row import VelocityPolygon
 from kinepoly.engine.steps import Step
+from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import Pose
-from kinepoly.scene.spec import CamSpec
+from kinepoly.scene.spec import CamSpec, SliderSpec
 
-__all__ = ["Contact", "contact_links", "contacts_at", "record_equivalent_links"]
+__all__ = ["Contact", "ContactRows", "FollowerCoordinate", "contact_links", "contacts_at", "contacts_over_rows",
+           "follower_coordinate", "polygon_velocity", "pressure_angles", "record_equivalent_links"]
 
 Vec = tuple[float, float]
+LinkVelocity = Callable[[str, Points], Points | None]
+"""The velocity of the point at ``Points`` (frame) as a point of link ``str``, at every row; None where unknown."""
 
 
 @dataclass(frozen=True)
@@ -37,6 +48,23 @@ class Contact:
     sliding_velocity: Vec | None
 
 
+@dataclass(frozen=True)
+class ContactRows:
+    """One pair's contact at every row: the point (frame), the unit normal (cam or first gear's side to the
+    other's) and, where the velocity polygon was built, the sliding velocity along the tangent."""
+
+    point: Points
+    normal: Points
+    sliding_velocity: Points | None
+
+    def row(self, k: int, offset: complex = 0j) -> Contact:
+        """Row ``k`` as plain values, the point moved by ``offset``."""
+        point, normal = complex(self.point[k]) + offset, complex(self.normal[k])
+        sliding = None if self.sliding_velocity is None else complex(self.sliding_velocity[k])
+        return Contact((point.real, point.imag), (normal.real, normal.imag),
+                       None if sliding is None else (sliding.real + 0.0, sliding.imag + 0.0))
+
+
 def contact_links(mechanism: Mechanism) -> set[str]:
     """The links a contact needs placed."""
     out = {link for gear in mechanism.scene.gears for link in gear.links}
@@ -44,60 +72,150 @@ def contact_links(mechanism: Mechanism) -> set[str]:
     return out
 
 
-def _velocity(velocity: VelocityPolygon, mechanism: Mechanism, link: str, at: complex) -> complex | None:
-    if link == mechanism.ground:
-        return 0j
-    omega = velocity.omega.get(link)
-    members = velocity.members.get(link, [])
-    if omega is None or not members:
-        return None
-    label, where = members[0]
-    tip = velocity.tips[label]
-    return complex(*tip) + omega * 1j * (at - complex(*where))
+Known = tuple[Points, Points, Reals]
+"""A link's known tip, where that point is, and the link's omega, at every row."""
 
 
-def _cam_contact(mechanism: Mechanism, pose: Pose, cam: CamSpec) -> tuple[complex, complex]:
-    k = complex(*pose.links[cam.cam].world(mechanism.local(cam.cam, cam.center_point)))
+def _rigid_velocity(mechanism: Mechanism, known: dict[str, Known]) -> LinkVelocity:
+    """A point's velocity as a point of a link: the link's known tip plus omega x r (zero on the frame)."""
+    def velocity(link: str, at: Points) -> Points | None:
+        if link == mechanism.ground:
+            return np.zeros(len(at), np.complex128)
+        if link not in known:
+            return None
+        tip, where, omega = known[link]
+        return np.asarray(tip + omega * 1j * (at - where))
+    return velocity
+
+
+def polygon_velocity(mechanism: Mechanism, polygon: Polygon) -> LinkVelocity:
+    """Velocities of points of links from a velocity polygon over rows."""
+    known: dict[str, Known] = {}
+    for link, members in polygon.members.items():
+        omega = polygon.rate_of(link)
+        if omega is not None and members:
+            known[link] = (polygon.tips[members[0].label], members[0].at, omega)
+    return _rigid_velocity(mechanism, known)
+
+
+def _row_velocity(mechanism: Mechanism, polygon: VelocityPolygon) -> LinkVelocity:
+    """The same from a solve's row values, as a batch of one."""
+    known: dict[str, Known] = {}
+    for link, members in polygon.members.items():
+        omega = polygon.omega.get(link)
+        if omega is not None and members:
+            (label, where) = members[0]
+            known[link] = (np.array([complex(*polygon.tips[label])]), np.array([complex(*where)]), np.array([omega]))
+    return _rigid_velocity(mechanism, known)
+
+
+def _world(mechanism: Mechanism, poses: dict[str, ArrayPose], link: str, point: str) -> Points:
+    return poses[link].world(mechanism.local(link, point))
+
+
+def _cam_contact(mechanism: Mechanism, poses: dict[str, ArrayPose], cam: CamSpec) -> tuple[Points, Points]:
+    k = _world(mechanism, poses, cam.cam, cam.center_point)
     if cam.kind == "flat":
         assert cam.flat is not None
-        theta = pose.links[cam.follower].theta + cam.flat[1]
-        normal = -1j * complex(math.cos(theta), math.sin(theta))  # from K toward the face (K on its left)
-        return k + cam.radius * normal, normal
+        face = poses[cam.follower].rotation * complex(math.cos(cam.flat[1]), math.sin(cam.flat[1]))
+        normal = np.asarray(-1j * face)  # from K toward the face (K on its left)
+        return np.asarray(k + cam.radius * normal), normal
     assert cam.point is not None
-    w = complex(*pose.links[cam.follower].world(mechanism.local(cam.follower, cam.point)))
-    n = (w - k) / abs(w - k)
-    point = w if cam.kind == "knife" else k + cam.radius * n
-    return point, (-n if cam.inside else n)
+    w = _world(mechanism, poses, cam.follower, cam.point)
+    n = np.asarray((w - k) / np.abs(w - k))
+    point = w if cam.kind == "knife" else np.asarray(k + cam.radius * n)
+    return point, np.asarray(-n if cam.inside else n)
+
+
+def _placed(poses: dict[str, ArrayPose], links: tuple[str, ...]) -> bool:
+    return all(link in poses for link in links)
+
+
+def contacts_over_rows(mechanism: Mechanism, poses: dict[str, ArrayPose],
+                       velocity: LinkVelocity | None) -> dict[str, ContactRows]:
+    """Every placed pair's contact at every row of ``poses``; ``velocity`` (``polygon_velocity``) gives the
+    sliding velocities, None leaves them out."""
+    out: dict[str, ContactRows] = {}
+    for gear in mechanism.scene.gears:
+        if _placed(poses, gear.links):
+            found = mesh(mechanism, gear, poses)
+            out[gear.name] = ContactRows(found.point, found.normal,
+                                         None if velocity is None else np.zeros(len(found.point), np.complex128))
+    for cam in mechanism.scene.cams:
+        if not _placed(poses, (cam.cam, cam.follower)):
+            continue
+        point, normal = _cam_contact(mechanism, poses, cam)
+        sliding = None
+        if velocity is not None:
+            on_follower, on_cam = velocity(cam.follower, point), velocity(cam.cam, point)
+            if on_follower is not None and on_cam is not None:
+                tangent = 1j * normal
+                sliding = np.asarray(((on_follower - on_cam) * np.conj(tangent)).real * tangent)
+        out[cam.name] = ContactRows(point, normal, sliding)
+    return out
 
 
 def contacts_at(mechanism: Mechanism, pose: Pose, velocity: VelocityPolygon | None,
                 offset: Vec = (0.0, 0.0)) -> dict[str, Contact]:
-    """Every pair's contact at ``pose``; points moved by ``offset`` (the solve's frame to the user's)."""
-    out: dict[str, Contact] = {}
-    shift = complex(*offset)
-    for gear in mechanism.scene.gears:
-        if not all(link in pose.links for link in gear.links):
-            continue
-        arrays = {link: ArrayPose.of_rows([pose.links[link]]) for link in gear.links}
-        found = mesh(mechanism, gear, arrays)
-        point, normal = complex(found.point[0]) + shift, complex(found.normal[0])
-        out[gear.name] = Contact((point.real, point.imag), (normal.real, normal.imag),
-                                 (0.0, 0.0) if velocity is not None else None)
-    for cam in mechanism.scene.cams:
-        if not all(link in pose.links for link in (cam.cam, cam.follower)):
-            continue
-        point, normal = _cam_contact(mechanism, pose, cam)
-        sliding = None
-        if velocity is not None:
-            on_follower = _velocity(velocity, mechanism, cam.follower, point)
-            on_cam = _velocity(velocity, mechanism, cam.cam, point)
-            if on_follower is not None and on_cam is not None:
-                tangent = 1j * normal
-                along = ((on_follower - on_cam) * tangent.conjugate()).real
-                sliding = ((along * tangent).real + 0.0, (along * tangent).imag + 0.0)
-        at = point + shift
-        out[cam.name] = Contact((at.real, at.imag), (normal.real, normal.imag), sliding)
-    return out
+    """Every pair's contact at a solve's ``pose`` (a batch of one); points moved by ``offset`` (the solve's
+    frame to the user's)."""
+    poses = {link: ArrayPose.of_rows([p]) for link, p in pose.links.items()}
+    rows = contacts_over_rows(mechanism, poses, None if velocity is None else _row_velocity(mechanism, velocity))
+    return {name: found.row(0, complex(*offset)) for name, found in rows.items()}
+
+
+@dataclass(frozen=True)
+class FollowerCoordinate:
+    """What a cam designer plots for a follower: its angle (pinned to the frame at ``pivot``) or its slider
+    on the frame (``slider``)."""
+
+    link: str
+    pivot: str | None = None
+    slider: SliderSpec | None = None
+
+
+def follower_coordinate(mechanism: Mechanism, cam: CamSpec) -> FollowerCoordinate | None:
+    """The follower's joint with the frame: a pivot (a rocker) or a slide (a translating follower); None for
+    a floating follower (its motion is that of its points)."""
+    ground, link = mechanism.ground, cam.follower
+    for joint in mechanism.revolutes:
+        if set(joint.links) == {ground, link}:
+            return FollowerCoordinate(link, pivot=joint.point)
+    for slider in mechanism.sliders:
+        if {slider.block, slider.guide} == {ground, link}:
+            return FollowerCoordinate(link, slider=slider)
+    return None
+
+
+def _force_point(mechanism: Mechanism, poses: dict[str, ArrayPose], cam: CamSpec, contact: ContactRows) -> Points:
+    """Where the contact force acts on the follower: a roller's centre (the force passes through its pin),
+    else the contact point itself."""
+    if cam.kind == "roller":
+        assert cam.point is not None
+        return _world(mechanism, poses, cam.follower, cam.point)
+    return contact.point
+
+
+def pressure_angles(mechanism: Mechanism, poses: dict[str, ArrayPose], cam: CamSpec, contact: ContactRows,
+                    velocity: LinkVelocity | None) -> tuple[Reals, Bools]:
+    """The cam's pressure angle at every row (radians, 0 to pi/2): the acute angle between the common normal
+    and the direction in which the follower's point under the force moves (a roller's centre, else the
+    contact point). That direction is the follower's own: square to the radius from its pivot, along its
+    slide; for a floating follower the point's velocity, so rows where it stands still have none
+    (the second value says which rows have one)."""
+    at = _force_point(mechanism, poses, cam, contact)
+    moving = follower_coordinate(mechanism, cam)
+    if moving is not None and moving.pivot is not None:
+        direction = 1j * (at - _world(mechanism, poses, cam.follower, moving.pivot))
+    elif moving is not None and moving.slider is not None:
+        slide = moving.slider
+        direction = poses[slide.guide].rotation * complex(math.cos(slide.angle_rad), math.sin(slide.angle_rad))
+    else:
+        found = velocity(cam.follower, at) if velocity is not None else None
+        direction = np.zeros(len(at), np.complex128) if found is None else found
+    valid = np.asarray(np.abs(direction) > 0.0)
+    product = contact.normal * np.conj(direction)  # |n||d| (cos, -sin) of the angle between them
+    return np.asarray(np.arctan2(np.abs(product.imag), np.abs(product.real))), valid
 
 
 def record_equivalent_links(polygon: Polygon) -> None:

@@ -47,6 +47,7 @@ from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
+from kinepoly.sweep.higher_pairs import higher_pair_columns
 from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
 
 __all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]
@@ -57,10 +58,11 @@ STATUS = ("ok", "near-singular", "singular", "cannot-assemble")
 _OK, _NEAR, _SINGULAR, _CANNOT = range(4)
 
 Kind = Literal["input", "angle", "omega", "alpha", "position", "velocity", "acceleration", "slider",
-               "slider-rate", "slider-acceleration", "coriolis", "centrode", "centrode-local", "transmission"]
+               "slider-rate", "slider-acceleration", "coriolis", "centrode", "centrode-local", "transmission",
+               "pressure", "ratio"]
 _ORDER = {"input": -1, "angle": 0, "position": 0, "slider": 0, "transmission": 0, "omega": 1, "velocity": 1,
           "slider-rate": 1, "centrode": 1, "centrode-local": 1, "alpha": 2, "acceleration": 2,
-          "slider-acceleration": 2, "coriolis": 2}
+          "slider-acceleration": 2, "coriolis": 2, "pressure": 0, "ratio": 1}
 
 
 @dataclass(frozen=True)
@@ -397,15 +399,17 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
         flags.raise_to(rough.rows & positions.ok, _NEAR, rough.why)
     ok = positions.ok
     velocity = acceleration = None
-    if asked.needs_velocity or centrode is not None:
+    higher = bool(scene.cams or scene.gears)  # a follower's s-v-a and the gear ratios need the polygons
+    if asked.needs_velocity or centrode is not None or higher:
         velocity = construct_velocity(positions, plan, asked.velocity)
         _crossing_flags(flags, ok, velocity.polygon.crossings)
-    if asked.needs_acceleration and velocity is not None:
+    if (asked.needs_acceleration or scene.cams) and velocity is not None:
         acceleration = construct_acceleration(velocity, plan, asked.acceleration)
         _crossing_flags(flags, ok, acceleration.polygon.crossings)
     name = input_name(mechanism)
     out = _Builder(mechanism, positions)
     _columns(out, asked, velocity, acceleration, name)
+    higher_pair_columns(out, velocity, acceleration, name)
     notices = list(grid.notices)
     if centrode is not None and velocity is not None:
         notices += _centrode(out, centrode, velocity, grid.seed_row, flags.level)
