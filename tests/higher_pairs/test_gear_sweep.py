@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from tests.sweep_support import compare_row
+from tests.sweep_support import compare_row, row_scene
 
 import kinepoly
 from kinepoly.sweep import sweep
@@ -82,7 +82,7 @@ def test_every_gear_row_equals_the_solve_at_its_input() -> None:
         worst = max(compare_row(text, result, row) for row in rows)
         assert worst <= 1e-10, (name, worst)
         for row in rows:
-            scene = kinepoly.loads_scene(text.replace("angle = ", f"angle = {float(result.input.values[row])!r} # ", 1))
+            scene = kinepoly.loads_scene(row_scene(text, result, row))
             solved = kinepoly.to_json(kinepoly.solve(scene))["links"]
             solved["2"] = {"omega": scene.input.omega}  # type: ignore[union-attr]  # the input (link 2 in each)
             for col in result.columns:
