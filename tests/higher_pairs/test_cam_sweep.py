@@ -181,3 +181,27 @@ def test_every_cam_row_equals_the_solve_at_its_input() -> None:
         result = sweep(kinepoly.loads_scene(text), steps=36)
         worst = max(compare_row(text, result, row) for row in range(result.rows))
         assert worst <= 1e-10, (name, worst)
+
+
+def test_plot_draws_the_s_v_a_diagram_and_the_pressure_angle() -> None:
+    import matplotlib.pyplot as plt
+
+    from kinepoly.sweep.plots import plot_figure
+
+    result = sweep(kinepoly.load_scene(EXAMPLES / "eccentric-cam-flat.toml"), steps=90)
+    assert result.followers == (("23", ("s_13", "s_dot_13", "s_ddot_13")),)
+    fig = plot_figure(result)
+    try:
+        by_title = {ax.get_title(): ax for ax in fig.axes if ax.get_visible()}
+        stacked = [ax for ax in fig.axes if ax.get_visible() and ax.get_ylabel().split("\n")[0] in
+                   ("s_13", "s_dot_13", "s_ddot_13")]
+        assert [ax.get_ylabel().split("\n")[0] for ax in stacked] == ["s_13", "s_dot_13", "s_ddot_13"]
+        for ax in stacked:  # the plotted vertices are the CSV's column, over the cam angle
+            x, y = ax.lines[0].get_data()
+            name = ax.get_ylabel().split("\n")[0]
+            assert np.array_equal(np.asarray(x), result.input.values)
+            assert np.array_equal(np.asarray(y), result.column(name).values)
+        pressure = next(ax for title, ax in by_title.items() if title.startswith("pressure angles"))
+        assert np.array_equal(np.asarray(pressure.lines[0].get_ydata()), result.column("pressure_angle_23").values)
+    finally:
+        plt.close(fig)

@@ -24,7 +24,7 @@ from kinepoly.scene.spec import LinkInput, PitchCircle
 if TYPE_CHECKING:
     from kinepoly.sweep.run import _Builder
 
-__all__ = ["higher_pair_columns", "ratio_pairs"]
+__all__ = ["Follower", "higher_pair_columns", "ratio_pairs"]
 
 
 def _add(out: _Builder, name: str, kind: str, values: Reals | None) -> None:
@@ -33,16 +33,23 @@ def _add(out: _Builder, name: str, kind: str, values: Reals | None) -> None:
         out.add(name, kind, values)  # type: ignore[arg-type]
 
 
+Follower = tuple[str, tuple[str, ...]]
+"""A cam pair's name and its follower's columns: displacement, velocity, acceleration (those there are)."""
+
+
 def _cam_columns(out: _Builder, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
-                 input_column: str) -> None:
+                 input_column: str) -> list[Follower]:
     mech, positions = out.mechanism, out.positions
     deg = mech.scene.units.angle == "deg"
     moving = polygon_velocity(mech, velocity.polygon) if velocity is not None else None
     contacts = contacts_over_rows(mech, positions.poses, moving)
+    followers: list[Follower] = []
     for cam in mech.scene.cams:
         follower = follower_coordinate(mech, cam)
+        names: tuple[str, ...] = ()
         if follower is not None and follower.pivot is not None:
             link = follower.link
+            names = (f"theta_{link}", f"omega_{link}", f"alpha_{link}")
             if f"theta_{link}" != input_column:
                 _add(out, f"theta_{link}", "angle", positions.poses[link].theta(degrees=deg))
             _add(out, f"omega_{link}", "omega", velocity.polygon.rate_of(link) if velocity is not None else None)
@@ -50,6 +57,7 @@ def _cam_columns(out: _Builder, velocity: VelocityResult | None, acceleration: A
                  acceleration.polygon.rate_of(link) if acceleration is not None else None)
         elif follower is not None and follower.slider is not None:
             name = follower.slider.name
+            names = (f"s_{name}", f"s_dot_{name}", f"s_ddot_{name}")
             motion = slider_motion(positions, follower.slider, velocity, acceleration)
             if f"s_{name}" != input_column:
                 _add(out, f"s_{name}", "slider", motion.s)
@@ -57,6 +65,9 @@ def _cam_columns(out: _Builder, velocity: VelocityResult | None, acceleration: A
             _add(out, f"s_ddot_{name}", "slider-acceleration", motion.s_ddot)
         angle, valid = pressure_angles(mech, positions.poses, cam, contacts[cam.name], moving)
         out.add(f"pressure_angle_{cam.name}", "pressure", np.degrees(angle) if deg else angle, valid)
+        taken = {name for name, *_ in out.raw} | {input_column}
+        followers.append((cam.name, tuple(n for n in names if n in taken)))
+    return followers
 
 
 def ratio_pairs(out: _Builder) -> list[tuple[str, str]]:
@@ -83,9 +94,10 @@ def _gear_columns(out: _Builder, velocity: VelocityResult) -> None:
 
 
 def higher_pair_columns(out: _Builder, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
-                        input_column: str) -> None:
-    """The columns of the scene's cams and gears (none when it has neither)."""
-    if out.mechanism.scene.cams:
-        _cam_columns(out, velocity, acceleration, input_column)
+                        input_column: str) -> tuple[Follower, ...]:
+    """The columns of the scene's cams and gears (none when it has neither); returns each cam's follower
+    columns, for the s-v-a diagram."""
+    followers = _cam_columns(out, velocity, acceleration, input_column) if out.mechanism.scene.cams else []
     if out.mechanism.scene.gears and velocity is not None:
         _gear_columns(out, velocity)
+    return tuple(followers)

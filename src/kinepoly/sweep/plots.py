@@ -1,5 +1,6 @@
 """The sweep's plots as one PNG: transmission functions of order 0, 1 and 2, point paths,
-velocity and acceleration hodographs, transmission angles, and the centrodes of a chosen link.
+velocity and acceleration hodographs, transmission angles, and the centrodes of a chosen link;
+for a cam its follower's s-v-a diagram and the pressure angle, for gears their ratios.
 
 matplotlib is imported here only (``kinepoly solve`` never pays for it). Rows without a value
 leave gaps in the curves (masked, never NaN); inputs where the mechanism cannot be assembled
@@ -249,6 +250,75 @@ def _centrode_panel(ax: Axes, result: SweepResult) -> None:
     ax.legend(loc="best", fontsize=7)
 
 
+_SVA_TITLES = ("displacement", "velocity", "acceleration")
+
+
+def _sva_panel(ax: Axes, result: SweepResult, pair: str, names: tuple[str, ...]) -> None:
+    """A cam designer's s-v-a diagram: the follower's displacement, velocity and acceleration stacked over
+    the cam's angle, in the cell of ``ax`` (hidden: three axes sharing its x take its place)."""
+    fig = ax.figure
+    cell = ax.get_subplotspec()
+    assert cell is not None
+    ax.set_visible(False)
+    grid = cell.subgridspec(len(names), 1, hspace=0.08)
+    x = result.input.values
+    units = result.scene.units
+    first: Axes | None = None
+    for k, name in enumerate(names):
+        sub = fig.add_subplot(grid[k, 0], sharex=first)
+        first = first or sub
+        col = result.column(name)
+        if col.kind == "angle":
+            sub.plot(*_wrapped(x, col, 360.0 if units.angle == "deg" else 2 * np.pi), lw=1.2)
+        else:
+            sub.plot(x, _masked(col), lw=1.2)
+        sub.set_ylabel(f"{name}\n({_unit_of(col, result)})", fontsize=7)
+        sub.tick_params(labelsize=7)
+        sub.axhline(0.0, color="0.5", lw=0.4)
+        sub.grid(True, lw=0.3)
+        _mark_rows(sub, result)
+        if k < len(names) - 1:
+            sub.tick_params(labelbottom=False)
+        else:
+            sub.set_xlabel(_input_label(result))
+        if k == 0:
+            sub.set_title(f"cam {pair}: follower's s-v-a diagram ({', '.join(_SVA_TITLES[:len(names)])})",
+                          fontsize=9)
+
+
+def _unit_of(col: Column, result: SweepResult) -> str:
+    length, angle = result.scene.units.length, result.scene.units.angle
+    return {"angle": angle, "omega": "rad/s", "alpha": "rad/s^2", "slider": length, "slider-rate": f"{length}/s",
+            "slider-acceleration": f"{length}/s^2", "pressure": angle}.get(col.kind, "")
+
+
+def _pressure_panel(ax: Axes, result: SweepResult) -> None:
+    x = result.input.values
+    unit = result.scene.units.angle
+    for col in result.columns:
+        if col.kind == "pressure":
+            ax.plot(x, _masked(col), lw=1.2, label=col.name)
+    ax.set_title("pressure angles: common normal to the follower's motion", fontsize=9)
+    ax.set_xlabel(_input_label(result))
+    ax.set_ylabel(unit)
+    ax.set_ylim(0, 90 if unit == "deg" else np.pi / 2)
+    ax.grid(True, lw=0.3)
+    ax.legend(loc="best", fontsize=7)
+    _mark_rows(ax, result)
+
+
+def _ratio_panel(ax: Axes, result: SweepResult) -> None:
+    x = result.input.values
+    for col in result.columns:
+        if col.kind == "ratio":
+            ax.plot(x, _masked(col), lw=1.2, label=col.name)
+    ax.set_title("angular velocity ratios (ratio_b_a = omega_b / omega_a)", fontsize=9)
+    ax.set_xlabel(_input_label(result))
+    ax.grid(True, lw=0.3)
+    ax.legend(loc="best", fontsize=7)
+    _mark_rows(ax, result)
+
+
 def _seed_row(result: SweepResult) -> int | None:
     rows = np.flatnonzero(result.input.values == result.seed_value)
     return int(rows[0]) if rows.size else None
@@ -318,6 +388,13 @@ def plot_figure(result: SweepResult) -> Figure:
         panels.append(lambda ax: _transmission_panel(ax, result))
     if any(c.kind == "centrode" for c in result.columns):
         panels.append(lambda ax: _centrode_panel(ax, result))
+    for pair, names in result.followers:
+        if names:
+            panels.append(lambda ax, pair=pair, names=names: _sva_panel(ax, result, pair, names))  # type: ignore[misc]
+    if any(c.kind == "pressure" for c in result.columns):
+        panels.append(lambda ax: _pressure_panel(ax, result))
+    if any(c.kind == "ratio" for c in result.columns):
+        panels.append(lambda ax: _ratio_panel(ax, result))
     cols = 3
     rows = (len(panels) + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.3 * rows), squeeze=False)

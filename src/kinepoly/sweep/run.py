@@ -47,7 +47,7 @@ from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
-from kinepoly.sweep.higher_pairs import higher_pair_columns
+from kinepoly.sweep.higher_pairs import Follower, higher_pair_columns
 from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
 
 __all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]
@@ -99,6 +99,8 @@ class SweepResult:
     """The link poses at every row computed (shown or not), read by ``kinepoly.sweep.rows``."""
     shown: Bools | None = field(default=None, repr=False, compare=False)
     """Which of the rows computed are shown (the rows of ``input`` and ``columns``)."""
+    followers: tuple[Follower, ...] = ()
+    """Each cam pair's follower columns (displacement, velocity, acceleration): its s-v-a diagram."""
 
     def _repr_png_(self) -> bytes:
         """A notebook shows a sweep as its plots."""
@@ -409,7 +411,7 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     name = input_name(mechanism)
     out = _Builder(mechanism, positions)
     _columns(out, asked, velocity, acceleration, name)
-    higher_pair_columns(out, velocity, acceleration, name)
+    followers = higher_pair_columns(out, velocity, acceleration, name)
     notices = list(grid.notices)
     if centrode is not None and velocity is not None:
         notices += _centrode(out, centrode, velocity, grid.seed_row, flags.level)
@@ -428,7 +430,7 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     return SweepResult(scene, input_column, out.columns(flags.level, shown),
                        flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
                        tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), skeleton,
-                       positions=positions, shown=shown)
+                       positions=positions, shown=shown, followers=followers)
 
 
 def _failure_text(failure: Failure) -> object:
