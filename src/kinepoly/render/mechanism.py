@@ -25,7 +25,7 @@ from kinepoly.render.text import Run, plain_runs, point_runs, text_width
 from kinepoly.scene.spec import LinkInput, SliderSpec
 from kinepoly.solution import Solution
 
-__all__ = ["mechanism_box", "mechanism_items", "world_points"]
+__all__ = ["block_symbol", "mechanism_box", "mechanism_items", "world_points"]
 
 Point = tuple[float, float]
 LAYER = "mechanism"
@@ -122,6 +122,11 @@ def _block(center: Point, direction: Vec, role: str) -> Path:
     return Path(corners, Stroke("#000000", 0.35), fill="#ffffff", closed=True, role=role)
 
 
+def block_symbol(center: Point, direction: Vec, role: str) -> Path:
+    """A slider's block centred at ``center`` (paper), its long side along ``direction``."""
+    return _block(center, direction, role)
+
+
 def _link_shape(name: str, points: Sequence[Point], index: int) -> list[Item]:
     from shapely.geometry import MultiPoint
 
@@ -180,14 +185,15 @@ def mechanism_items(solution: Solution, panel: Panel) -> tuple[list[Item], list[
     requests: list[Request] = []
     region = panel.drawing_rect
     order = list(mech.link_names)
+    equivalent = set(solution.scene.equivalent_links)  # drawn dashed on the layer higher-pairs
     for link, pts in paper.items():
-        if link != mech.ground:
+        if link != mech.ground and link not in equivalent:
             items += _link_shape(link, list(pts.values()), order.index(link))
     # sliders: the guide's slide line, the block on it, and the frame's surface for a fixed guide
     blocks: list[Item] = []
     center = _centroid([p for pts in paper.values() for p in pts.values()])
     for slider in mech.sliders:
-        if slider.block not in paper:
+        if slider.block not in paper or slider.block in equivalent:
             continue
         at = paper[slider.block][slider.point]
         e = _slide_direction(solution, slider)
@@ -233,7 +239,7 @@ def mechanism_items(solution: Solution, panel: Panel) -> tuple[list[Item], list[
         requests.append(Request(LAYER, region, point_runs(name, LABEL_MM), p, role=f"point {name}", priority=0,
                                 gap=PIN_RADIUS_MM))
     for link, pts in paper.items():
-        if link == mech.ground:
+        if link == mech.ground or link in equivalent:
             continue
         anchor = _link_anchor(list(pts.values()))
         requests.append(Request(LAYER, region, plain_runs(link, LABEL_MM * 0.85), anchor,

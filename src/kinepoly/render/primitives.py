@@ -27,7 +27,7 @@ __all__ = [
 
 Point = tuple[float, float]
 
-LAYERS = ("mechanism", "velocity-polygon", "acceleration-polygon", "instant-centers", "scales", "title")
+LAYERS = ("mechanism", "higher-pairs", "velocity-polygon", "acceleration-polygon", "instant-centers", "scales", "title")
 """The layers of every sheet, bottom to top. A layer may be empty; it is still written."""
 
 

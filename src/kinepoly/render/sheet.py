@@ -15,6 +15,7 @@ from kinepoly.present.clean import format_number
 from kinepoly.present.phrasing import Context, english, step_sentence
 from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.render import centers as centers_layer
+from kinepoly.render import higher_pairs as higher_pairs_layer
 from kinepoly.render.labels import FEW, LabelCache, Request, place
 from kinepoly.render.layout import Content, Panel, arrange, larger_papers, paper_name, paper_size
 from kinepoly.render.mechanism import mechanism_box, mechanism_items
@@ -196,7 +197,7 @@ def _layout_on(solution: Solution, size: tuple[float, float], fixed: tuple[str, 
 def _mechanism_box(solution: Solution) -> tuple[float, float, float, float]:
     """The mechanism's box, grown to hold the instant centers near it."""
     box = mechanism_box(solution)
-    points = centers_layer.near_centers(solution, box)
+    points = centers_layer.near_centers(solution, box) + higher_pairs_layer.higher_pair_points(solution)
     xs = [box[0], box[2], *(p[0] for p in points)]
     ys = [box[1], box[3], *(p[1] for p in points)]
     return (min(xs), min(ys), max(xs), max(ys))
@@ -299,6 +300,9 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
     assert mech_panel is not None
     items, reqs = mechanism_items(solution, mech_panel)
     layers["mechanism"] += items
+    requests += reqs
+    items, reqs = higher_pairs_layer.higher_pair_items(solution, mech_panel)
+    layers[higher_pairs_layer.LAYER] += items
     requests += reqs
     for figure in layout.figures:
         panel = layout.panel(figure.kind)
