@@ -51,7 +51,7 @@ def test_each_batch_row_equals_the_solve_there(name: str) -> None:
 def test_normal_velocities_agree_at_every_row(name: str) -> None:
     # the two bodies neither part nor press into each other: their points at the contact have equal
     # velocity components along the common normal (for gears, equal velocities)
-    _, result, mech, moving, contacts, speed = _batch(name, 720)
+    _, _, mech, moving, contacts, speed = _batch(name, 720)
     specs = {**{c.name: (c.cam, c.follower) for c in mech.scene.cams},
              **{g.name: g.links for g in mech.scene.gears}}
     for pair, found in contacts.items():

@@ -14,8 +14,8 @@ from dataclasses import replace
 from kinepoly.geom.profile import outline
 from kinepoly.geom.vec import Vec, add, scale
 from kinepoly.render.labels import Request
-from kinepoly.render.mechanism import block_symbol
 from kinepoly.render.layout import Panel
+from kinepoly.render.mechanism import block_symbol
 from kinepoly.render.primitives import Circle, Item, Path, Stroke
 from kinepoly.render.style import LABEL_MM, PIN_RADIUS_MM, link_color, link_label_color
 from kinepoly.render.text import point_runs
