@@ -16,6 +16,7 @@ from kinepoly.engine.circle_diagram import center_label
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.geom.vec import norm, sub
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
+from kinepoly.handout.equivalent_page import equivalent_page
 from kinepoly.handout.notation import typographic
 from kinepoly.model.mechanism import Revolute, joint_links
 from kinepoly.present.catalogue import Catalogue
@@ -118,6 +119,8 @@ def step_equation(step: Step, say: Catalogue, solution: Solution) -> str:
 
 def _step_page(writer: _Writer, context: Context, step: Step, number: int, total: int) -> Page:
     say = writer.say
+    if step.topic == "equivalent-link":
+        return equivalent_page(context, say, step, number, total)
     text, result = step_words(step, say, context)
     heading = say.say("page.step", number=str(number), total=str(total), polygon=say.say(f"polygon.{step.polygon}"))
     equation = step_equation(step, say, writer.solution)
