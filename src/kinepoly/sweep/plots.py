@@ -194,16 +194,18 @@ def _paths_panel(ax: Axes, result: SweepResult) -> None:
     _draw_skeleton(ax, result)
 
 
-def _transmission_panel(ax: Axes, result: SweepResult) -> None:
+def _kind_panel(ax: Axes, result: SweepResult, kind: str, title: str, angles: bool) -> None:
+    """Every column of ``kind`` over the input; ``angles``: in the angle unit, 0 to 90 degrees."""
     x = result.input.values
     unit = result.scene.units.angle
     for col in result.columns:
-        if col.kind == "transmission":
+        if col.kind == kind:
             ax.plot(x, _masked(col), lw=1.2, label=col.name)
-    ax.set_title("transmission angles (0 dead point, 90 best)", fontsize=9)
+    ax.set_title(title, fontsize=9)
     ax.set_xlabel(_input_label(result))
-    ax.set_ylabel(unit)
-    ax.set_ylim(0, 90 if unit == "deg" else np.pi / 2)
+    if angles:
+        ax.set_ylabel(unit)
+        ax.set_ylim(0, 90 if unit == "deg" else np.pi / 2)
     ax.grid(True, lw=0.3)
     ax.legend(loc="best", fontsize=7)
     _mark_rows(ax, result)
@@ -292,33 +294,6 @@ def _unit_of(col: Column, result: SweepResult) -> str:
             "slider-acceleration": f"{length}/s^2", "pressure": angle}.get(col.kind, "")
 
 
-def _pressure_panel(ax: Axes, result: SweepResult) -> None:
-    x = result.input.values
-    unit = result.scene.units.angle
-    for col in result.columns:
-        if col.kind == "pressure":
-            ax.plot(x, _masked(col), lw=1.2, label=col.name)
-    ax.set_title("pressure angles: common normal to the follower's motion", fontsize=9)
-    ax.set_xlabel(_input_label(result))
-    ax.set_ylabel(unit)
-    ax.set_ylim(0, 90 if unit == "deg" else np.pi / 2)
-    ax.grid(True, lw=0.3)
-    ax.legend(loc="best", fontsize=7)
-    _mark_rows(ax, result)
-
-
-def _ratio_panel(ax: Axes, result: SweepResult) -> None:
-    x = result.input.values
-    for col in result.columns:
-        if col.kind == "ratio":
-            ax.plot(x, _masked(col), lw=1.2, label=col.name)
-    ax.set_title("angular velocity ratios (ratio_b_a = omega_b / omega_a)", fontsize=9)
-    ax.set_xlabel(_input_label(result))
-    ax.grid(True, lw=0.3)
-    ax.legend(loc="best", fontsize=7)
-    _mark_rows(ax, result)
-
-
 def _seed_row(result: SweepResult) -> int | None:
     rows = np.flatnonzero(result.input.values == result.seed_value)
     return int(rows[0]) if rows.size else None
@@ -385,16 +360,19 @@ def plot_figure(result: SweepResult) -> Figure:
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "a_"), "acceleration hodographs",
                                               f"{length}/s^2", pole=True))
     if any(c.kind == "transmission" for c in result.columns):
-        panels.append(lambda ax: _transmission_panel(ax, result))
+        panels.append(lambda ax: _kind_panel(ax, result, "transmission", "transmission angles (0 dead point, 90 best)",
+                                             True))
     if any(c.kind == "centrode" for c in result.columns):
         panels.append(lambda ax: _centrode_panel(ax, result))
     for pair, names in result.followers:
         if names:
             panels.append(lambda ax, pair=pair, names=names: _sva_panel(ax, result, pair, names))  # type: ignore[misc]
     if any(c.kind == "pressure" for c in result.columns):
-        panels.append(lambda ax: _pressure_panel(ax, result))
+        panels.append(lambda ax: _kind_panel(ax, result, "pressure",
+                                             "pressure angles: common normal to the follower's motion", True))
     if any(c.kind == "ratio" for c in result.columns):
-        panels.append(lambda ax: _ratio_panel(ax, result))
+        panels.append(lambda ax: _kind_panel(ax, result, "ratio",
+                                             "angular velocity ratios (ratio_b_a = omega_b / omega_a)", False))
     cols = 3
     rows = (len(panels) + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.3 * rows), squeeze=False)
