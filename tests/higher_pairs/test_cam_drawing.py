@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import kinepoly
 from kinepoly.render.primitives import Circle, Item, Sheet
@@ -111,3 +113,25 @@ def test_svg_group_and_dxf_layer() -> None:
     assert "higher-pairs" in doc.layers
     on_layer = [e for e in doc.modelspace() if e.dxf.layer == "higher-pairs"]
     assert {e.dxftype() for e in on_layer} >= {"LWPOLYLINE", "TEXT"}
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.floats(-180.0, 180.0))
+def test_the_profile_turns_with_the_cam_at_any_input(angle: float) -> None:
+    text = (EXAMPLES / "cam-roller-rocker.toml").read_text().replace("angle = 30", f"angle = {angle!r}")
+    solution = kinepoly.solve(kinepoly.loads_scene(text))
+    layout = layout_sheet(solution)
+    sheet = build_sheet(solution, (layout.width, layout.height), layout=layout)
+    panel = layout.panel("mechanism")
+    assert panel is not None
+    items = _items(sheet, "higher-pairs")
+    profile = items["cam profile 23"]
+    assert isinstance(profile, Line)
+    center, radius, _ = _center_radius(profile.points)
+    theta = math.radians(angle)
+    assert abs(center - complex(*panel.paper((15.0 * math.cos(theta), 15.0 * math.sin(theta))))) < 1e-9
+    assert radius == pytest.approx(40.0 * panel.scale, rel=1e-3)
+    # the contact point lies on the profile and on the roller: R from K, r from W
+    contact = complex(*solution.contacts["23"].point)
+    k = complex(15.0 * math.cos(theta), 15.0 * math.sin(theta))
+    assert abs(abs(contact - k) - 40.0) < 1e-9 and abs(abs(contact - complex(*solution.position("W"))) - 10.0) < 1e-9
