@@ -22,15 +22,15 @@ from kinepoly.geom.arrays import Reals
 from kinepoly.scene.spec import LinkInput, PitchCircle
 
 if TYPE_CHECKING:
-    from kinepoly.sweep.run import _Builder
+    from kinepoly.sweep.run import Kind, _Builder
 
 __all__ = ["Follower", "higher_pair_columns", "ratio_pairs"]
 
 
-def _add(out: _Builder, name: str, kind: str, values: Reals | None) -> None:
+def _add(out: _Builder, name: str, kind: Kind, values: Reals | None) -> None:
     """A column, unless the scene's own asked columns (or the input) already have it."""
     if values is not None and all(name != taken for taken, *_ in out.raw):
-        out.add(name, kind, values)  # type: ignore[arg-type]
+        out.add(name, kind, values)
 
 
 Follower = tuple[str, tuple[str, ...]]
