@@ -20,6 +20,7 @@ def _pair(r2: float, r3: float, internal: bool, angle: float, omega: float, alph
     distance = abs(r2 - r3) if internal else r2 + r3
     return f"""
 title = "gears"
+input = {{ link = "2", angle = {angle!r}, omega = {omega!r}, alpha = {alpha!r} }}
 [links]
 1 = {{ points = {{ O2 = [0, 0], O3 = [{distance!r}, 0] }} }}
 2 = {{ points = {{ O2 = [0, 0] }} }}
@@ -28,11 +29,6 @@ title = "gears"
 links = ["2", "3"]
 pitch = [{{ center = "O2", radius = {r2!r} }}, {{ center = "O3", radius = {r3!r} }}]
 internal = {"true" if internal else "false"}
-[input]
-link = "2"
-angle = {angle!r}
-omega = {omega!r}
-alpha = {alpha!r}
 [find]
 velocity = ["E"]
 """
