@@ -21,9 +21,9 @@ from kinepoly.bench.series import slider_crank_series
 from kinepoly.check.analytic import solve_analytic
 from kinepoly.check.compare import compare
 from kinepoly.engine.assembly import Continuity, position_at_input
-from kinepoly.engine.position import input_values, solve_positions
 from kinepoly.engine.construct import construct_row
 from kinepoly.engine.polygon import CrossLines
+from kinepoly.engine.position import input_values, solve_positions
 from kinepoly.engine.row import pose_row
 from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross_lines
 from kinepoly.model.mechanism import Mechanism
