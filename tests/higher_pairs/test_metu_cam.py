@@ -22,7 +22,6 @@ import mpmath  # type: ignore[import-untyped]
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
 from tests.cli_support import run
 
 import kinepoly
@@ -113,4 +112,4 @@ def test_solve_steps_find_i23_on_the_line_i12_i13(capsys: pytest.CaptureFixture[
     assert "equivalent block eq23" in out and "I23 = (I12 I13) x" in out
     assert "Links 1, 2, 3: I23 lies on the line I12 I13." in out
     shown = format(10.0 * _derived(50.0)["ratio"], ".5g").replace("-", "\u2212")  # type: ignore[arg-type]
-    assert f"(I12 I23)/(I13 I23) = 10 × (" in out and f") = {shown} rad/s, clockwise" in out
+    assert "(I12 I23)/(I13 I23) = 10 × (" in out and f") = {shown} rad/s, clockwise" in out

@@ -50,9 +50,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``kinepoly variants``; the exit status."""
-    from kinepoly.scene.loader import load_scene
-
-    scene = load_scene(args.scene)
     options = {key: getattr(args, f"vary_{key}") for key, _ in _RANGES}
     return run_variants(args.scene, args.n, args.seed, args.output, options, args.min_transmission)
 
