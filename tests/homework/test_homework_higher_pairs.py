@@ -9,6 +9,7 @@ text: the gear ratio -r2/r3, Willis' formula, the flat face's harmonic lift e om
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -132,5 +133,36 @@ def test_check_names_a_reversed_gear_ratio(capsys: pytest.CaptureFixture[str], t
     wrong.write_text(f"omega_3 = {-given['omega_3']!r}\nalpha_3 = {given['alpha_3']!r}\n")
     code, out, _ = run(capsys, "check", str(scene), str(wrong))
     assert code == 1
-    assert "omega_3  wrong" in out and "alpha_3  correct" in out and "sign-reversed" in out
+    assert re.search(r"^omega_3 +wrong", out, re.MULTILINE) and re.search(r"^alpha_3 +correct", out, re.MULTILINE)
+    assert "sign-reversed" in out
     assert run(capsys, "check", str(scene), str(key))[0] == 0
+
+
+def test_check_marks_answers_derived_by_hand_on_a_gear_and_a_cam(capsys: pytest.CaptureFixture[str],
+                                                                 tmp_path: Path) -> None:
+    # gear-pair.toml: r2 = 40, r3 = 60, theta2 = 20 deg, omega 12, alpha 1; theta3 = 180 - 20 r2/r3 (phases 0);
+    # E 45 from O3 = (100, 0); I23 the pitch point (40, 0)
+    ratio = 40.0 / 60.0
+    theta3 = math.radians(180.0 - 20.0 * ratio)
+    w3, a3 = -12.0 * ratio, -1.0 * ratio
+    arm = 45.0 * complex(math.cos(theta3), math.sin(theta3))
+    v, a = w3 * 1j * arm, (a3 * 1j - w3 * w3) * arm
+    gears = tmp_path / "gears.answers.toml"
+    gears.write_text(f"omega_3 = {w3!r}\nalpha_3 = {a3!r}\nv_E = [{v.real!r}, {v.imag!r}]\n"
+                     f"a_E = [{a.real!r}, {a.imag!r}]\nI_23 = [40, 0]\n")
+    code, out, err = run(capsys, "check", str(EXAMPLES / "gear-pair.toml"), str(gears))
+    assert code == 0 and "5 of 5 correct" in out, out + err
+    # eccentric-cam-flat.toml: e = 12, R = 35, theta = 40 deg, omega 15; the face (and T, S) at
+    # y = e sin(theta) + R on the vertical guide through O; I23 on the horizontal through O (I13 at infinity)
+    # under the disc's centre, where the common normal (vertical through K) crosses it
+    e, big_r, t, w = 12.0, 35.0, math.radians(40.0), 15.0
+    rise, lift = e * w * math.cos(t), -e * w * w * math.sin(t)
+    cam = tmp_path / "cam.answers.toml"
+    cam.write_text(f"v_T = [0, {rise!r}]\na_T = [0, {lift!r}]\nv_S = [0, {rise!r}]\na_S = [0, {lift!r}]\n"
+                   f"s_13 = {e * math.sin(t) + big_r!r}\ns_dot_13 = {rise!r}\ns_ddot_13 = {lift!r}\n"
+                   f"I_23 = [{e * math.cos(t)!r}, 0]\n")
+    code, out, err = run(capsys, "check", str(EXAMPLES / "eccentric-cam-flat.toml"), str(cam))
+    assert code == 0 and "8 of 8 correct" in out, out + err
+    cam.write_text(f"v_T = [0, {-rise!r}]\n")  # the follower said to fall while it rises
+    code, out, _ = run(capsys, "check", str(EXAMPLES / "eccentric-cam-flat.toml"), str(cam))
+    assert code == 1 and re.search(r"^v_T +wrong", out, re.MULTILINE)
