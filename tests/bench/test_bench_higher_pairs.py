@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from tests.scenes import EXAMPLES
+from tests.scenes import EXAMPLES, cam_rocker
 
 import kinepoly
 from kinepoly.bench.methods import Setting, construction_values, methods_for
@@ -175,3 +175,22 @@ def test_a_bench_sweep_of_the_planetary_train_is_exact_at_every_input(capsys: py
     assert [p["status"] for p in sweep["points"]] == ["ok"] * 8
     worst = max(max(p["errors"].values()) for p in sweep["points"])
     assert worst < 1e-6  # finite differences at their best step; the construction far below
+
+
+@pytest.mark.parametrize("follower", ["knife", "inside"])
+def test_a_knife_edge_and_a_roller_in_a_groove_touch_the_disc_in_the_reference(follower: str) -> None:
+    # the reference's contact row (|W - K| = R, or R - r inside) against the construction and against the
+    # four-bar closed form of the same motion (the bench's Freudenstein solution, apart from both)
+    solution = kinepoly.solve(loads_scene(cam_rocker(follower)))
+    assert solution.inside is not None
+    setting = Setting(solution, tuple(q.key for q in solution.check.quantities
+                                      if not q.key.startswith("instant_centers.")))
+    reference = reference_values(setting.mechanism, setting.pose, list(setting.keys))
+    t = np.array([math.radians(30.0)])
+    families = {}
+    for method in methods_for(setting, ()):
+        if method.family in ("construction", "closed form"):
+            values = method.values(method.compute(t, None), 0)
+            families[method.family] = max(kind_errors(values, reference, dict(solution.check.scales)).values())
+    assert set(families) == {"construction", "closed form"}
+    assert max(families.values()) < 1e-13

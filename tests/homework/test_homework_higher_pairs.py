@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 from tests.cli_support import run
-from tests.scenes import EXAMPLES
+from tests.scenes import EXAMPLES, cam_rocker
 
 import kinepoly
 from kinepoly.homework import default_ranges, make_variants
@@ -166,3 +166,18 @@ def test_check_marks_answers_derived_by_hand_on_a_gear_and_a_cam(capsys: pytest.
     cam.write_text(f"v_T = [0, {-rise!r}]\n")  # the follower said to fall while it rises
     code, out, _ = run(capsys, "check", str(EXAMPLES / "eccentric-cam-flat.toml"), str(cam))
     assert code == 1 and re.search(r"^v_T +wrong", out, re.MULTILINE)
+
+
+@pytest.mark.parametrize("follower, line", [("knife", 'knife = "W"'), ("inside", 'contact = "inside"')])
+def test_variants_write_a_knife_edge_and_a_roller_in_a_groove(follower: str, line: str) -> None:
+    scene = loads_scene(cam_rocker(follower), f"{follower}.toml")
+    for variant in make_variants(scene, default_ranges(scene), 3, 2):
+        assert line in variant.scene_text and "eq23" not in variant.scene_text
+        again = loads_scene(variant.scene_text)
+        cam = again.cams[0]
+        assert (cam.kind, cam.inside) == (("knife", False) if follower == "knife" else ("roller", True))
+        w = complex(*kinepoly.to_json(kinepoly.solve(again))["points"]["W"]["position"])
+        theta = again.input.angle_rad  # type: ignore[union-attr]
+        k = complex(*cam.center) * complex(math.cos(theta), math.sin(theta))  # the cam turns about O = (0, 0)
+        reach = cam.radius - cam.roller_radius if cam.inside else cam.radius  # W's distance from the disc's centre
+        assert abs(abs(w - k) - reach) < 1e-9 * reach
