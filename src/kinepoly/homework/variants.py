@@ -16,6 +16,10 @@ the input values, all rounded to numbers a student can draw. It is kept only if
   number is at most ten times the original's;
 * its solve carries no near-singular warning and its cross-check is clean.
 
+Cams and gears are drawn and written as the user wrote them (``homework.higher_pairs``): a pair's
+lengths take the factor of the link that carries them, and with gears every link takes the same one
+(``GEARS_NOTE``), so that each pair's centre distance stays the sum (difference) of its radii.
+
 Each variant is written as TOML with a ``[guess]`` of every moving point, so it is pinned to
 that assembly, and read back and solved again: its answer key is taken from that solve, in the
 canonical forms, so ``kinepoly check`` of a variant against its own key passes. The same seed
