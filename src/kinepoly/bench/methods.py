@@ -20,9 +20,10 @@ from kinepoly.bench.motion import LinkMotion, Trig, evaluate
 from kinepoly.bench.series import slider_crank_series
 from kinepoly.check.analytic import solve_analytic
 from kinepoly.check.compare import compare
-from kinepoly.engine.assembly import position_at_input
+from kinepoly.engine.assembly import Continuity, position_at_input
 from kinepoly.engine.construct import construct_row
 from kinepoly.engine.polygon import CrossLines
+from kinepoly.engine.position import input_values, solve_positions
 from kinepoly.engine.row import pose_row
 from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross_lines
 from kinepoly.model.mechanism import Mechanism
@@ -224,6 +225,22 @@ def _wrap(d: float) -> float:
     return math.remainder(d, 2.0 * math.pi)
 
 
+def _three_poses(mechanism: Mechanism, sol: Solution, h: float) -> list[Pose]:
+    """The positions ``h`` seconds before, at and after ``mechanism``'s input.
+
+    Each alone, every input moving at its own rate; but a scene with gears and one input as one batch
+    of three rows, its assembly and the gears' phase followed from the middle one: alone, each would
+    roll the shorter way to its own input, a turn apart where the input gear's rolled angle passes
+    half a turn."""
+    if not mechanism.scene.gears or len(mechanism.drives) != 1:
+        return [pose_row(position_at_input(at_time(mechanism, d), sol.plan)) for d in (-h, 0.0, h)]
+    middle = pose_row(position_at_input(mechanism, sol.plan))
+    inputs = np.array([float(input_values(at_time(mechanism, d))[0]) for d in (-h, 0.0, h)])
+    with np.errstate(all="ignore"):
+        rows = solve_positions(mechanism, sol.plan, inputs, Continuity(1, dict(middle.links), False))
+    return [pose_row(rows, k) for k in range(3)]
+
+
 def _finite_differences(setting: Setting, step: float) -> Method:
     """Positions a time step before and after, every input moving at its own rate: central differences.
 
@@ -234,7 +251,7 @@ def _finite_differences(setting: Setting, step: float) -> Method:
     h = step * setting.input_unit / (abs(rate) if rate else 1.0)
 
     def run(mechanism: Mechanism) -> Values:
-        poses = [pose_row(position_at_input(at_time(mechanism, d), sol.plan)) for d in (-h, 0.0, h)]
+        poses = _three_poses(mechanism, sol, h)
         motion = {}
         for link, mid in poses[1].links.items():
             lo, hi = poses[0].links[link], poses[2].links[link]

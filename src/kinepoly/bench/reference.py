@@ -3,7 +3,9 @@
 It is written from the position equations alone and shares no derivative with the analytic
 solver: the unknowns are every moving link's pose q = (x, y, theta); the equations Phi(q, t) = 0
 are the pins (r_i + A_i p_i = r_j + A_j p_j), the sliders (the block turns with its guide; its
-point stays on the line) and the driver (theta = t, or the slider variable s = t).
+point stays on the line), the higher pairs from their own geometry (``bench.higher_pairs``: a gear
+pair's rolling with the phase rule, a cam's contact; a cam's equivalent link is not an unknown) and
+the driver (theta = t, or the slider variable s = t).
 
 * Jacobians by the complex step, dPhi/dq_k = Im Phi(q + i h e_k) / h, which has no
   cancellation: with h = 1e-40 it is exact to the working precision (80 digits).
@@ -23,6 +25,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from kinepoly.bench.higher_pairs import cam_row, gear_rows, replaced_links
 from kinepoly.bench.motion import LinkMotion, Trig, evaluate
 from kinepoly.errors import SingularityError
 from kinepoly.model.mechanism import Mechanism
@@ -59,9 +62,10 @@ def input_rates(mechanism: Mechanism) -> tuple[float, float, float]:
 class _Equations:
     """Phi(q, t) in mpmath (real or complex), for the mechanism's moving links."""
 
-    def __init__(self, mechanism: Mechanism, mp: Any, first: Any = None) -> None:
-        """``first``: the first input's value (the scene's by default); ``phi`` takes time, every input
-        moving from its value at its own rate and acceleration."""
+    def __init__(self, mechanism: Mechanism, mp: Any, first: Any, start: Pose) -> None:
+        """``first``: the first input's value; ``phi`` takes time, every input moving from its value at its
+        own rate and acceleration. ``start``: the pose Newton starts from, where the gears' constants are
+        taken (``start_q``). A cam's equivalent link is not an unknown: its contact is a row of its own."""
         self.mp = mp
         self.drives = [(d, mp.mpf(d.value()) if d.index or first is None else first, mp.mpf(d.rate(1)),
                         mp.mpf(d.rate(2))) for d in mechanism.drives]
@@ -69,8 +73,14 @@ class _Equations:
         ground = mechanism.ground
         assert ground is not None
         self.ground = ground
-        self.moving = [k for k in mechanism.link_names if k != ground]
+        replaced = replaced_links(mechanism)
+        self.moving = [k for k in mechanism.link_names if k != ground and k not in replaced]
         self.column = {k: 3 * n for n, k in enumerate(self.moving)}
+        self.revolutes = [pin for pin in mechanism.revolutes if not replaced.intersection(pin.links)]
+        self.sliders = [s.name for s in mechanism.sliders if not replaced.intersection((s.block, s.guide))]
+        self.start_q = [mp.mpf(v) for k in self.moving for v in (start.links[k].x, start.links[k].y,
+                                                                   start.links[k].theta)]
+        self.gears = gear_rows(mp, mechanism, self.start_q, self._world, self._angle)
 
     def _pose(self, q: list[Any], link: str) -> tuple[Any, Any, Any, Any, Any]:
         mp = self.mp
@@ -78,6 +88,9 @@ class _Equations:
             return mp.mpf(0), mp.mpf(0), mp.mpf(0), mp.mpf(1), mp.mpf(0)
         k = self.column[link]
         return q[k], q[k + 1], q[k + 2], mp.cos(q[k + 2]), mp.sin(q[k + 2])
+
+    def _angle(self, q: list[Any], link: str) -> Any:
+        return self._pose(q, link)[2]
 
     def _world(self, q: list[Any], link: str, local: tuple[float, float]) -> tuple[Any, Any]:
         x, y, _, c, s = self._pose(q, link)
@@ -87,13 +100,15 @@ class _Equations:
     def phi(self, q: list[Any], t: Any) -> list[Any]:
         mp, mech = self.mp, self.mechanism
         rows: list[Any] = []
-        for pin in mech.revolutes:
+        for pin in self.revolutes:
             i, j = pin.links
             a = self._world(q, i, mech.local(i, pin.point))
             b = self._world(q, j, mech.local(j, pin.point))
             rows += [a[0] - b[0], a[1] - b[1]]
-        for slider in mech.sliders:
-            rows += self._slider_rows(q, slider.name, t)
+        for name in self.sliders:
+            rows += self._slider_rows(q, name, t)
+        rows += [cam_row(mp, mech, cam, q, self._world, self._angle) for cam in mech.scene.cams]
+        rows += [gear.value(mp, mech, q, self._world, self._angle) for gear in self.gears]
         for drive, value, rate, accel in self.drives:
             target = value + rate * t + accel * t * t / 2
             if isinstance(drive.spec, LinkInput):
@@ -182,8 +197,8 @@ def _reference(mechanism: Mechanism, start: Pose, keys: list[str], t: float | No
     t0, _, _ = input_rates(mechanism)
     with mp.workdps(_WORK_DIGITS):
         tt = mp.mpf(_on_turn_of(mechanism, start, t0 if t is None else t))
-        eq = _Equations(mechanism, mp, tt)  # phi in time: every input at its own rate from its value
-        q = [mp.mpf(v) for k in eq.moving for v in (start.links[k].x, start.links[k].y, start.links[k].theta)]
+        eq = _Equations(mechanism, mp, tt, start)  # phi in time: every input at its own rate from its value
+        q = eq.start_q
         size = max([mp.mpf(1)] + [abs(v) for v in q])
         now = mp.mpf(0)
         q, jac = _newton(eq, q, now, size)

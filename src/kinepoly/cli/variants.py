@@ -50,12 +50,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run ``kinepoly variants``; the exit status."""
-    from kinepoly.scene.loader import load_scene
-
-    scene = load_scene(args.scene)
-    if scene.gears:
-        raise SceneError(f"{scene.source}: gears: kinepoly variants is not built yet for [[gears]] (a varied "
-                         "length breaks the pitch circles' centre distance); expected a scene without gears")
     options = {key: getattr(args, f"vary_{key}") for key, _ in _RANGES}
     return run_variants(args.scene, args.n, args.seed, args.output, options, args.min_transmission)
 
@@ -83,7 +77,7 @@ def run_variants(scene_path: str, count: int, seed: int, out_dir: str, options: 
         raise SceneError([f"--n: {count} variants; expected at least 1"])
     if not 0.0 <= min_transmission_deg < 90.0:
         raise SceneError([f"--min-transmission: {min_transmission_deg:g}; expected degrees from 0 to below 90"])
-    from kinepoly.homework.variants import make_variants
+    from kinepoly.homework.variants import GEARS_NOTE, make_variants
     from kinepoly.homework.vary import read_vary
     from kinepoly.scene.loader import parse_located
 
@@ -104,6 +98,8 @@ def run_variants(scene_path: str, count: int, seed: int, out_dir: str, options: 
         emit(variant.scene_text, os.fspath(folder / f"{variant.name}.toml"))
         emit(variant.answers_text, os.fspath(folder / f"{variant.name}.answers.toml"))
     print(f"{len(variants)} variants of {scene_path} (seed {seed}) in {out_dir}: NAME.toml and NAME.answers.toml")
+    if scene.gears:
+        print(f"  {GEARS_NOTE}")
     for variant in variants:
         shown = variant.min_transmission_deg
         angle = "-" if shown is None else f"{shown:.0f} deg"

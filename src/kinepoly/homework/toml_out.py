@@ -13,7 +13,8 @@ import re
 from collections.abc import Iterable, Sequence
 
 from kinepoly.homework.answers import AnswerKey, Direction, Value
-from kinepoly.scene.spec import LinkInput, Scene, SliderInput, Units
+from kinepoly.homework.higher_pairs import as_written
+from kinepoly.scene.spec import CamSpec, GearSpec, LinkInput, PitchCircle, PitchLine, Scene, SliderInput, Units
 
 __all__ = ["answers_toml", "scene_toml", "toml_key", "toml_number"]
 
@@ -49,8 +50,52 @@ def _angle(scene: Scene, radians: float) -> str:
     return toml_number(math.degrees(radians) if scene.units.angle == "deg" else radians)
 
 
+def _name_line(name: str, first: str, second: str) -> list[str]:
+    """``name = ...`` when a slider's or pair's name is not the one the loader gives it (``pair_name``)."""
+    default = first + second if len(first) == 1 and len(second) == 1 else f"{first}-{second}"
+    return [] if name == default else [f"name = {json.dumps(name, ensure_ascii=False)}"]
+
+
+def _cam_toml(scene: Scene, cam: CamSpec) -> list[str]:
+    out = ["", "[[cams]]", f"cam = {json.dumps(cam.cam)}", f"follower = {json.dumps(cam.follower)}",
+           f"profile = {{ circle = {{ center = {_pair(cam.center)}, radius = {toml_number(cam.radius)} }} }}"]
+    if cam.kind == "roller":
+        out.append(f"roller = {{ center = {json.dumps(cam.point)}, radius = {toml_number(cam.roller_radius)} }}")
+    elif cam.kind == "knife":
+        out.append(f"knife = {json.dumps(cam.point)}")
+    else:
+        assert cam.flat is not None
+        out.append(f"flat = {{ through = {_pair(cam.flat[0])}, angle = {_angle(scene, cam.flat[1])} }}")
+    if cam.inside:
+        out.append('contact = "inside"')
+    return out + _name_line(cam.name, cam.cam, cam.follower)
+
+
+def _pitch(curve: PitchCircle | PitchLine, scene: Scene) -> str:
+    if isinstance(curve, PitchCircle):
+        return f"{{ center = {json.dumps(curve.center)}, radius = {toml_number(curve.radius)} }}"
+    return f"{{ line = {{ through = {_pair(curve.through)}, angle = {_angle(scene, curve.angle_rad)} }} }}"
+
+
+def _gear_toml(scene: Scene, gear: GearSpec) -> list[str]:
+    phase = [toml_number(p) if isinstance(c, PitchLine) else _angle(scene, p) for c, p in zip(gear.pitch, gear.phase)]
+    out = ["", "[[gears]]", f"links = {_strings(gear.links)}",
+           f"pitch = [{_pitch(gear.pitch[0], scene)}, {_pitch(gear.pitch[1], scene)}]"]
+    if gear.internal:
+        out.append("internal = true")
+    return out + [f"phase = [{phase[0]}, {phase[1]}]"] + _name_line(gear.name, *gear.links)
+
+
+def _higher_pairs(scene: Scene) -> list[str]:
+    """The scene's ``[[gears]]`` and ``[[cams]]`` as the user writes them."""
+    return [line for gear in scene.gears for line in _gear_toml(scene, gear)] + [
+        line for cam in scene.cams for line in _cam_toml(scene, cam)]
+
+
 def scene_toml(scene: Scene, header: str = "") -> str:
-    """The scene as TOML (a link or slider input); ``header`` becomes comment lines at the top."""
+    """The scene as TOML (a link or slider input); ``header`` becomes comment lines at the top. Cams are
+    written as ``[[cams]]``, never as their equivalent links."""
+    scene = as_written(scene)
     out = [f"# {line}" for line in header.splitlines()]
     out += [f"title = {json.dumps(scene.title, ensure_ascii=False)}",
             f'units = {{ length = "{scene.units.length}", angle = "{scene.units.angle}" }}']
@@ -64,10 +109,8 @@ def scene_toml(scene: Scene, header: str = "") -> str:
         out += ["", "[[sliders]]", f"block = {json.dumps(slider.block)}", f"guide = {json.dumps(slider.guide)}",
                 f"point = {json.dumps(slider.point)}",
                 f"line = {{ through = {_pair(slider.through)}, angle = {_angle(scene, slider.angle_rad)} }}"]
-        default = slider.guide + slider.block if len(slider.guide) == 1 and len(slider.block) == 1 else (
-            f"{slider.guide}-{slider.block}")
-        if slider.name != default:
-            out.append(f"name = {json.dumps(slider.name)}")
+        out += _name_line(slider.name, slider.guide, slider.block)
+    out += _higher_pairs(scene)
     for inp in scene.inputs:
         out += ["", "[[input]]" if scene.more_inputs else "[input]"]
         if isinstance(inp, LinkInput):

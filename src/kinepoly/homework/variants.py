@@ -16,6 +16,10 @@ the input values, all rounded to numbers a student can draw. It is kept only if
   number is at most ten times the original's;
 * its solve carries no near-singular warning and its cross-check is clean.
 
+Cams and gears are drawn and written as the user wrote them (``homework.higher_pairs``): a pair's
+lengths take the factor of the link that carries them, and with gears every link takes the same one
+(``GEARS_NOTE``), so that each pair's centre distance stays the sum (difference) of its radii.
+
 Each variant is written as TOML with a ``[guess]`` of every moving point, so it is pinned to
 that assembly, and read back and solved again: its answer key is taken from that solve, in the
 canonical forms, so ``kinepoly check`` of a variant against its own key passes. The same seed
@@ -34,6 +38,7 @@ from pathlib import Path
 from kinepoly.errors import AssemblyError, KinepolyError, SceneError
 from kinepoly.geom.vec import norm, unit
 from kinepoly.homework.answers import AnswerKey, Value
+from kinepoly.homework.higher_pairs import as_written, pair_lengths, pair_owners, solvable, with_pair_lengths
 from kinepoly.homework.reference import asked_keys, values_of
 from kinepoly.homework.toml_out import answers_toml, scene_toml
 from kinepoly.homework.vary import Range, Ranges
@@ -41,9 +46,11 @@ from kinepoly.scene.loader import loads_scene
 from kinepoly.scene.spec import GivenInput, LinkInput, LinkSpec, PointSpec, Scene
 from kinepoly.solution import Solution, solve
 
-__all__ = ["DEFAULT_MIN_TRANSMISSION_DEG", "Variant", "make_variants"]
+__all__ = ["DEFAULT_MIN_TRANSMISSION_DEG", "GEARS_NOTE", "Variant", "make_variants"]
 
 DEFAULT_MIN_TRANSMISSION_DEG = 30.0
+GEARS_NOTE = ("With gears every link takes the same factor (two decimals, 1 where the links' ranges share none), "
+              "so that each pair's centres stay r2 + r3 (internal: |r2 - r3|) apart.")
 _DRAWS_PER_VARIANT = 60
 _STEP_DEG = 15.0  # the largest turn of the input per step of a path
 _STEP_FACTOR = 0.05  # the largest relative change of a length per step
@@ -72,6 +79,8 @@ class _Numbers:
     points: tuple[tuple[Vec, ...], ...]
     through: tuple[Vec, ...]
     inputs: tuple[tuple[str, float], ...]
+    pairs: tuple[float, ...] = ()
+    """The lengths the cams and gears carry (``homework.higher_pairs.pair_lengths``)."""
 
 
 def _numbers(scene: Scene) -> _Numbers:
@@ -79,7 +88,7 @@ def _numbers(scene: Scene) -> _Numbers:
     names = ("angle_rad", "omega", "alpha") if isinstance(inp, LinkInput) else ("s", "s_dot", "s_ddot")
     return _Numbers(tuple(tuple(p.local for p in link.points) for link in scene.links),
                     tuple(s.through for s in scene.sliders),
-                    tuple((name, float(getattr(inp, name))) for name in names))
+                    tuple((name, float(getattr(inp, name))) for name in names), pair_lengths(scene))
 
 
 def _mix(a: Vec, b: Vec, t: float) -> Vec:
@@ -93,15 +102,26 @@ def _between(start: _Numbers, end: _Numbers, t: float, turn: float) -> _Numbers:
     inputs = tuple((name, a + t * (turn if name == "angle_rad" else b - a))
                    for (name, a), (_, b) in zip(start.inputs, end.inputs))
     return _Numbers(tuple(tuple(_mix(p, q, t) for p, q in zip(ps, qs)) for ps, qs in zip(start.points, end.points)),
-                    tuple(_mix(p, q, t) for p, q in zip(start.through, end.through)), inputs)
+                    tuple(_mix(p, q, t) for p, q in zip(start.through, end.through)), inputs,
+                    tuple(a + t * (b - a) for a, b in zip(start.pairs, end.pairs)))
 
 
-def _scene(base: Scene, numbers: _Numbers, guess: tuple[tuple[str, Vec], ...], title: str | None = None) -> Scene:
+def _written_scene(base: Scene, numbers: _Numbers, guess: tuple[tuple[str, Vec], ...],
+                   title: str | None = None) -> Scene:
+    """The variant as it is written: ``base`` (as the user wrote it, cams and gears too) with ``numbers``."""
     links = tuple(LinkSpec(link.name, tuple(PointSpec(p.name, xy, p.line) for p, xy in zip(link.points, coords)),
                            link.line) for link, coords in zip(base.links, numbers.points))
     sliders = tuple(dataclasses.replace(s, through=xy) for s, xy in zip(base.sliders, numbers.through))
-    return dataclasses.replace(base, links=links, sliders=sliders, guess=guess, title=title or base.title,
-                               input=dataclasses.replace(base.input, **dict(numbers.inputs)))  # type: ignore[arg-type]
+    points = {p.name for link in base.links for p in link.points}
+    return with_pair_lengths(dataclasses.replace(
+        base, links=links, sliders=sliders, guess=tuple((name, at) for name, at in guess if name in points),
+        title=title or base.title, input=dataclasses.replace(base.input, **dict(numbers.inputs))),  # type: ignore[arg-type]
+        numbers.pairs)
+
+
+def _scene(base: Scene, numbers: _Numbers, guess: tuple[tuple[str, Vec], ...]) -> Scene:
+    """The variant as it is solved: its cams replaced by their equivalent links."""
+    return solvable(_written_scene(base, numbers, guess))
 
 
 # --------------------------------------------------------------------------------------------
@@ -110,7 +130,7 @@ def _scene(base: Scene, numbers: _Numbers, guess: tuple[tuple[str, Vec], ...], t
 
 def _size(scene: Scene) -> float:
     lengths = [math.hypot(*p.local) for link in scene.links for p in link.points]
-    lengths += [math.hypot(*s.through) for s in scene.sliders]
+    lengths += [math.hypot(*s.through) for s in scene.sliders] + [abs(x) for x in pair_lengths(scene)]
     return max(lengths, default=0.0) or 1.0
 
 
@@ -129,10 +149,29 @@ def _value_exponent(drawn: Range) -> int:
     return math.floor(math.log10(largest)) - 1 if largest > 0 else 0
 
 
+def _factors(rng: random.Random, scene: Scene, ranges: Ranges) -> dict[str, float]:
+    """A factor per link; with gears one for all (of two decimals, in every link's range, 1 if there is
+    none), so that the pairs' centre distances stay r2 + r3 (|r2 - r3|)."""
+    if not scene.gears:
+        return {link.name: rng.uniform(ranges.factors[link.name].low, ranges.factors[link.name].high)
+                for link in scene.links}
+    low = math.ceil(100 * max(r.low for r in ranges.factors.values()) - 1e-9) / 100
+    high = math.floor(100 * min(r.high for r in ranges.factors.values()) + 1e-9) / 100
+    factor = round(rng.uniform(low, high), 2) if low <= high else 1.0
+    return {link.name: factor for link in scene.links}
+
+
+def _length_rounder(scene: Scene) -> Callable[[float], float]:
+    """Lengths to a grid a student can draw; with gears the scaled lengths exactly (a factor of two decimals
+    times the scene's), so that a sum of radii stays the distance it was."""
+    if scene.gears:
+        return lambda x: float(f"{x:.12g}") + 0.0
+    return _rounder(_length_exponent(scene))
+
+
 def _draw(rng: random.Random, scene: Scene, ranges: Ranges) -> _Numbers:
-    length = _rounder(_length_exponent(scene))
-    factors = {link.name: rng.uniform(ranges.factors[link.name].low, ranges.factors[link.name].high)
-               for link in scene.links}
+    length = _length_rounder(scene)
+    factors = _factors(rng, scene, ranges)
     points = tuple(tuple((length(factors[link.name] * x), length(factors[link.name] * y)) for x, y in
                          (p.local for p in link.points)) for link in scene.links)
     through = tuple((length(factors[s.guide] * s.through[0]), length(factors[s.guide] * s.through[1]))
@@ -148,7 +187,8 @@ def _draw(rng: random.Random, scene: Scene, ranges: Ranges) -> _Numbers:
         else:
             x = _rounder(_value_exponent(drawn))(x)
         inputs.append((name, x + 0.0))  # never -0.0
-    return _Numbers(points, through, tuple(inputs))
+    pairs = tuple(length(factors[owner] * x) for owner, x in zip(pair_owners(scene), pair_lengths(scene)))
+    return _Numbers(points, through, tuple(inputs), pairs)
 
 
 # --------------------------------------------------------------------------------------------
@@ -280,7 +320,7 @@ def _written(base: Scene, name: str, index: int, numbers: _Numbers, reached: _So
     spot = _rounder(_length_exponent(base) - 1)
     guess = tuple((point, (spot(x), spot(y))) for point, (x, y) in reached.guess())
     title = f"{base.title} (variant {index})"
-    text = scene_toml(_scene(base, numbers, guess, title), header)
+    text = scene_toml(_written_scene(base, numbers, guess, title), header)
     scene = loads_scene(text, f"{name}.toml")
     again = _solved(scene)
     if again is None or not _is_good(again, original, min_transmission_deg) or not _same_pose(
@@ -307,6 +347,7 @@ def make_variants(scene: Scene, ranges: Ranges, count: int, seed: int, *, stem: 
     if original is None:
         solve(scene)  # raises the error that says why
         raise AssemblyError(f"{scene.source}: the scene itself cannot be solved")  # pragma: no cover
+    scene = as_written(scene)  # drawn and written with its [[cams]], not their equivalent links
     stem = stem or Path(scene.source).stem or "variant"
     width = max(2, len(str(count)))
     rng = random.Random(seed)
@@ -326,7 +367,7 @@ def make_variants(scene: Scene, ranges: Ranges, count: int, seed: int, *, stem: 
         index = len(variants) + 1
         name = f"{stem}-{index:0{width}d}"
         header = (f"Variant {index} of {Path(scene.source).name}, made by kinepoly variants (seed {seed}); "
-                  f"its answer key is {name}.answers.toml")
+                  f"its answer key is {name}.answers.toml" + (f"\n{GEARS_NOTE}" if scene.gears else ""))
         variant = _written(scene, name, index, numbers, reached, header, original, min_transmission_deg)
         if variant is not None:
             variants.append(variant)

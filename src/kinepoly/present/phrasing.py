@@ -462,8 +462,7 @@ class _Phrase:
         pitch = point.partition("@")[0]
         how = (self.say.say("higher_pairs.how_rack") if p["rack"] == "yes" else
                self.say.say("higher_pairs.how_pin", centre=str(p["through"]), pitch=pitch))
-        through = point if p["rack"] == "yes" else str(p["through"])
-        through_tip = self.w.tip_or_pole(self.polygon, str(p["through"]) if p["rack"] == "no" else through)
+        through_tip = self.w.tip_or_pole(self.polygon, str(p["through"]))  # a rack: its guide's point under P
         key = "higher_pairs.rolling_velocity" if self.polygon == "velocity" else "higher_pairs.rolling_acceleration"
         text = self.say.say(key, pair=str(p["pair"]), pitch=pitch, point=point, known_point=known, link=str(p["link"]),
                             known=str(p["known"]), known_tip=self.w.tip_or_pole(self.polygon, known),

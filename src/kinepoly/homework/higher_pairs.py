@@ -1,0 +1,107 @@
+"""Gears and cams in a variant: the scene as the user wrote it, and the lengths its pairs carry.
+
+A loaded scene holds each cam's equivalent link (``scene.equivalent``); a variant is drawn on the
+scene *without* them (the links, the slide of a flat face, and the disc's centre point the loader
+added to the cam), written with its ``[[cams]]`` and ``[[gears]]`` as they were, and replaced again
+(:func:`with_equivalent_links`) before it is solved.
+
+The lengths a pair carries belong to a link and take that link's factor: a cam's profile centre and
+radius are the cam's, its roller's radius and flat face the follower's; a pitch circle's radius, a
+pitch line's ``through`` and a rack's phase (a length) their gear's.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+from kinepoly.scene.equivalent import with_equivalent_links
+from kinepoly.scene.spec import CamSpec, GearSpec, LinkSpec, PitchCircle, PitchLine, Scene
+
+__all__ = ["as_written", "pair_lengths", "pair_owners", "solvable", "with_pair_lengths"]
+
+
+def _added_centre(scene: Scene, cam: CamSpec, link: LinkSpec) -> str | None:
+    """The centre point the loader added to the cam (made at the ``[[cams]]`` table's line), if it did."""
+    for p in link.points:
+        if p.name == cam.center_point and p.line == cam.line and p.local == cam.center:
+            return p.name
+    return None
+
+
+def as_written(scene: Scene) -> Scene:
+    """``scene`` without its cams' equivalent links: the links, sliders and points the user wrote."""
+    if not scene.equivalent_links:
+        return scene
+    replaced = set(scene.equivalent_links)
+    added = {cam.cam: name for cam in scene.cams
+             if (name := _added_centre(scene, cam, scene.link(cam.cam))) is not None}
+    links = tuple(dataclasses.replace(link, points=tuple(p for p in link.points if p.name != added.get(link.name)))
+                  for link in scene.links if link.name not in replaced)
+    sliders = tuple(s for s in scene.sliders if s.block not in replaced and s.guide not in replaced)
+    cams = tuple(dataclasses.replace(cam, equivalent="", center_point="") for cam in scene.cams)
+    return dataclasses.replace(scene, links=links, sliders=sliders, cams=cams, equivalent_links=())
+
+
+def solvable(scene: Scene) -> Scene:
+    """A scene as written, its cams replaced by their equivalent links (as the loader does)."""
+    return with_equivalent_links(scene)
+
+
+def _cam_lengths(cam: CamSpec) -> list[tuple[str, float]]:
+    out = [(cam.cam, cam.center[0]), (cam.cam, cam.center[1]), (cam.cam, cam.radius),
+           (cam.follower, cam.roller_radius)]
+    if cam.flat is not None:
+        out += [(cam.follower, cam.flat[0][0]), (cam.follower, cam.flat[0][1])]
+    return out
+
+
+def _gear_lengths(gear: GearSpec) -> list[tuple[str, float]]:
+    out: list[tuple[str, float]] = []
+    for link, curve, phase in zip(gear.links, gear.pitch, gear.phase, strict=True):
+        if isinstance(curve, PitchCircle):
+            out.append((link, curve.radius))
+        else:
+            out += [(link, curve.through[0]), (link, curve.through[1]), (link, phase)]
+    return out
+
+
+def _lengths(scene: Scene) -> list[tuple[str, float]]:
+    return [x for cam in scene.cams for x in _cam_lengths(cam)] + [x for gear in scene.gears
+                                                                    for x in _gear_lengths(gear)]
+
+
+def pair_lengths(scene: Scene) -> tuple[float, ...]:
+    """Every length the scene's cams and gears carry, in one order."""
+    return tuple(value for _, value in _lengths(scene))
+
+
+def pair_owners(scene: Scene) -> tuple[str, ...]:
+    """The link whose factor scales each of :func:`pair_lengths`."""
+    return tuple(link for link, _ in _lengths(scene))
+
+
+def _cam(cam: CamSpec, values: list[float]) -> CamSpec:
+    centre, radius, roller = (values.pop(0), values.pop(0)), values.pop(0), values.pop(0)
+    flat = None if cam.flat is None else ((values.pop(0), values.pop(0)), cam.flat[1])
+    return dataclasses.replace(cam, center=centre, radius=radius, roller_radius=roller, flat=flat)
+
+
+def _gear(gear: GearSpec, values: list[float]) -> GearSpec:
+    pitch: list[PitchCircle | PitchLine] = []
+    phase = list(gear.phase)
+    for k, curve in enumerate(gear.pitch):
+        if isinstance(curve, PitchCircle):
+            pitch.append(dataclasses.replace(curve, radius=values.pop(0)))
+        else:
+            pitch.append(dataclasses.replace(curve, through=(values.pop(0), values.pop(0))))
+            phase[k] = values.pop(0)
+    return dataclasses.replace(gear, pitch=(pitch[0], pitch[1]), phase=(phase[0], phase[1]))
+
+
+def with_pair_lengths(scene: Scene, lengths: Sequence[float]) -> Scene:
+    """``scene`` (as written) with its pairs' lengths replaced, in the order of :func:`pair_lengths`."""
+    values = list(lengths)
+    cams = tuple(_cam(cam, values) for cam in scene.cams)
+    gears = tuple(_gear(gear, values) for gear in scene.gears)
+    return dataclasses.replace(scene, cams=cams, gears=gears)
