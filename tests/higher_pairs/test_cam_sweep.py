@@ -121,10 +121,10 @@ def test_offset_roller_follower_random(e: float, radius: float, roller: float, s
 
 def _rocker_rows(theta: np.ndarray, branch: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The equivalent four-bar O K W P of cam-roller-rocker.toml (OK = 15, KW = R + r = 50, PW = 60,
-    P = (90, 30)) by its loop equations: W on both circles, then omega_3 and alpha_3 from the loop's
+    P = (75, 35)) by its loop equations: W on both circles, then omega_3 and alpha_3 from the loop's
     derivatives, projected on the coupler K W (omega_2 = 20, alpha_2 = 0). Returns W, omega_3, alpha_3."""
     k = 15.0 * np.exp(1j * theta)
-    p = 90.0 + 30.0j
+    p = 75.0 + 35.0j
     d = np.abs(p - k)
     along = (50.0**2 - 60.0**2 + d * d) / (2 * d)
     unit = (p - k) / d
@@ -152,7 +152,7 @@ def test_roller_rocker_columns_against_the_four_bar_loop() -> None:
     seed = complex(result.column("r_W_x").values[0], result.column("r_W_y").values[0])
     branch = min((1.0, -1.0), key=lambda b: abs(_rocker_rows(t[:1], b)[0][0] - seed))
     w, omega3, alpha3 = _rocker_rows(t, branch)
-    p = 90.0 + 30.0j
+    p = 75.0 + 35.0j
     theta3 = np.angle(w - p) - math.pi  # W sits at (-60, 0) on the rocker
     assert np.max(np.abs(np.remainder(np.radians(result.column("theta_3").values) - theta3 + math.pi,
                                       2 * math.pi) - math.pi)) <= 1e-12
