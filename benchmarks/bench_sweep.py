@@ -12,6 +12,9 @@ and the coupler point C where the method has it) and the angles, omegas and alph
 and 4. Times are the best of several runs (the slow ones run once); ratios are to the closed form
 measured in the same run, so that a loaded machine moves both. Agreement: the largest difference
 from the sweep over all rows, relative to the largest magnitude of that kind of quantity.
+Two more rows tell what a sweep costs whatever its length: ``run_sweep`` over 36 rows (the
+Python that runs once per call, next to which the numpy passes over the rows hardly count)
+and ``prepare_sweep`` alone (the mechanism's indexes built on first use are not in it).
 
     python benchmarks/bench_sweep.py [--quick]
 """
@@ -36,6 +39,7 @@ from kinepoly.sweep import SweepResult, prepare_sweep, run_sweep, sweep
 
 SCENE = ROOT / "examples" / "four-bar.toml"
 STEPS = 3600
+FEW = 36
 A1, A2, A3, A4 = 100.0, 40.0, 120.0, 80.0  # frame, crank, coupler, rocker (examples/four-bar.toml)
 B3, BETA3 = 60.0, math.radians(30.0)  # coupler point C: 60 from A at 30 degrees to AB
 OMEGA2, ALPHA2 = 10.0, 5.0
@@ -208,6 +212,11 @@ def main() -> int:
                  agreement(subset, looped)))
     t_one, _ = best(lambda: kinepoly.solve(scene), max(30, repeat // 3))
     rows.append(("one kinepoly.solve (one position, the analytic check included)", t_one, "", None))
+    # what a sweep costs whatever its length (Python, not numpy passes): few rows, the plan prepared or not
+    t_few, _ = best(lambda: run_sweep(prepared, steps=FEW, start=0.0, stop=360.0), repeat)
+    t_prepare, _ = best(lambda: prepare_sweep(scene), repeat)
+    rows.append((f"kinepoly run_sweep(prepared plan), {FEW} rows: the cost per call", t_few, "", None))
+    rows.append(("kinepoly prepare_sweep(scene) alone", t_prepare, "", None))
     try:
         import numba  # noqa: F401
 

@@ -138,7 +138,7 @@ def _no_switch_possible(c: tuple[Points, Points], ok: Bools, periodic: bool, lab
     if not every and not ok.any():
         return True
     own = c[label]
-    step = np.diff(own)
+    step = own[1:] - own[:-1]  # np.diff's own subtraction, without its Python wrapper
     step2 = step.real * step.real + step.imag * step.imag
     if not every:
         step2 = step2[ok[1:] & ok[:-1]]

@@ -18,10 +18,11 @@ at a parallel pair instead. With ``record`` the polygon records the steps of row
 from __future__ import annotations
 
 import cmath
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numpy as np
 
@@ -70,9 +71,9 @@ class JointSolve:
     condition: Reals
 
 
-@dataclass(frozen=True)
-class Member:
-    """A known tip of a link: its label, where the point is at every row, whether it is fixed on the link."""
+class Member(NamedTuple):
+    """A known tip of a link: its label, where the point is at every row, whether it is fixed on the link
+    (a named tuple, frozen and cheap to make: a polygon makes one per tip and link)."""
 
     label: str
     at: Points
@@ -108,7 +109,7 @@ class Polygon:
         if mech.ground is not None:
             self.set_rate(mech.ground, np.zeros(self.n))  # and every link that slides on it without turning
             for p in mech.scene.link(mech.ground).points:
-                self._register(p.name, self.zero, p.name, list(mech.links_of_point(p.name)))
+                self._register(p.name, self.zero, p.name, mech.links_of_point(p.name))
 
     # -- row 0 as plain values, for the steps -------------------------------------------------------
     @staticmethod
@@ -150,19 +151,20 @@ class Polygon:
         return np.zeros(self.n) if omega is None else omega
 
     # -- tips -----------------------------------------------------------------------------------------
-    def _register(self, label: str, value: Points, point: str, links: list[str]) -> None:
+    def _register(self, label: str, value: Points, point: str, links: tuple[str, ...] | list[str]) -> None:
+        known = label in self.tips  # only a label with a tip already can be a member already
         self.tips[label] = value
-        at = self.world(point)
+        at = self.positions.point(point)
+        has_point = self.mechanism.has_point
         for link in links:
             entries = self.members.setdefault(link, [])
-            if all(m.label != label for m in entries):
-                entries.append(Member(label, at, self.mechanism.has_point(link, point)))
+            if not known or all(m.label != label for m in entries):
+                entries.append(Member(label, at, has_point(link, point)))
 
     def add_tip(self, link: str, point: str, value: Points) -> str:
         """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
         label = self.label(link, point)
-        links = list(self.mechanism.links_of_point(point)) if label == point else [link]
-        self._register(label, value, point, links)
+        self._register(label, value, point, self.mechanism.links_of_point(point) if label == point else (link,))
         return label
 
     def add_virtual_tip(self, link: str, name: str, value: Points) -> None:
@@ -244,7 +246,8 @@ class Polygon:
         if self.mechanism.has_point(link, point) and all(m.fixed for m in members):
             local = {m.label: self._local(link, m.label) for m in members}
             here = self._local(link, label)
-            first, second = max(pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
+            first, second = pairs[0] if len(pairs) == 1 else max(
+                pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
             a, b = self.tips[first.label], self.tips[second.label]
             value = np.asarray(a + (b - a) * _similar(local[first.label], local[second.label], here, label, link))
         else:
@@ -342,13 +345,15 @@ class Polygon:
         return StepLine(self.vec(line[0]), self.vec(line[1]), label)
 
 
+@functools.lru_cache(maxsize=1024)
 def _similar(wa: complex, wb: complex, at: complex, label: str, link: str) -> complex:
     """Where Mehmke's two lines cross for a polygon side of 1 from a to b: the image is a + (b - a) k.
 
     The line from a at the triangle's angle at A and the line from b at its angle at B are
     crossed for a = 0, b = 1; the image of a link is similar to it, so for any a and b they
     cross at a + (b - a) k. A flat triangle (lines at a sine below ``COLLINEAR_SIN``) takes k
-    from proportional division instead: the foot's ratio along AB and the height over |AB|.
+    from proportional division instead: the foot's ratio along AB and the height over |AB|. It depends
+    on the link's shape alone, so it is kept for the next polygon and the next sweep of that shape.
     """
     side = wb - wa
     if side == 0:

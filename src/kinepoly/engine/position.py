@@ -191,16 +191,14 @@ def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placem
             placed = replace(placed, poses={**placed.poses, group.link: pose})
             continue
         closure = close_dyad(mechanism, placed.poses, group, placed.values)
-        failures, ok = placed.failures, placed.ok
-        near = placed.near
         if closure.near is not None:
-            near = (*near, Failure(group.name, closure.joint, closure.near[0], closure.near[1]))
+            placed = replace(placed, near=(*placed.near, Failure(group.name, closure.joint, closure.near[0],
+                                                                 closure.near[1])))
         if not closure.ok.all():
-            bad = ok & ~closure.ok
+            bad = placed.ok & ~closure.ok
             policy.failed(mechanism, closure, bad)
-            failures = (*failures, Failure(group.name, closure.joint, bad, closure.why))
-            ok = ok & closure.ok
-        placed = replace(placed, ok=ok, failures=failures, near=near)
+            placed = replace(placed, ok=placed.ok & closure.ok,
+                             failures=(*placed.failures, Failure(group.name, closure.joint, bad, closure.why)))
         choice: Choice = 0
         if len(closure.telling) == 2:
             rest = groups[index + 1:]
