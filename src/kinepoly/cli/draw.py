@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -139,6 +140,8 @@ def _draw(args: argparse.Namespace) -> list[str]:
     t0 = time.perf_counter()
     solution = solve(load_scene(args.scene), load_s=0.0)
     layout = layout_sheet(solution, paper)
+    for note in layout.notes:  # a larger paper or a polygon's scale reduced: said on the sheet and here
+        print(f"kinepoly draw: {note}", file=sys.stderr)
     lines: list[str] = []
     files: list[tuple[Path, str | bytes, bool]] = []
     if targets:

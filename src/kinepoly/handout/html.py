@@ -12,7 +12,7 @@ from __future__ import annotations
 import html
 import re
 
-from kinepoly.handout.build import drawn_kinds, handout_content
+from kinepoly.handout.build import crowded_labels, drawn_kinds, handout_content
 from kinepoly.handout.content import Column, Handout, Page, Paragraph, Table
 from kinepoly.handout.drawing import Frame, band_frame, blank_sheet, drawing_layers, page_frame_items, scales_of
 from kinepoly.handout.notation import html_of
@@ -180,6 +180,7 @@ def handout_html(solution: Solution, say: Catalogue, paper: str | tuple[float, f
     frame = _frame(solution, size)
     handout = handout_content(solution, say, scales_of(frame.layout))
     kinds = drawn_kinds(frame)
+    crowded_labels(solution, frame)  # the whole drawing's labels first: each page keeps those it shows
     count = len(handout.pages)
     sections = "".join(_section(solution, frame, page, k, kinds, say) for k, page in enumerate(handout.pages, 1))
     title = html.escape(handout.title)

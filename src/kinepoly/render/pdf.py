@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from kinepoly.render.primitives import Arrow, Circle, Item, Path, Sheet, Stroke, Text
+from kinepoly.render.primitives import Arrow, Circle, Item, Path, Sheet, Stroke
 
 __all__ = ["pdf_bytes", "write_pdf_pages"]
 
@@ -63,7 +63,8 @@ def _face(bold: bool) -> _Face:
 
     weight = "bold" if bold else "normal"
     path = font_manager.findfont(font_manager.FontProperties(family="DejaVu Sans", weight=weight))
-    font = TTFont(path, lazy=True)
+    with open(path, "rb") as stream:  # read whole: no file left open
+        font = TTFont(io.BytesIO(stream.read()), lazy=True)
     order = font.getGlyphOrder()
     ids = {name: k for k, name in enumerate(order)}
     glyphs = {code: ids[name] for code, name in font.getBestCmap().items()}
@@ -88,7 +89,8 @@ def _subset(bold: bool, gids: frozenset[int]) -> bytes:
     options.layout_features = []
     options.name_IDs = ["*"]
     options.drop_tables += ["GPOS", "GSUB", "GDEF", "MATH", "FFTM", "kern"]
-    font = TTFont(_face(bold).path)
+    with open(_face(bold).path, "rb") as stream:
+        font = TTFont(io.BytesIO(stream.read()))
     subsetter = subset.Subsetter(options)
     subsetter.populate(gids=sorted(gids | {0}))
     subsetter.subset(font)

@@ -7,10 +7,11 @@ element per line, so that a change of the drawing reads as a diff.
 
 from __future__ import annotations
 
+import functools
 import re
 from typing import Any
 
-from kinepoly.render.primitives import Arrow, Circle, Path, Sheet, Stroke, Text
+from kinepoly.render.primitives import Arrow, Circle, Layer, Path, Sheet, Stroke, Text
 
 __all__ = ["FONT_FAMILY", "number", "svg_text", "write_svg"]
 
@@ -72,16 +73,28 @@ def svg_text(sheet: Sheet) -> str:
                            profile="full", debug=False)
     dwg.set_desc(title=sheet.title)
     dwg.add(dwg.rect(insert=(0, 0), size=(number(w), number(h)), fill="#ffffff"))
-    for layer in sheet.layers:
-        group = dwg.g(id=layer.name, **{"font-family": FONT_FAMILY, "stroke-linecap": "butt"})
-        for item in layer.items:
-            for element in _element(dwg, item, h):
-                group.add(element)
-        dwg.add(group)
-    # one element per line for readable diffs, but nothing between a text's runs (it would be drawn)
-    body = re.sub(r"><(?!tspan|/text)", ">\n<", dwg.tostring())
-    body = _NOT_XML.sub("\ufffd", body)  # the scene refuses them; any other text is still well-formed XML
+    head = _lines(dwg.tostring()).removesuffix("</svg>")
+    body = head + "".join(_group_text(layer, h) + "\n" for layer in sheet.layers) + "</svg>"
     return '<?xml version="1.0" encoding="utf-8" ?>\n' + body + "\n"
+
+
+@functools.lru_cache(maxsize=256)
+def _group_text(layer: Layer, height: float) -> str:
+    """A layer's ``<g>``, made once however many sheets draw it (a handout's pages share their fixed layers)."""
+    import svgwrite
+
+    dwg = svgwrite.Drawing(profile="full", debug=False)
+    group = dwg.g(id=layer.name, **{"font-family": FONT_FAMILY, "stroke-linecap": "butt"})
+    for item in layer.items:
+        for element in _element(dwg, item, height):
+            group.add(element)
+    return _lines(group.tostring())
+
+
+def _lines(text: str) -> str:
+    """One element per line for readable diffs, but nothing between a text's runs (it would be drawn); any
+    character XML cannot hold replaced (the scene refuses them; any other text is still well-formed XML)."""
+    return _NOT_XML.sub("\ufffd", re.sub(r"><(?!tspan|/text)", ">\n<", text))
 
 
 def write_svg(sheet: Sheet, target: Any) -> None:
