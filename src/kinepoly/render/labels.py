@@ -438,7 +438,6 @@ def _kept(cache: LabelCache, region: Box, requests: Sequence[Request], near: Seq
     sources = [source for source in (widest if widest is not None and widest[1].issuperset(near) else None, last)
                if source is not None]
     kept: dict[int, Placed] = {}
-    taken: _Placed | None = None
     for before, drawn_before in sources:
         available = {request: list(placed) for request, placed in before.items()}
         candidates: dict[int, Placed] = {}
@@ -447,12 +446,12 @@ def _kept(cache: LabelCache, region: Box, requests: Sequence[Request], near: Seq
             if entries and k not in kept:
                 candidates[k] = entries.pop(0)
         _untouched(candidates, [cache.geometry(item)[0] for item in near if item not in drawn_before])
-        if taken is not None:
+        if kept and candidates:
+            taken = _Placed()
+            for entry in kept.values():
+                taken.add(entry)
             candidates = {k: c for k, c in candidates.items() if not any(taken.touches(g) for g in c[2])}
         kept.update(candidates)
-        taken = _Placed()
-        for entry in kept.values():
-            taken.add(entry)
     return kept
 
 
