@@ -558,21 +558,25 @@ def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kep
 
 _WRAP_MM = 40.0
 _WRAP_SHARE = 0.35
-"""A label naming several things (``o, a0, g1, g2, ...``) is broken into lines no wider than the larger of
+"""A label naming several things (``o, a0, g1, g2, ...``, ``v_Q2 = v_Q3 = ...``) is broken into lines no wider than the larger of
 ``_WRAP_MM`` and this share of its region's width: the chain of a long mechanism's coinciding tips stays on the page."""
 _LINE_GAP_MM = 0.4
 
 
+_BREAKS = (", ", " = ")
+"""The runs a long label may be broken after: between the names of coinciding tips, of equal vectors."""
+
+
 def wrapped(runs: tuple[Run, ...], width: float) -> tuple[Run, ...]:
-    """``runs`` in lines no wider than ``width``, broken after their ", " runs (one name never broken);
-    the first line stays where it was, the others below it."""
+    """``runs`` in lines no wider than ``width``, broken after their ", " and " = " runs (one name never
+    broken); the first line stays where it was, the others below it."""
     x0, y0, x1, y1 = runs_box(runs)
     if x1 - x0 <= width:
         return runs
     pieces: list[list[Run]] = [[]]
     for run in runs:
         pieces[-1].append(run)
-        if run.text == ", ":
+        if run.text in _BREAKS:
             pieces.append([])
     pieces = [piece for piece in pieces if piece]
     if len(pieces) < 2:
@@ -590,9 +594,7 @@ def wrapped(runs: tuple[Run, ...], width: float) -> tuple[Run, ...]:
 
 
 def _fitted(request: Request) -> Request:
-    """A point's label wrapped to its region (``wrapped``)."""
-    if request.end is not None:
-        return request
+    """A label wrapped to its region (``wrapped``)."""
     width = max(_WRAP_MM, _WRAP_SHARE * (request.region[2] - request.region[0]))
     runs = wrapped(request.runs, width)
     return request if runs is request.runs else replace(request, runs=runs)
