@@ -47,8 +47,8 @@ class Frame:
     band: float
     labels: LabelCache = field(default_factory=LabelCache, compare=False, repr=False)
     """Shared by the frame's pages: the labels of the fixed parts are placed once."""
-    placed: dict[Item, Item] = field(default_factory=dict, compare=False, repr=False)
-    """Each item drawn on the frame's pages, moved to its place on the page once (``moved``)."""
+    placed: dict[tuple[Item, float], Item] = field(default_factory=dict, compare=False, repr=False)
+    """Each item drawn on the frame's pages, moved to its place on the page once (``moved``; by item and shift)."""
 
 
 def scales_of(layout: Layout) -> dict[str, float]:
@@ -213,9 +213,9 @@ def drawing_layers(solution: Solution, frame: Frame, drawing: Drawing, say: Cata
     for name in LAYERS:
         out[name] = []
         for item in layers[name]:
-            found = placed.get(item)
+            found = placed.get((item, frame.shift))
             if found is None:
-                found = placed[item] = moved(item, frame.shift)
+                found = placed[item, frame.shift] = moved(item, frame.shift)
             out[name].append(found)
     return out
 
