@@ -76,7 +76,6 @@ def _face(bold: bool) -> _Face:
                  (head.xMin, head.yMin, head.xMax, head.yMax), hhea.ascent, hhea.descent, cap, bold)
 
 
-@functools.lru_cache(maxsize=16)
 def _subset(bold: bool, gids: frozenset[int]) -> bytes:
     """The font file holding only ``gids`` (and .notdef), every glyph keeping its id."""
     from fontTools import subset

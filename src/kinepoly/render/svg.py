@@ -7,7 +7,6 @@ element per line, so that a change of the drawing reads as a diff.
 
 from __future__ import annotations
 
-import functools
 import re
 from typing import Any
 
@@ -64,8 +63,10 @@ def _element(dwg: Any, item: Path | Circle | Arrow | Text, h: float) -> list[Any
     return [text]
 
 
-def svg_text(sheet: Sheet) -> str:
-    """The sheet as an SVG document (text)."""
+def svg_text(sheet: Sheet, made: dict[Any, str] | None = None) -> str:
+    """The sheet as an SVG document (text); ``made``, shared by the sheets of one document (a handout's
+    pages), holds each layer's ``<g>`` and each item's elements once written: what the pages share is
+    written once."""
     import svgwrite
 
     w, h = sheet.width, sheet.height
@@ -74,21 +75,26 @@ def svg_text(sheet: Sheet) -> str:
     dwg.set_desc(title=sheet.title)
     dwg.add(dwg.rect(insert=(0, 0), size=(number(w), number(h)), fill="#ffffff"))
     head = _lines(dwg.tostring()).removesuffix("</svg>")
-    body = head + "".join(_group_text(layer, h) + "\n" for layer in sheet.layers) + "</svg>"
+    made = made if made is not None else {}
+    for layer in sheet.layers:
+        if (layer, h) not in made:
+            made[layer, h] = _group_text(dwg, layer, h, made)
+    body = head + "".join(made[layer, h] + "\n" for layer in sheet.layers) + "</svg>"
     return '<?xml version="1.0" encoding="utf-8" ?>\n' + body + "\n"
 
 
-@functools.lru_cache(maxsize=256)
-def _group_text(layer: Layer, height: float) -> str:
-    """A layer's ``<g>``, made once however many sheets draw it (a handout's pages share their fixed layers)."""
-    import svgwrite
-
-    dwg = svgwrite.Drawing(profile="full", debug=False)
-    group = dwg.g(id=layer.name, **{"font-family": FONT_FAMILY, "stroke-linecap": "butt"})
+def _group_text(dwg: Any, layer: Layer, height: float, made: dict[Any, str]) -> str:
+    """A layer's ``<g>``, its items' elements taken from ``made`` when written before (by item and height)."""
+    shell = dwg.g(id=layer.name, **{"font-family": FONT_FAMILY, "stroke-linecap": "butt"}).tostring()
+    if not layer.items:
+        return _lines(shell)
+    parts = []
     for item in layer.items:
-        for element in _element(dwg, item, height):
-            group.add(element)
-    return _lines(group.tostring())
+        text = made.get((item, height))
+        if text is None:
+            text = made[item, height] = "".join(element.tostring() for element in _element(dwg, item, height))
+        parts.append(text)
+    return _lines(shell.removesuffix(" />") + ">" + "".join(parts) + "</g>")
 
 
 def _lines(text: str) -> str:
