@@ -6,14 +6,15 @@ For each chain length N (2N + 2 links) it times, in-process and best of a few ru
 - ``sweep``: 36 positions over 10 degrees of the crank;
 - ``draw``: the sheet and its SVG (smaller chains only: ``--draw-max``);
 - ``handout``: the PDF (its sheets written) and the HTML page on A4, which takes a larger paper
-  when the chain needs it (chains of 1, 2, 5, 10 loops and ``--handout-max``);
+  when the chain needs it (chains of 1, 2, 5, 10 loops and ``--handout-max``); ``handout-pdf`` and
+  ``handout-html`` each of the two alone;
 
 then fits time = c N^p by least squares on log-log (solve and sweep over the lengths of at least
 10 loops, draw and handout over all) and prints each growth exponent p (1 is linear). The issue's targets: the solve of 400 loops under
-2 s and at most 6 times that of 100; the 10-loop handout at most 14 times the 1-loop one.
+2 s and at most 6 times that of 100; the 10-loop handout (PDF and HTML, together and each) at most 14 times the 1-loop one.
 
     python benchmarks/scaling.py [--quick] [--sizes 1,10,100,400,800] [--draw-max 40] [--handout-max 10]
-                                 [--tasks solve,sweep,draw,handout]
+                                 [--tasks solve,sweep,draw,handout,handout-pdf,handout-html]
 """
 
 from __future__ import annotations
@@ -60,7 +61,7 @@ def _draw(n: int) -> Callable[[], object]:
     return lambda: write_svg(build_sheet(solution, "A4"), io.StringIO())
 
 
-def _handout(n: int) -> Callable[[], object]:
+def _handout_parts(n: int, pdf: bool, html: bool) -> Callable[[], object]:
     from kinepoly.handout.build import handout_sheets
     from kinepoly.handout.html import handout_html
     from kinepoly.present.catalogue import load_catalogue
@@ -70,11 +71,25 @@ def _handout(n: int) -> Callable[[], object]:
     say = load_catalogue("en")
 
     def work() -> None:
-        handout, sheets = handout_sheets(solution, say, "A4")  # a larger paper when A4 is too small
-        write_pdf_pages(sheets, io.BytesIO(), handout.title)
-        handout_html(solution, say, "A4")
+        if pdf:
+            handout, sheets = handout_sheets(solution, say, "A4")  # a larger paper when A4 is too small
+            write_pdf_pages(sheets, io.BytesIO(), handout.title)
+        if html:
+            handout_html(solution, say, "A4")
 
     return work
+
+
+def _handout(n: int) -> Callable[[], object]:
+    return _handout_parts(n, pdf=True, html=True)
+
+
+def _handout_pdf(n: int) -> Callable[[], object]:
+    return _handout_parts(n, pdf=True, html=False)
+
+
+def _handout_html(n: int) -> Callable[[], object]:
+    return _handout_parts(n, pdf=False, html=True)
 
 
 def exponent(sizes: list[int], times: list[float], least: int = 10) -> float:
@@ -94,8 +109,9 @@ def main() -> None:
     parser.add_argument("--sizes", help="comma-separated chain lengths (default 1,3,10,30,100,200,400,800)")
     parser.add_argument("--draw-max", type=int, default=40, help="the longest chain drawn (default 40)")
     parser.add_argument("--handout-max", type=int, default=10, help="the longest chain made a handout (default 10)")
-    parser.add_argument("--tasks", default="solve,sweep,draw,handout",
-                        help="which to time, comma-separated (default solve,sweep,draw,handout)")
+    parser.add_argument("--tasks", default="solve,sweep,draw,handout,handout-pdf,handout-html",
+                        help="which to time, comma-separated (default: all of solve, sweep, draw, handout, "
+                             "handout-pdf, handout-html)")
     args = parser.parse_args()
     wanted = set(args.tasks.split(","))
     sizes = [int(s) for s in args.sizes.split(",")] if args.sizes else \
@@ -103,29 +119,31 @@ def main() -> None:
     repeat = 1 if args.quick else 3
     tasks: list[tuple[str, Callable[[int], Callable[[], object]], int]] = [
         ("solve", _solve, max(sizes)), ("sweep", _sweep, max(sizes)), ("draw", _draw, args.draw_max),
-        ("handout", _handout, args.handout_max)]
+        ("handout", _handout, args.handout_max), ("handout-pdf", _handout_pdf, args.handout_max),
+        ("handout-html", _handout_html, args.handout_max)]
     results: dict[str, tuple[list[int], list[float]]] = {}
     for name, make, limit in (task for task in tasks if task[0] in wanted):
         ns = [n for n in sizes if n <= limit] or sizes[:1]
-        if name == "handout":
+        if name.startswith("handout"):
             ns = sorted({*ns, *(k for k in (1, 2, 5, 10) if k <= limit)})
         times = []
         for n in ns:
             work = make(n)
             times.append(_best(work, repeat if n <= 100 else 1))
-            print(f"{name:8s} N = {n:4d}: {1e3 * times[-1]:10.1f} ms", flush=True)
+            print(f"{name:12s} N = {n:4d}: {1e3 * times[-1]:10.1f} ms", flush=True)
         results[name] = (ns, times)
     print("\ngrowth exponents (time ~ N^p; solve and sweep fitted over N >= 10, draw and handout over every N):")
     for name, (ns, times) in results.items():
         least = 10 if name in ("solve", "sweep") else 1
-        print(f"  {name:8s} p = {exponent(ns, times, least):.2f}   (N = {', '.join(map(str, ns))})")
+        print(f"  {name:12s} p = {exponent(ns, times, least):.2f}   (N = {', '.join(map(str, ns))})")
     by_n = dict(zip(*results.get("solve", ([], [])), strict=True))
     if 100 in by_n and 400 in by_n:
         print(f"  solve: 400 loops in {by_n[400]:.2f} s, {by_n[400] / by_n[100]:.1f} times 100 loops "
               "(targets: under 2 s, at most 6 times)")
-    hand = dict(zip(*results.get("handout", ([], [])), strict=True))
-    if 1 in hand and 10 in hand:
-        print(f"  handout: 10 loops {hand[10] / hand[1]:.1f} times 1 loop (target: at most 14 times)")
+    for name in ("handout", "handout-pdf", "handout-html"):
+        hand = dict(zip(*results.get(name, ([], [])), strict=True))
+        if 1 in hand and 10 in hand:
+            print(f"  {name}: 10 loops {hand[10] / hand[1]:.1f} times 1 loop (target: at most 14 times)")
 
 
 if __name__ == "__main__":

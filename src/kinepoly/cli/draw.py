@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -120,7 +121,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _draw(args: argparse.Namespace) -> list[str]:
     """Draw the scene as asked; return the lines to print (one per file written)."""
-    from kinepoly.render.layout import paper_size
+    from kinepoly.render.layout import paper_name, paper_size
     from kinepoly.render.sheet import build_sheet, layout_sheet
     from kinepoly.scene.loader import load_scene
     from kinepoly.solution import solve
@@ -139,10 +140,16 @@ def _draw(args: argparse.Namespace) -> list[str]:
     t0 = time.perf_counter()
     solution = solve(load_scene(args.scene), load_s=0.0)
     layout = layout_sheet(solution, paper)
+    for note in layout.notes:  # a larger paper or a polygon's scale reduced: said on the sheet and here
+        print(f"kinepoly draw: {note}", file=sys.stderr)
     lines: list[str] = []
     files: list[tuple[Path, str | bytes, bool]] = []
     if targets:
         sheet = build_sheet(solution, paper, layout=layout)
+        if layout.labels.crowded:  # said, not hidden: where points lie closer together than their names are long
+            print(f"kinepoly draw: {len(layout.labels.crowded)} labels found no free place on "
+                  f"{paper_name((layout.width, layout.height))} and touch what is drawn near them "
+                  "(their points lie closer together than the labels are long)", file=sys.stderr)
         for path, fmt in targets:
             files.append((path, *_render(path, fmt, sheet, args.dpi)))
             lines.append(f"wrote {path}")

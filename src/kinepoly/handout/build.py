@@ -27,7 +27,7 @@ from kinepoly.render.sheet import MARGIN_MM, build_sheet, roomy
 from kinepoly.render.text import plain_runs, runs_box
 from kinepoly.solution import Solution
 
-__all__ = ["drawn_kinds", "handout_content", "handout_sheets"]
+__all__ = ["crowded_labels", "drawn_kinds", "handout_content", "handout_sheets"]
 
 _MOST_BAND = 0.55
 """The band of text may take at most this share of the page's height."""
@@ -119,10 +119,10 @@ def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
             if best is None:
                 continue
             break
-        if best is not None and _crowded(solution, chosen[0]) > _GAIN * _crowded(solution, best[0]):
+        if best is not None and crowded_labels(solution, chosen[0]) > _GAIN * crowded_labels(solution, best[0]):
             break  # little room gained for the labels: they crowd where the polygon does, at any paper
         best = (*chosen, name)
-        if not 0 < _crowded(solution, chosen[0]) <= FEW:
+        if not 0 < crowded_labels(solution, chosen[0]) <= FEW:
             break  # every label free, or so many crowded that their polygon's points crowd, at any paper
     fallback = best or fallback
     if fallback is None:
@@ -130,8 +130,9 @@ def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
     return fallback
 
 
-def _crowded(solution: Solution, frame: Frame) -> int:
-    """How many labels of the whole drawing find no free place on ``frame`` (they stay placed for its pages)."""
+def crowded_labels(solution: Solution, frame: Frame) -> int:
+    """How many labels of the whole drawing find no free place on ``frame``. They stay placed for its pages:
+    each page shows a label where the whole drawing has it and places only those that differ."""
     build_sheet(solution, frame.paper, layout=frame.layout, labels=frame.labels, title_block=False)
     return len(frame.labels.crowded)
 
@@ -168,6 +169,7 @@ def handout_sheets(solution: Solution, say: Catalogue,
     width = frame.width
     kinds = drawn_kinds(frame)
     rect = (MARGIN_MM + GAP_MM, MARGIN_MM, width - MARGIN_MM - GAP_MM, MARGIN_MM + frame.band)
+    crowded_labels(solution, frame)  # the whole drawing's labels first (done already when the paper was chosen)
     sheets = []
     for page in handout.pages:
         layers = drawing_layers(solution, frame, page.drawing, say)

@@ -47,6 +47,8 @@ class Frame:
     band: float
     labels: LabelCache = field(default_factory=LabelCache, compare=False, repr=False)
     """Shared by the frame's pages: the labels of the fixed parts are placed once."""
+    placed: dict[tuple[Item, float], Item] = field(default_factory=dict, compare=False, repr=False)
+    """Each item drawn on the frame's pages, moved to its place on the page once (``moved``; by item and shift)."""
 
 
 def scales_of(layout: Layout) -> dict[str, float]:
@@ -206,7 +208,16 @@ def drawing_layers(solution: Solution, frame: Frame, drawing: Drawing, say: Cata
     keep, lines, center = _centers_filter(solution, drawing)
     layers["instant-centers"] = _highlighted([_decimal(i, say) for i in layers["instant-centers"] if keep(i)],
                                              lines, center)
-    return {name: [moved(item, frame.shift) for item in layers[name]] for name in LAYERS}
+    placed = frame.placed
+    out: dict[str, list[Item]] = {}
+    for name in LAYERS:
+        out[name] = []
+        for item in layers[name]:
+            found = placed.get((item, frame.shift))
+            if found is None:
+                found = placed[item, frame.shift] = moved(item, frame.shift)
+            out[name].append(found)
+    return out
 
 
 def page_frame_items(frame: Frame) -> list[Item]:

@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import html
 import re
+from typing import Any
 
-from kinepoly.handout.build import drawn_kinds, handout_content
+from kinepoly.handout.build import crowded_labels, drawn_kinds, handout_content
 from kinepoly.handout.content import Column, Handout, Page, Paragraph, Table
 from kinepoly.handout.drawing import Frame, band_frame, blank_sheet, drawing_layers, page_frame_items, scales_of
 from kinepoly.handout.notation import html_of
@@ -138,12 +139,13 @@ def _column(column: Column, kinds: list[str], say: Catalogue) -> str:
     return "".join(_paragraph(p) if isinstance(p, Paragraph) else _table(p) for p in column.parts)
 
 
-def _svg(solution: Solution, frame: Frame, page: Page, say: Catalogue) -> str:
+def _svg(solution: Solution, frame: Frame, page: Page, say: Catalogue, groups: dict[Any, str]) -> str:
+    """The page's drawing as inline SVG; ``groups`` holds the layers already written (the pages share most)."""
     from kinepoly.render.svg import svg_text
 
     layers = drawing_layers(solution, frame, page.drawing, say)
     layers["title"] += page_frame_items(frame)
-    text = svg_text(blank_sheet(frame, f"{solution.scene.title}: {page.heading}", layers))
+    text = svg_text(blank_sheet(frame, f"{solution.scene.title}: {page.heading}", layers), groups)
     text = text.split("\n", 1)[1]  # no XML declaration inside HTML
     return re.sub(r'(<g\b[^>]*?) id="([a-z-]+)"', r'\1 class="layer-\2"', text)  # ids once per document
 
@@ -156,11 +158,12 @@ def _label(page: Page, say: Catalogue) -> str:
     return page.heading
 
 
-def _section(solution: Solution, frame: Frame, page: Page, number: int, kinds: list[str], say: Catalogue) -> str:
+def _section(solution: Solution, frame: Frame, page: Page, number: int, kinds: list[str], say: Catalogue,
+             groups: dict[Any, str]) -> str:
     text = "".join(_column(c, kinds, say) for c in page.columns)
     return (f'<section class="page" id="page-{number}" data-kind="{page.kind}" '
             f'data-label="{html.escape(_label(page, say))}" data-equation="{html.escape(page.equation)}"'
-            f'{" hidden" if number > 1 else ""}>\n<div class="drawing">{_svg(solution, frame, page, say)}</div>\n'
+            f'{" hidden" if number > 1 else ""}>\n<div class="drawing">{_svg(solution, frame, page, say, groups)}</div>\n'
             f'<div class="text">{text}</div>\n</section>\n')
 
 
@@ -180,8 +183,10 @@ def handout_html(solution: Solution, say: Catalogue, paper: str | tuple[float, f
     frame = _frame(solution, size)
     handout = handout_content(solution, say, scales_of(frame.layout))
     kinds = drawn_kinds(frame)
+    crowded_labels(solution, frame)  # the whole drawing's labels first: each page keeps those it shows
     count = len(handout.pages)
-    sections = "".join(_section(solution, frame, page, k, kinds, say) for k, page in enumerate(handout.pages, 1))
+    groups: dict[Any, str] = {}
+    sections = "".join(_section(solution, frame, page, k, kinds, say, groups) for k, page in enumerate(handout.pages, 1))
     title = html.escape(handout.title)
     return handout, (
         f'<!DOCTYPE html>\n<html lang="{html.escape(say.code)}">\n<head>\n<meta charset="utf-8">\n'

@@ -18,7 +18,7 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
-from functools import cache
+from functools import cache, cached_property
 
 from kinepoly.engine.center_values import KennedyStep
 from kinepoly.engine.center_velocity import CenterOmega
@@ -69,6 +69,16 @@ class Context:
     solution: Solution
     scales: Mapping[str, float]
 
+    @cached_property
+    def terms(self) -> dict[str, str]:
+        """``canonical_terms`` of the solution, found once for all the steps phrased in this context."""
+        return canonical_terms(self.solution)
+
+    @cached_property
+    def noise(self) -> Noise:
+        """``present.clean.noise_of`` the solution, found once for all the steps phrased in this context."""
+        return noise_of(self.solution)
+
 
 def tip_name(label: str, polygon: str) -> str:
     """A point's tip in the polygon: ``B0`` -> ``b0``; in the acceleration polygon primed, ``b′0``."""
@@ -101,10 +111,10 @@ def _canonical(label: str, solution: Solution, tips: set[str]) -> str:
     head, point, reference = m.groups()
     mechanism = solution.mechanism
     base = reference.partition("@")[0]
-    links = [link.name for link in solution.scene.links]
-    if any(mechanism.has_point(k, point) and mechanism.has_point(k, base) for k in links):
+    on_base = mechanism.links_of_point(base)  # in scene order
+    if set(mechanism.links_of_point(point)).intersection(on_base):
         return label
-    carriers = [k for k in links if k != mechanism.ground and mechanism.has_point(k, base) and f"{point}@{k}" in tips]
+    carriers = [k for k in on_base if k != mechanism.ground and f"{point}@{k}" in tips]
     return f"{head}{point}@{carriers[0]}/{reference}" if len(carriers) == 1 else label
 
 
@@ -149,8 +159,8 @@ class Words:
         self.scales = context.scales
         self.unit = context.solution.scene.units.length
         self.ground = context.solution.mechanism.ground or ""
-        self.noise: Noise = noise_of(context.solution)
-        self.terms = canonical_terms(context.solution)
+        self.noise: Noise = context.noise
+        self.terms = context.terms
 
     def clean(self, value: str | float, kind: str) -> float:
         """``value`` of ``kind`` (``present.clean.KINDS``), 0 where below its error estimate."""

@@ -11,16 +11,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 from kinepoly.render.primitives import Arrow, Circle, Item, Path, Stroke, Text
-from kinepoly.render.text import Run, runs_box
+from kinepoly.render.text import Run, runs_box, text_width
 
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
 
-__all__ = ["CLEARANCE_MM", "FEW", "LEADER", "LabelCache", "Placer", "Request", "fill_geometry", "item_geometry", "place"]
+__all__ = ["BACKGROUND_ROLES", "CLEARANCE_MM", "FEW", "LEADER", "LabelCache", "Placer", "Request", "fill_geometry", "item_geometry", "place", "wrapped"]
 
 Point = tuple[float, float]
 Box = tuple[float, float, float, float]
@@ -310,7 +310,7 @@ class Placer:
             return []
         # Nowhere free within reach: keep the nearest place inside the region (the overlap test reports it).
         self.crowded.append(role)
-        b = _pushed_box(anchor, (1.0, 0.0), size, _RINGS_MM[0])
+        b = _inside_of(_pushed_box(anchor, (1.0, 0.0), size, _RINGS_MM[0]), self.region)
         return self._accept(b, runs, color, role, anchor, bold)
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
@@ -365,6 +365,13 @@ class Placer:
         return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0))
 
 
+def _inside_of(b: Box, region: Box) -> Box:
+    """The box moved the least way into ``region`` (its left and top edges kept in when it is the larger)."""
+    dx = max(region[0] - b[0], min(region[2] - b[2], 0.0))
+    dy = min(region[3] - b[3], max(region[1] - b[1], 0.0))
+    return (b[0] + dx, b[1] + dy, b[2] + dx, b[3] + dy)
+
+
 def _mid(a: Point, b: Point) -> Point:
     return ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2)
 
@@ -387,15 +394,17 @@ class LabelCache:
     mechanism, the circle diagram: the fixed parts); a region's labels are kept so only when they
     lie clear of its edges and of every other region's labels (then nothing outside the region
     could have moved them). A region whose drawing grows from sheet to sheet (a polygon, step by
-    step) keeps each label of the sheet before that nothing new touches, and places only the new
-    labels and those the new drawing displaced: each page costs what it adds, and a label stays
-    where the reader saw it on the page before.
+    step) keeps the labels of the whole drawing, placed first (they are clear of every step's
+    drawing), and of the sheet before those that nothing new touches; it places only the labels
+    new on the sheet: each page costs what it adds, and a label stays where the reader saw it.
     """
 
     def __init__(self) -> None:
         self._geometry: dict[Item, tuple[Any, Any, Box]] = {}
         self._regions: dict[tuple[Any, ...], tuple[list[Placed], list[str]]] = {}
         self._last: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
+        self._widest: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
+        """Per region, the placement on the sheet with the most drawing there (a handout's whole drawing)."""
         self.crowded: set[str] = set()
         """The roles of the labels that found no free place on any sheet placed with this cache."""
 
@@ -419,22 +428,39 @@ def _well_inside(bounds: Box, region: Box, margin: float) -> bool:
 
 
 def _kept(cache: LabelCache, region: Box, requests: Sequence[Request], near: Sequence[Item]) -> dict[int, Placed]:
-    """The labels of the region's previous sheet that stay: requested again, and touched by nothing drawn since."""
+    """The labels that stay. First those of the sheet whose drawing in the region holds all of this sheet's
+    (the whole drawing, placed first): placed clear of every step's drawing, each page shows them where
+    every other page does. Then, for the requests that sheet does not have (a group of coinciding tips
+    not yet complete), those of the region's previous sheet that nothing drawn since touches, nor a label
+    kept before them. Each page places only the labels that are new on it."""
+    widest = cache._widest.get(region)
+    last = cache._last.get(region)
+    sources = [source for source in (widest if widest is not None and widest[1].issuperset(near) else None, last)
+               if source is not None]
+    kept: dict[int, Placed] = {}
+    for before, drawn_before in sources:
+        available = {request: list(placed) for request, placed in before.items()}
+        candidates: dict[int, Placed] = {}
+        for k, request in enumerate(requests):
+            entries = available.get(request)
+            if entries and k not in kept:
+                candidates[k] = entries.pop(0)
+        _untouched(candidates, [cache.geometry(item)[0] for item in near if item not in drawn_before])
+        if kept and candidates:
+            taken = _Placed()
+            for entry in kept.values():
+                taken.add(entry)
+            candidates = {k: c for k, c in candidates.items() if not any(taken.touches(g) for g in c[2])}
+        kept.update(candidates)
+    return kept
+
+
+def _untouched(candidates: dict[int, Placed], fresh: list[Any]) -> None:
+    """Drop the candidates that a ``fresh`` geometry comes within the clearance of."""
     from shapely import STRtree
 
-    last = cache._last.get(region)
-    if last is None:
-        return {}
-    before, drawn_before = last
-    fresh = [cache.geometry(item)[0] for item in near if item not in drawn_before]
-    available = {request: list(placed) for request, placed in before.items()}
-    candidates: dict[int, Placed] = {}
-    for k, request in enumerate(requests):
-        entries = available.get(request)
-        if entries:
-            candidates[k] = entries.pop(0)
     if not fresh or not candidates:
-        return candidates
+        return
     tree = STRtree(fresh)
     order = list(candidates)
     geometries = [g for k in order for g in candidates[k][2]]
@@ -442,8 +468,10 @@ def _kept(cache: LabelCache, region: Box, requests: Sequence[Request], near: Seq
     hit = tree.query(geometries, predicate="dwithin", distance=CLEARANCE_MM)[0]
     for index in set(hit.tolist()):
         candidates.pop(owner[index], None)
-    return candidates
 
+
+BACKGROUND_ROLES = frozenset({"highlight"})
+"""The roles of drawn items a label may lie on (the light halo under a step's new elements)."""
 
 _TRIES = 3
 """Placements of a region, each with the labels that found no free place before moved to the front."""
@@ -483,7 +511,11 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
     by_request: dict[Request, list[Placed]] = {}
     for request, entry in zip(requests, placed, strict=True):
         by_request.setdefault(request, []).append(entry)
-    cache._last[region] = (by_request, frozenset(near))
+    drawn = frozenset(near)
+    cache._last[region] = (by_request, drawn)
+    widest = cache._widest.get(region)
+    if widest is None or (len(drawn) >= len(widest[1]) and drawn.issuperset(widest[1])):
+        cache._widest[region] = (by_request, drawn)
     return placed, crowded
 
 
@@ -524,19 +556,64 @@ def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kep
     return [out[k] for k in range(len(requests))], placer.crowded
 
 
+_WRAP_MM = 40.0
+_WRAP_SHARE = 0.35
+"""A label naming several things (``o, a0, g1, g2, ...``, ``v_Q2 = v_Q3 = ...``) is broken into lines no wider than the larger of
+``_WRAP_MM`` and this share of its region's width: the chain of a long mechanism's coinciding tips stays on the page."""
+_LINE_GAP_MM = 0.4
+
+
+_BREAKS = (", ", " = ")
+"""The runs a long label may be broken after: between the names of coinciding tips, of equal vectors."""
+
+
+def wrapped(runs: tuple[Run, ...], width: float) -> tuple[Run, ...]:
+    """``runs`` in lines no wider than ``width``, broken after their ", " and " = " runs (one name never
+    broken); the first line stays where it was, the others below it."""
+    x0, y0, x1, y1 = runs_box(runs)
+    if x1 - x0 <= width:
+        return runs
+    pieces: list[list[Run]] = [[]]
+    for run in runs:
+        pieces[-1].append(run)
+        if run.text in _BREAKS:
+            pieces.append([])
+    pieces = [piece for piece in pieces if piece]
+    if len(pieces) < 2:
+        return runs
+    step = (y1 - y0) + _LINE_GAP_MM
+    out: list[Run] = []
+    line, start = 0, x0
+    for piece in pieces:
+        left = min(r.dx for r in piece)
+        right = max(r.dx + text_width(r.text, r.size) for r in piece)
+        if right - start > width and left > start:
+            line, start = line + 1, left
+        out += [Run(r.text, r.dx - start + x0, r.dy - line * step, r.size) for r in piece]
+    return tuple(out)
+
+
+def _fitted(request: Request) -> Request:
+    """A label wrapped to its region (``wrapped``)."""
+    width = max(_WRAP_MM, _WRAP_SHARE * (request.region[2] - request.region[0]))
+    runs = wrapped(request.runs, width)
+    return request if runs is request.runs else replace(request, runs=runs)
+
+
 def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache | None = None) -> dict[str, list[Item]]:
     """Place every request in its region (by priority, then in the given order); items per layer.
 
-    A region's labels avoid the drawn items near the region (nothing further can touch a label
+    A region's labels avoid the drawn items near the region (not the highlight under a step's new
+    elements: a label may lie on it, as on the background, so that it need not move when the step is done) (nothing further can touch a label
     inside it) and the labels placed before them. With ``cache`` shared by the sheets of one
     layout, a region whose requests and nearby drawing are as on an earlier sheet gets that
     sheet's labels again, and a region that grew keeps the labels nothing new touches: each
     sheet places only what it adds (``LabelCache``).
     """
     cache = cache if cache is not None else LabelCache()
-    drawn = list(drawn)
+    drawn = [item for item in drawn if item.role not in BACKGROUND_ROLES]
     bounds = [cache.geometry(item)[2] for item in drawn]
-    ordered = sorted(requests, key=lambda r: r.priority)
+    ordered = sorted((_fitted(r) for r in requests), key=lambda r: r.priority)
     by_region: dict[Box, list[Request]] = {}
     for request in ordered:
         by_region.setdefault(request.region, []).append(request)

@@ -1,4 +1,6 @@
-"""PNG and PDF through matplotlib: each primitive of the sheet becomes one artist, nothing is decided.
+"""PNG through matplotlib: each primitive of the sheet becomes one artist, nothing is decided.
+
+PDF is written directly (``render.pdf``); ``write_pdf`` and ``write_pdf_pages`` pass the sheets on.
 
 No pyplot (no global figure state): a ``Figure`` on an Agg or PDF canvas whose axes span the
 page in millimetres.
@@ -83,9 +85,9 @@ def figure_of(sheet: Sheet) -> Figure:
     return fig
 
 
-_RC: dict[Any, Any] = {"lines.scale_dashes": False, "pdf.fonttype": 42, "svg.hashsalt": "kinepoly", "text.antialiased": True,
+_RC: dict[Any, Any] = {"lines.scale_dashes": False, "svg.hashsalt": "kinepoly", "text.antialiased": True,
        "font.family": "DejaVu Sans"}
-"""matplotlib settings of every file: dashes in mm as given, TrueType fonts embedded whole, fixed ids."""
+"""matplotlib settings of every file: dashes in mm as given, fixed ids."""
 
 
 @contextlib.contextmanager
@@ -96,34 +98,23 @@ def _quiet_warnings() -> Iterator[None]:
         yield
 
 
-def _save(sheet: Sheet, target: Any, fmt: str, dpi: int) -> None:
+def write_png(sheet: Sheet, target: Any, dpi: int = DEFAULT_DPI) -> None:
+    """Write the sheet as PNG to a path or a binary file object."""
     import matplotlib
 
     with matplotlib.rc_context(_RC), _quiet_warnings():
-        fig = figure_of(sheet)
-        if fmt == "png":
-            fig.savefig(target, format="png", dpi=dpi, metadata={"Software": None})
-        else:
-            fig.savefig(target, format="pdf", metadata={"CreationDate": None, "ModDate": None, "Producer": None,
-                                                        "Creator": "kinepoly", "Title": sheet.title})
-
-
-def write_png(sheet: Sheet, target: Any, dpi: int = DEFAULT_DPI) -> None:
-    """Write the sheet as PNG to a path or a binary file object."""
-    _save(sheet, target, "png", dpi)
+        figure_of(sheet).savefig(target, format="png", dpi=dpi, metadata={"Software": None})
 
 
 def write_pdf(sheet: Sheet, target: Any) -> None:
-    """Write the sheet as a one-page PDF (fonts embedded) to a path or a binary file object."""
-    _save(sheet, target, "pdf", DEFAULT_DPI)
+    """Write the sheet as a one-page PDF (fonts embedded) to a path or a binary file object (``render.pdf``)."""
+    from kinepoly.render.pdf import write_pdf_pages as write
+
+    write([sheet], target, sheet.title)
 
 
 def write_pdf_pages(sheets: Sequence[Sheet], target: Any, title: str) -> None:
-    """Write the sheets as one PDF, a page each (fonts embedded), to a path or a binary file object."""
-    import matplotlib
-    from matplotlib.backends.backend_pdf import PdfPages
+    """Write the sheets as one PDF, a page each (fonts embedded), to a path or a binary file object (``render.pdf``)."""
+    from kinepoly.render.pdf import write_pdf_pages as write
 
-    metadata = {"CreationDate": None, "ModDate": None, "Producer": None, "Creator": "kinepoly", "Title": title}
-    with matplotlib.rc_context(_RC), _quiet_warnings(), PdfPages(target, metadata=metadata) as pages:
-        for sheet in sheets:
-            pages.savefig(figure_of(sheet))
+    write(sheets, target, title)

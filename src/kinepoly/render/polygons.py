@@ -8,6 +8,7 @@ is exactly ``pole + k * vector``.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Literal
@@ -249,6 +250,14 @@ def neighbourhood(figure: Figure, panel: Panel) -> object:
     return grown.intersection(box(*panel.drawing_rect))
 
 
+@functools.lru_cache(maxsize=32)
+def _direction_segments(figure: Figure, panel: Panel) -> tuple[tuple[tuple[Point, Point], ...], ...]:
+    """Each direction line of ``figure`` clipped to where it is drawn (``neighbourhood``): made once per
+    figure and panel, however many step sheets and handout pages draw it."""
+    area = neighbourhood(figure, panel)
+    return tuple(tuple(_clip_line(fl.line, panel, area)) for fl in figure.lines)
+
+
 def polygon_items(figure: Figure, panel: Panel, upto: int | None = None) -> tuple[list[Item], list[Request]]:
     """Draw ``figure`` to ``panel``'s scale: everything of steps <= ``upto`` (all when None), the
     elements of step ``upto`` highlighted."""
@@ -260,7 +269,6 @@ def polygon_items(figure: Figure, panel: Panel, upto: int | None = None) -> tupl
     items: list[Item] = []
     requests: list[Request] = []
     region = panel.drawing_rect
-    area = neighbourhood(figure, panel)
     tips = {t.label: t for t in figure.tips}
     for image in figure.images:
         if not shown(image.step):
@@ -272,10 +280,10 @@ def polygon_items(figure: Figure, panel: Panel, upto: int | None = None) -> tupl
         color = link_color(image.index)
         items.append(Path(corners, Stroke(color, 0.15), fill=color, fill_opacity=0.45, closed=True,
                           role=f"image {image.link}"))
-    for fl in figure.lines:
+    for fl, segments in zip(figure.lines, _direction_segments(figure, panel), strict=True):
         if not shown(fl.step):
             continue
-        for a, b in _clip_line(fl.line, panel, area):
+        for a, b in segments:
             items.append(Path((a, b), DIRECTION_LINE, role=f"direction {fl.line.label}"))
             if current(fl.step):
                 halos.append(Path((a, b), HALO, role="highlight"))

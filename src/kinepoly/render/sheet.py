@@ -95,10 +95,8 @@ def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *,
     chooses its own).
     """
     size = paper_size(paper) if isinstance(paper, str) else paper
-    from kinepoly.present.report import readable_json
-
     decided = decide_scales(solution, scales_paper or size)
-    data = readable_json(solution, scales=decided)
+    data = _readable(solution, decided)
     first = _layout_on(solution, size, (), decided, data)
     if not grow:
         return first
@@ -119,6 +117,22 @@ def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *,
         if not 0 < crowded(solution, layout) <= FEW:
             break  # every label free, or so many crowded that their polygon's points crowd, at any paper
     return best or kept or first
+
+
+_READABLE: list[tuple[Solution, PolygonScales, dict[str, Any]]] = []
+
+
+def _readable(solution: Solution, decided: PolygonScales) -> dict[str, Any]:
+    """The solution's readable values at ``decided`` (``present.report.readable_json``), made once for the
+    layouts a drawing or a handout tries (the last few solutions, known by identity, not by value)."""
+    from kinepoly.present.report import readable_json
+
+    for known, scales, data in _READABLE:
+        if known is solution and scales == decided:
+            return data
+    data = readable_json(solution, scales=decided)
+    _READABLE[:] = [(solution, decided, data), *_READABLE[:3]]
+    return data
 
 
 GAIN = 0.75

@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from kinepoly.render.primitives import Arrow, Circle, Path, Sheet, Stroke, Text
+from kinepoly.render.primitives import Arrow, Circle, Layer, Path, Sheet, Stroke, Text
 
 __all__ = ["FONT_FAMILY", "number", "svg_text", "write_svg"]
 
@@ -63,8 +63,10 @@ def _element(dwg: Any, item: Path | Circle | Arrow | Text, h: float) -> list[Any
     return [text]
 
 
-def svg_text(sheet: Sheet) -> str:
-    """The sheet as an SVG document (text)."""
+def svg_text(sheet: Sheet, made: dict[Any, str] | None = None) -> str:
+    """The sheet as an SVG document (text); ``made``, shared by the sheets of one document (a handout's
+    pages), holds each layer's ``<g>`` and each item's elements once written: what the pages share is
+    written once."""
     import svgwrite
 
     w, h = sheet.width, sheet.height
@@ -72,16 +74,33 @@ def svg_text(sheet: Sheet) -> str:
                            profile="full", debug=False)
     dwg.set_desc(title=sheet.title)
     dwg.add(dwg.rect(insert=(0, 0), size=(number(w), number(h)), fill="#ffffff"))
+    head = _lines(dwg.tostring()).removesuffix("</svg>")
+    made = made if made is not None else {}
     for layer in sheet.layers:
-        group = dwg.g(id=layer.name, **{"font-family": FONT_FAMILY, "stroke-linecap": "butt"})
-        for item in layer.items:
-            for element in _element(dwg, item, h):
-                group.add(element)
-        dwg.add(group)
-    # one element per line for readable diffs, but nothing between a text's runs (it would be drawn)
-    body = re.sub(r"><(?!tspan|/text)", ">\n<", dwg.tostring())
-    body = _NOT_XML.sub("\ufffd", body)  # the scene refuses them; any other text is still well-formed XML
+        if (layer, h) not in made:
+            made[layer, h] = _group_text(dwg, layer, h, made)
+    body = head + "".join(made[layer, h] + "\n" for layer in sheet.layers) + "</svg>"
     return '<?xml version="1.0" encoding="utf-8" ?>\n' + body + "\n"
+
+
+def _group_text(dwg: Any, layer: Layer, height: float, made: dict[Any, str]) -> str:
+    """A layer's ``<g>``, its items' elements taken from ``made`` when written before (by item and height)."""
+    shell = dwg.g(id=layer.name, **{"font-family": FONT_FAMILY, "stroke-linecap": "butt"}).tostring()
+    if not layer.items:
+        return _lines(shell)
+    parts = []
+    for item in layer.items:
+        text = made.get((item, height))
+        if text is None:
+            text = made[item, height] = "".join(element.tostring() for element in _element(dwg, item, height))
+        parts.append(text)
+    return _lines(shell.removesuffix(" />") + ">" + "".join(parts) + "</g>")
+
+
+def _lines(text: str) -> str:
+    """One element per line for readable diffs, but nothing between a text's runs (it would be drawn); any
+    character XML cannot hold replaced (the scene refuses them; any other text is still well-formed XML)."""
+    return _NOT_XML.sub("\ufffd", re.sub(r"><(?!tspan|/text)", ">\n<", text))
 
 
 def write_svg(sheet: Sheet, target: Any) -> None:
