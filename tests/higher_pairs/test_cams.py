@@ -113,6 +113,7 @@ def test_roller_solve_matches_the_sweep_row_and_the_check() -> None:
 
 def test_spline_profiles_are_refused_by_name() -> None:
     text = (EXAMPLES / "cam-roller-rocker.toml").read_text().replace(
-        "profile = { circle = { center = [15, 0], radius = 40 } }", "profile = { points = [[40, 0], [0, 40], [-40, 0]] }")
-    with pytest.raises(SceneError, match=r"cams\.1\.profile\.points: spline profiles \(points\) are not built yet"):
+        "profile = { circle = { center = [15, 0], radius = 40 } }",
+        "profile = { points = [[40, 0], [0, 40], [-40, 0], [0, -40]] }")
+    with pytest.raises(SceneError, match=r"cams\.1\.profile\.points: the profile is a valid closed spline, but"):
         kinepoly.loads_scene(text, "cam.toml")

@@ -13,6 +13,7 @@ from dataclasses import replace
 
 from kinepoly.scene.lines import KeyPath
 from kinepoly.scene.problems import no_such, show_value, suggest
+from kinepoly.scene.profile_points import read_profile_points
 from kinepoly.scene.reader_state import ReaderState
 from kinepoly.scene.source import Table
 from kinepoly.scene.spec import CamSpec, GearSpec, PitchCircle, PitchLine, Vector
@@ -235,8 +236,15 @@ class HigherPairTables(ReaderState):
             return None
         check_keys(self.report, path, table, _PROFILE_KEYS)
         if "points" in table:
-            self.report.add(path + ("points",), "spline profiles (points) are not built yet in this version; "
-                            "expected profile = { circle = { center = [x, y], radius = R } }")
+            if "circle" in table:
+                self.report.add(path, "a profile is a circle or points; expected one of them")
+                return None
+            points = read_profile_points(self.report, path + ("points",), table["points"], self.kinds.length)
+            if points is None:
+                return None
+            self.report.add(path + ("points",), "the profile is a valid closed spline, but this version solves "
+                            "spline cams' contacts in no command yet; expected profile = { circle = { center = "
+                            "[x, y], radius = R } } for now")
             return None
         circle_value = require(self.report, path, table, "circle", "circle = { center = [x, y], radius = R }")
         circle = None if circle_value is None else read_table(self.report, path + ("circle",), circle_value,
