@@ -140,7 +140,7 @@ class CamSpec:
     """The name of the profile's centre as a point of the cam (and of the equivalent link)."""
     profile_points: tuple[Vector, ...] = ()
     """A ``points`` profile: the points the closed spline runs through, counter-clockwise, in the cam's
-    frame (empty for a circle; then ``center`` is their centroid and ``radius`` 0)."""
+    frame (empty for a circle; ``center`` and ``radius`` describe a circle profile only)."""
 
     @property
     def is_spline(self) -> bool:
