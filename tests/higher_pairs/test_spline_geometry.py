@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from kinepoly.geom.profile import outline
@@ -175,3 +175,28 @@ def test_outline_samples_a_spline_profile_from_its_first_point_counter_clockwise
     assert isinstance(periodic_spline(points), PeriodicSpline)
     circle = CamSpec("23", "2", "3", (1.0, 2.0), 5.0, "knife", point="W")
     assert outline(circle, 4)[1] == pytest.approx((1.0, 7.0))
+
+
+@settings(max_examples=40, deadline=None)
+@given(convex_points(), st.floats(0.0, 2.0 * math.pi), st.floats(-0.9, 0.9))
+def test_a_line_through_a_random_convex_profile_crosses_it_twice(points: list[tuple[float, float]], angle: float,
+                                                                   offset: float) -> None:
+    # a line through a point inside (on the way from the mean point to the curve's farthest point across
+    # the line): two crossings, on the line to rounding, one each side of that point; the spline turns once
+    spline = periodic_spline(points)
+    assume(bool(np.all(spline.frame(np.linspace(0.0, spline.period, 4001)).curvature > 0.0)))  # a convex curve
+    dense = spline.point(np.linspace(0.0, spline.period, 4001))
+    direction = complex(math.cos(angle), math.sin(angle))
+    across = np.imag(np.conj(direction) * (dense - dense.mean()))
+    farthest = dense[np.argmax(across) if offset > 0 else np.argmin(across)]
+    through = dense.mean() + abs(offset) * (farthest - dense.mean())
+    def side(u: np.ndarray) -> np.ndarray:
+        return np.asarray(np.imag(np.conj(direction) * (spline.point(u) - through)))
+    roots = roots_along(spline, side)
+    size = float(np.max(np.abs(dense - dense.mean())))
+    assert len(roots) == 2
+    assert np.max(np.abs(side(roots))) <= 1e-11 * size
+    along = np.real(np.conj(direction) * (spline.point(roots) - through))
+    assert along.min() < 0.0 < along.max()
+    frame = spline.frame(np.linspace(0.0, spline.period, 64 * spline.pieces, endpoint=False))
+    assert float(np.sum(np.angle(np.roll(frame.tangent, -1) / frame.tangent))) == pytest.approx(2.0 * math.pi)
