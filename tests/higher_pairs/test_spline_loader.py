@@ -31,11 +31,12 @@ def _ellipse(n: int) -> str:
                  for k in range(n)])
 
 
-def test_a_valid_spline_profile_is_read_and_then_refused_for_solving_by_name() -> None:
-    # the line of [[cams]]'s profile (line 13 of the example) is named with the key
-    problems = _problems(_ellipse(12))
-    assert "cam.toml:13: cams.1.profile.points: the profile is a valid closed spline, but this version solves" in problems
-    assert problems.count("cams.1") == 1
+def test_a_valid_spline_profile_is_read_onto_the_cam() -> None:
+    text = (EXAMPLES / "cam-roller-rocker.toml").read_text().replace(CIRCLE, f"profile = {{ points = {_ellipse(12)} }}")
+    cam = kinepoly.loads_scene(text, "cam.toml").cams[0]
+    assert cam.is_spline and len(cam.profile_points) == 12
+    assert cam.profile_points[3] == pytest.approx((0.0, 25.0), abs=1e-9)
+    assert cam.equivalent == ""  # no permanent equivalent link: it is found row by row
 
 
 @pytest.mark.parametrize(("points", "expected"), [

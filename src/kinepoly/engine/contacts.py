@@ -40,7 +40,7 @@ class Contact:
 def contact_links(mechanism: Mechanism) -> set[str]:
     """The links a contact needs placed."""
     out = {link for gear in mechanism.scene.gears for link in gear.links}
-    out |= {link for cam in mechanism.scene.cams for link in (cam.cam, cam.follower, cam.equivalent)}
+    out |= {link for cam in mechanism.scene.cams for link in (cam.cam, cam.follower, cam.equivalent) if link}
     return out
 
 
@@ -57,6 +57,10 @@ def _velocity(velocity: VelocityPolygon, mechanism: Mechanism, link: str, at: co
 
 
 def _cam_contact(mechanism: Mechanism, pose: Pose, cam: CamSpec) -> tuple[complex, complex]:
+    if cam.is_spline:
+        from kinepoly.engine.cam_contact import contact_on_profile
+
+        return contact_on_profile(cam, pose)
     k = complex(*pose.links[cam.cam].world(mechanism.local(cam.cam, cam.center_point)))
     if cam.kind == "flat":
         assert cam.flat is not None
@@ -106,6 +110,11 @@ def record_equivalent_links(polygon: Polygon) -> None:
         return
     mechanism = polygon.mechanism
     for cam in mechanism.scene.cams:
+        if cam.is_spline:
+            from kinepoly.engine.cam_contact import record_spline_equivalent
+
+            record_spline_equivalent(polygon, cam)
+            continue
         point = cam.point or cam.center_point
         if cam.kind == "flat":
             length = cam.radius

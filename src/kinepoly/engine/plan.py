@@ -21,9 +21,10 @@ from dataclasses import dataclass
 
 from kinepoly.errors import MobilityError
 from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
-from kinepoly.scene.spec import GearSpec, PitchCircle, SliderSpec
+from kinepoly.scene.spec import CamSpec, GearSpec, PitchCircle, SliderSpec
 
 __all__ = [
+    "CamGroup",
     "DriveGroup",
     "Dyad",
     "GearGroup",
@@ -123,6 +124,30 @@ class GearGroup:
 
 
 @dataclass(frozen=True)
+class CamGroup:
+    """A spline cam's follower placed on the known ``cam`` link by its contact: ``link`` (the follower) is
+    held by one ``joint`` to the known ``carrier``, a pin (a pivoted rocker) or a slider whose block it is
+    (a translating follower); ``engine.cam_contact`` finds the contact."""
+
+    cam: CamSpec
+    link: str
+    known: str
+    carrier: str
+    joint: Joint
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        return (self.link,)
+
+    def known_links(self) -> tuple[str, ...]:
+        return (self.known, self.carrier)
+
+    @property
+    def name(self) -> str:
+        return f"{self.link} on cam {self.known} (cam {self.cam.name})"
+
+
+@dataclass(frozen=True)
 class SlideRoles:
     """Who is who in an RPR dyad: the guide turns about its pin ``guide_pin`` on ``guide_known``;
     the block is pinned at ``block_pin`` to ``block_known``; the unknown tip is block_pin@guide."""
@@ -204,7 +229,7 @@ class NewtonGroup:
         return tuple(sorted({x for j in self.joints for x in joint_links(j) if x not in self.links}))
 
 
-Group = Dyad | DriveGroup | GearGroup | NewtonGroup
+Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
 
 
 @dataclass(frozen=True)
@@ -298,6 +323,24 @@ def _find_gear(mechanism: Mechanism, known: set[str]) -> GearGroup | None:
     return None
 
 
+def _find_cam(mechanism: Mechanism, known: set[str]) -> CamGroup | None:
+    """A spline cam's follower not yet placed, on a placed cam, held by one pin (not at its contact point)
+    or as the block of one slider to a placed link."""
+    for cam in mechanism.scene.cams:
+        if not cam.is_spline or cam.cam not in known or cam.follower in known:
+            continue
+        outer = [jt for jt in _free_joints(mechanism, cam.follower) if any(x in known for x in joint_links(jt))]
+        if len(outer) != 1:
+            continue
+        joint = outer[0]
+        if isinstance(joint, Revolute) and joint.point == cam.point:
+            continue
+        if isinstance(joint, SliderSpec) and joint.block != cam.follower:
+            continue
+        return CamGroup(cam, cam.follower, cam.cam, _far_side(joint, cam.follower), joint)
+    return None
+
+
 def _find_carried(mechanism: Mechanism, known: set[str]) -> Dyad | None:
     """An RRR dyad whose first side is two unknown links held together by a driven joint."""
     for drive in mechanism.drives:
@@ -327,7 +370,7 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
     groups: list[Group] = []
     while True:
         group: Group | None = (_find_drive(mechanism, known) or _find_gear(mechanism, known)
-                               or _find_dyad(mechanism, known) or _find_carried(mechanism, known))
+                               or _find_cam(mechanism, known) or _find_dyad(mechanism, known) or _find_carried(mechanism, known))
         if group is None:
             break
         groups.append(group)

@@ -10,7 +10,7 @@ crossing's ``along`` (``read_rate``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -35,6 +35,8 @@ class VelocityResult:
     polygon: Polygon
     sliding: dict[str, Points]
     line_sines: dict[str, Reals]
+    equivalent: dict[str, Reals] = field(default_factory=dict)
+    """omega of each spline cam's equivalent link K W, by pair (``engine.cam_polygons``)."""
 
     @property
     def tips(self) -> dict[str, Points]:
@@ -390,13 +392,15 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
     """
     from kinepoly.engine.contacts import record_equivalent_links
     from kinepoly.engine.group import velocity_by_linear_solve
-    from kinepoly.engine.plan import GearGroup
+    from kinepoly.engine.cam_polygons import velocity_by_cam
+    from kinepoly.engine.plan import CamGroup, GearGroup
     from kinepoly.engine.rolling import velocity_by_rolling
     from kinepoly.engine.triad import triad_of, velocity_by_assur_point
 
     polygon = Polygon(positions, "velocity", unit=unit, record=record, strict=strict, crossing=crossing)
     sliding: dict[str, Points] = {}
     sines: dict[str, Reals] = {}
+    equivalent: dict[str, Reals] = {}
     _drive(polygon, sliding)
     record_equivalent_links(polygon)
     for group in plan.groups:
@@ -408,10 +412,12 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
             _drive_group(polygon, group, sliding)
         elif isinstance(group, GearGroup):
             velocity_by_rolling(polygon, group, sliding)
+        elif isinstance(group, CamGroup):
+            velocity_by_cam(polygon, group, sliding, equivalent)
         elif (triad := triad_of(polygon.mechanism, group)) is not None:
             velocity_by_assur_point(polygon, triad, sliding)
         else:
             velocity_by_linear_solve(polygon, group, sliding)
     for link, point in wanted:
         polygon.tip(link, point)
-    return VelocityResult(polygon, sliding, sines)
+    return VelocityResult(polygon, sliding, sines, equivalent)

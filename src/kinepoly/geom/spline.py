@@ -32,6 +32,7 @@ from kinepoly.geom.arrays import Bools, Points, Reals
 __all__ = [
     "CurveFrame",
     "PeriodicSpline",
+    "nearest_parameter",
     "periodic_spline",
     "roots_along",
     "signed_area",
@@ -39,6 +40,10 @@ __all__ = [
 
 _STRAIGHT_CURVATURE = 1e-12
 """A curvature below this times 1/L (L the period) is a straight stretch: its centre is at infinity."""
+_FOOT_SAMPLES_PER_PIECE = 64
+"""Samples of each piece among which ``nearest_parameter`` starts from the nearest."""
+_FOOT_STEPS = 8
+"""Newton steps that settle ``nearest_parameter`` (quadratic: a few suffice from the nearest sample)."""
 _BISECTIONS = 200
 """Most halvings of a bracket; each root is settled after about 50 (see ``roots_along``)."""
 
@@ -205,3 +210,24 @@ def roots_along(spline: PeriodicSpline, function: Callable[[Reals], Reals], per_
         high, f_high = np.where(left, high, mid), np.where(left, f_high, f_mid)
     roots = np.concatenate((grid[exact], 0.5 * (low + high)))
     return np.sort(np.mod(roots, spline.period))
+
+
+def nearest_parameter(spline: PeriodicSpline, point: complex, offset: float = 0.0) -> float:
+    """The parameter u of the point of the curve X(u) = r(u) + ``offset`` n(u) (n the unit left normal) nearest
+    ``point``: the nearest of a dense sampling, settled by Newton's method on (X(u) - point) . r'(u) = 0
+    (X'(u) is parallel to r'(u)). Meant for a point on or near the curve, where the nearest is one."""
+    count = _FOOT_SAMPLES_PER_PIECE * spline.pieces
+    grid = spline.period * np.arange(count) / count
+    frame = spline.frame(grid)
+    u = float(grid[int(np.argmin(np.abs(frame.point + offset * frame.normal - point)))])
+    for _ in range(_FOOT_STEPS):
+        r, first, second = (complex(z[0]) for z in spline.derivatives(np.array([u])))
+        speed = abs(first)
+        normal = 1j * first / speed
+        gap = r + offset * normal - point
+        slope = (gap * first.conjugate()).real
+        curve = speed * speed * (1.0 - offset * (np.conj(first) * second).imag / speed**3) + (gap * second.conjugate()).real
+        if curve == 0.0:
+            break
+        u -= slope / curve
+    return float(np.mod(u, spline.period))

@@ -472,7 +472,8 @@ class _Phrase:
 
     def _equivalent_link(self) -> tuple[str, str]:
         p = self.p
-        key = "higher_pairs.equivalent_block" if p["kind"] == "flat" else "higher_pairs.equivalent_link"
+        key = ("higher_pairs.equivalent_spline" if p.get("spline") == "yes" else
+               "higher_pairs.equivalent_block" if p["kind"] == "flat" else "higher_pairs.equivalent_link")
         text = self.say.say(key, pair=str(p["pair"]), cam=str(p["cam"]), follower=str(p["follower"]),
                             link=str(p["link"]), centre=str(p["centre"]), point=str(p["point"]),
                             length=self.w.n(float(p["length"]), "position"), unit=self.w.unit)

@@ -200,7 +200,7 @@ class HigherPairTables(ReaderState):
         if name is None:
             return None
         base = CamSpec(name, cam, follower, circle[0], circle[1], "knife", inside=contact == "inside",
-                       line=self.report.line(path))
+                       line=self.report.line(path), profile_points=circle[2])
         kind = kinds[0]
         key = path + (kind,)
         if kind == "knife":
@@ -219,7 +219,7 @@ class HigherPairTables(ReaderState):
             r = self._positive(key + ("radius",), radius)
             if point is None or r is None:
                 return None
-            if base.inside and not r < base.radius:
+            if base.inside and not base.is_spline and not r < base.radius:
                 self.report.add(key + ("radius",), f"a roller of radius {r:g} inside a groove of radius "
                                 f"{base.radius:g}; expected a roller smaller than the profile")
                 return None
@@ -227,10 +227,16 @@ class HigherPairTables(ReaderState):
         if base.inside:
             self.report.add(path + ("contact",), 'a flat face cannot touch a disc from inside; expected "outside"')
             return None
+        if base.is_spline:
+            self.report.add(key, "a flat face on a points profile is not solved in this version (knife edges and "
+                            'rollers are); expected knife = "W" or roller = { center = "W", radius = r } on a '
+                            "points profile, or a circle profile for a flat face")
+            return None
         found = self._line(key, table["flat"])
         return None if found is None else _with(base, kind="flat", flat=found)
 
-    def read_profile(self, path: KeyPath, value: object) -> tuple[Vector, float] | None:
+    def read_profile(self, path: KeyPath, value: object) -> tuple[Vector, float, tuple[Vector, ...]] | None:
+        """A circle's (centre, radius, ()), or a ``points`` profile's ((0, 0), 0, points)."""
         table = read_table(self.report, path, value, "{ circle = { center = [x, y], radius = R } }")
         if table is None:
             return None
@@ -242,10 +248,7 @@ class HigherPairTables(ReaderState):
             points = read_profile_points(self.report, path + ("points",), table["points"], self.kinds.length)
             if points is None:
                 return None
-            self.report.add(path + ("points",), "the profile is a valid closed spline, but this version solves "
-                            "spline cams' contacts in no command yet; expected profile = { circle = { center = "
-                            "[x, y], radius = R } } for now")
-            return None
+            return ((0.0, 0.0), 0.0, points)
         circle_value = require(self.report, path, table, "circle", "circle = { center = [x, y], radius = R }")
         circle = None if circle_value is None else read_table(self.report, path + ("circle",), circle_value,
                                                                 "{ center = [x, y], radius = R }")
@@ -258,7 +261,7 @@ class HigherPairTables(ReaderState):
             return None
         center = quantity_pair(self.report, path + ("circle", "center"), center_value, self.kinds.length)
         radius = self._positive(path + ("circle", "radius"), radius_value)
-        return None if center is None or radius is None else (center, radius)
+        return None if center is None or radius is None else (center, radius, ())
 
     def _follower_point(self, path: KeyPath, value: object, follower: str) -> str | None:
         name = read_name(self.report, path, value, "a point name", "W")

@@ -1,0 +1,228 @@
+"""A spline cam's follower placed on the known cam: the contact found by a 1-D root on the spline parameter.
+
+The profile is the periodic cubic spline P(u) of the ``points`` (``geom.spline``), in the cam's frame, n(u)
+its left normal (inward: the points run counter-clockwise). The follower touches it with the point W (a knife
+edge) or with a roller of radius r turning on W, so that W runs on the offset curve
+
+    X(u) = P(u) + rho n(u),   rho = 0 (knife), -r (a roller outside the profile), +r (inside a groove).
+
+The follower is held by ONE joint to a known carrier, so W has one freedom left, and the contact is where
+W's path on the carrier, seen in the cam's frame, crosses X:
+
+* a pivoted rocker (a pin at Q): |X(u) - Q| = |Q W|, W then at X(u), the rocker turned to it;
+* a translating follower (the block of a slider on the carrier): X(u) on the line W travels along,
+  s read off along the slide.
+
+Each row has every root (``geom.spline.roots_along``); the assembly policy keeps one per row (nearest the
+``[guess]`` for a solve, followed by continuity in a sweep). The centre of curvature K = P + n / kappa (the
+same for the offset curve) is a point of the cam at that instant: the equivalent link K W replaces the pair
+for the polygons (``engine.cam_polygons``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import numpy.typing as npt
+
+from kinepoly.engine.plan import CamGroup
+from kinepoly.engine.polygon import Polygon
+from kinepoly.engine.steps import Step
+from kinepoly.geom.arrays import Bools, Points, Reals, turn
+from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline, roots_along
+from kinepoly.model.array_pose import ArrayPose, pose_from_point
+from kinepoly.model.mechanism import Mechanism, Revolute
+from kinepoly.model.pose import Pose
+from kinepoly.scene.spec import CamSpec, SliderSpec, Vector
+
+__all__ = [
+    "Candidates",
+    "ContactRows",
+    "cam_spline",
+    "centre_label",
+    "contact_candidates",
+    "contact_label",
+    "contact_on_profile",
+    "contact_rows",
+    "offset_of",
+    "parameter_near",
+    "record_spline_equivalent",
+]
+
+Ints = npt.NDArray[np.intp]
+
+
+def centre_label(cam: CamSpec) -> str:
+    """The mark of the profile's centre of curvature at the contact: ``K23`` (a circle cam's centre is K too)."""
+    return f"K{cam.name}"
+
+
+def contact_label(cam: CamSpec) -> str:
+    """The mark of the contact point: ``Q23``."""
+    return f"Q{cam.name}"
+
+
+@lru_cache(maxsize=64)
+def _spline(points: tuple[Vector, ...]) -> PeriodicSpline:
+    return periodic_spline(points)
+
+
+def cam_spline(cam: CamSpec) -> PeriodicSpline:
+    """The profile's spline (made once per profile)."""
+    return _spline(cam.profile_points)
+
+
+def offset_of(cam: CamSpec) -> float:
+    """rho: how far W's curve lies along the inward normal from the profile."""
+    if cam.kind != "roller":
+        return 0.0
+    return cam.roller_radius if cam.inside else -cam.roller_radius
+
+
+def _offset_point(spline: PeriodicSpline, rho: float, u: Reals) -> Points:
+    frame = spline.frame(u)
+    return np.asarray(frame.point + rho * frame.normal)
+
+
+@dataclass(frozen=True)
+class Candidates:
+    """Every contact at every row, padded to ``width`` columns: the parameter, whether it exists, and the
+    follower's pose each one gives (``origin``, ``rotation``), with W's place."""
+
+    u: Reals
+    found: Bools
+    origin: Points
+    rotation: Points
+    w: Points
+
+    def pose(self, choice: Ints) -> ArrayPose:
+        rows = np.arange(len(choice))
+        pick = np.maximum(choice, 0)
+        return ArrayPose(np.asarray(self.origin[rows, pick]), np.asarray(self.rotation[rows, pick]))
+
+    def parameter(self, choice: Ints) -> Reals:
+        return np.asarray(self.u[np.arange(len(choice)), np.maximum(choice, 0)])
+
+
+def _path_function(group: CamGroup, mechanism: Mechanism, cam_pose: ArrayPose,
+                   carrier_pose: ArrayPose) -> tuple[Points, Points, float | None]:
+    """W's path on the carrier, in the cam's frame, at every row: (point, direction, None) for a line
+    (the point W at s = 0), (pivot, 0, radius) for a circle."""
+    follower = group.link
+    w_local = mechanism.local(follower, group.cam.point or "")
+    joint = group.joint
+    if isinstance(joint, Revolute):
+        pivot = carrier_pose.world(mechanism.local(group.carrier, joint.point))
+        px, py = mechanism.local(follower, joint.point)
+        radius = math.hypot(w_local[0] - px, w_local[1] - py)
+        return cam_pose.to_local(pivot), np.zeros(len(pivot), np.complex128), radius
+    assert isinstance(joint, SliderSpec)
+    block = _block_pose(mechanism, joint, follower, carrier_pose, np.zeros(len(carrier_pose.origin)))
+    direction = np.asarray(carrier_pose.rotation * turn(joint.angle_rad))
+    return cam_pose.to_local(block.world(w_local)), np.asarray(direction * cam_pose.rotation.conjugate()), None
+
+
+def _block_pose(mechanism: Mechanism, joint: SliderSpec, link: str, carrier_pose: ArrayPose, s: Reals) -> ArrayPose:
+    """The follower, the block of ``joint``, at slide value ``s`` on its guide (it turns with the guide)."""
+    rotation = np.asarray(carrier_pose.rotation * turn(joint.angle_rad))
+    on_line = carrier_pose.world(joint.through) + s * rotation
+    return ArrayPose(np.asarray(on_line - rotation * complex(*mechanism.local(link, joint.point))), rotation)
+
+
+def contact_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, ArrayPose]) -> Candidates:
+    """Every contact of the pair at every row, with the follower's pose each gives."""
+    cam, spline, rho = group.cam, cam_spline(group.cam), offset_of(group.cam)
+    cam_pose, carrier_pose = poses[group.known], poses[group.carrier]
+    start, direction, radius = _path_function(group, mechanism, cam_pose, carrier_pose)
+    n = len(start)
+    found: list[Reals] = []
+    for k in range(n):
+        a, d = complex(start[k]), complex(direction[k])
+        if radius is not None:
+            def gap(u: Reals, a: complex = a, r: float = radius) -> Reals:
+                return np.asarray(np.abs(_offset_point(spline, rho, u) - a) ** 2 - r * r)
+        else:
+            def gap(u: Reals, a: complex = a, d: complex = d) -> Reals:
+                return np.asarray(((_offset_point(spline, rho, u) - a) * d.conjugate()).imag)
+        found.append(roots_along(spline, gap))
+    width = max(1, max(len(r) for r in found))
+    u = np.zeros((n, width))
+    ok = np.zeros((n, width), np.bool_)
+    for k, roots in enumerate(found):
+        u[k, :len(roots)] = roots
+        ok[k, :len(roots)] = True
+    x_cam = _offset_point(spline, rho, u)
+    w = np.asarray(cam_pose.origin[:, None] + cam_pose.rotation[:, None] * x_cam)
+    w_local = complex(*mechanism.local(group.link, cam.point or ""))
+    joint = group.joint
+    if isinstance(joint, Revolute):
+        pivot_local = complex(*mechanism.local(group.link, joint.point))
+        pivot = carrier_pose.world(mechanism.local(group.carrier, joint.point))[:, None]
+        arm = w - pivot
+        rotation = np.asarray((arm / np.where(arm == 0, 1.0, np.abs(arm))) / ((w_local - pivot_local)
+                                                                              / abs(w_local - pivot_local)))
+        origin = np.asarray(pivot - rotation * pivot_local)
+    else:
+        s = ((x_cam - start[:, None]) * direction.conj()[:, None]).real
+        rotation = np.asarray(np.broadcast_to((carrier_pose.rotation * turn(joint.angle_rad))[:, None], u.shape))
+        on_line = carrier_pose.world(joint.through)[:, None] + s * rotation
+        origin = np.asarray(on_line - rotation * complex(*mechanism.local(group.link, joint.point)))
+    return Candidates(u, ok, origin, rotation, w)
+
+
+@dataclass(frozen=True)
+class ContactRows:
+    """The chosen contact at every row, in the frame: the parameter, the contact point Q, the centre of
+    curvature K, the unit normal from the cam's side to the follower's, the curvature (1/length, positive
+    where the profile is convex) and whether K is at infinity (a straight stretch)."""
+
+    u: Reals
+    point: Points
+    centre: Points
+    normal: Points
+    curvature: Reals
+    straight: Bools
+
+
+def contact_rows(cam: CamSpec, cam_pose: ArrayPose, u: Reals) -> ContactRows:
+    """The contact at parameters ``u`` with the cam at ``cam_pose``."""
+    frame = cam_spline(cam).frame(u)
+    point = cam_pose.world((0.0, 0.0)) + cam_pose.rotation * frame.point
+    centre = cam_pose.world((0.0, 0.0)) + cam_pose.rotation * frame.centre_of_curvature
+    outward = -frame.normal if not cam.inside else frame.normal
+    return ContactRows(u, np.asarray(point), np.asarray(centre), np.asarray(cam_pose.rotation * outward),
+                       frame.curvature, frame.is_straight)
+
+
+def parameter_near(cam: CamSpec, local: complex) -> float:
+    """The parameter of the profile's point nearest ``local`` (a point on the profile, in the cam's frame)."""
+    return nearest_parameter(cam_spline(cam), local)
+
+def contact_on_profile(cam: CamSpec, pose: Pose) -> tuple[complex, complex]:
+    """The contact point Q (marked when the follower was placed) and the unit normal there, from the cam's
+    side to the follower's, at one row."""
+    link = pose.links[cam.cam]
+    point = complex(*pose.marks[contact_label(cam)])
+    rotation = complex(math.cos(link.theta), math.sin(link.theta))
+    local = (point - complex(link.x, link.y)) * rotation.conjugate()
+    frame = cam_spline(cam).frame(np.array([parameter_near(cam, local)]))
+    inward = complex(frame.normal[0])
+    return point, rotation * (inward if cam.inside else -inward)
+
+
+def record_spline_equivalent(polygon: Polygon, cam: CamSpec) -> None:
+    """The step that says the pair is replaced, at this instant, by the link K W (K the centre of curvature)."""
+    k, w = centre_label(cam), cam.point or ""
+    if k not in polygon.positions.marks:
+        return
+    length = abs(complex(polygon.world(w)[0]) - complex(polygon.world(k)[0]))
+    polygon.step(Step(polygon="velocity", kind="known",
+                      equation=f"cam {cam.name}: equivalent link from {k} (the profile's centre of curvature at the "
+                               f"contact) to {w}",
+                      result=f"{k}{w}", topic="equivalent-link",
+                      params=(("pair", cam.name), ("cam", cam.cam), ("follower", cam.follower),
+                              ("link", f"{k}{w}"), ("centre", k), ("point", w), ("length", length),
+                              ("kind", cam.kind), ("spline", "yes"))))
