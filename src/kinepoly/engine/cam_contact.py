@@ -32,7 +32,7 @@ from kinepoly.engine.plan import CamGroup
 from kinepoly.engine.polygon import Polygon
 from kinepoly.engine.steps import Step
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
-from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline, roots_along
+from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline, roots_by_row
 from kinepoly.model.array_pose import ArrayPose, pose_from_point
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import Pose
@@ -138,22 +138,20 @@ def contact_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, A
     cam_pose, carrier_pose = poses[group.known], poses[group.carrier]
     start, direction, radius = _path_function(group, mechanism, cam_pose, carrier_pose)
     n = len(start)
-    found: list[Reals] = []
-    for k in range(n):
-        a, d = complex(start[k]), complex(direction[k])
-        if radius is not None:
-            def gap(u: Reals, a: complex = a, r: float = radius) -> Reals:
-                return np.asarray(np.abs(_offset_point(spline, rho, u) - a) ** 2 - r * r)
-        else:
-            def gap(u: Reals, a: complex = a, d: complex = d) -> Reals:
-                return np.asarray(((_offset_point(spline, rho, u) - a) * d.conjugate()).imag)
-        found.append(roots_along(spline, gap))
-    width = max(1, max(len(r) for r in found))
+    if radius is not None:
+        def gap(row: Ints, u: Reals) -> Reals:
+            return np.asarray(np.abs(_offset_point(spline, rho, u) - start[row]) ** 2 - radius * radius)
+    else:
+        def gap(row: Ints, u: Reals) -> Reals:
+            return np.asarray(((_offset_point(spline, rho, u) - start[row]) * direction[row].conjugate()).imag)
+    rows, roots = roots_by_row(spline, gap, n)
+    counts = np.bincount(rows, minlength=n)
+    width = max(1, int(counts.max(initial=0)))
+    rank = np.arange(len(rows)) - np.concatenate(([0], np.cumsum(counts)))[rows]
     u = np.zeros((n, width))
     ok = np.zeros((n, width), np.bool_)
-    for k, roots in enumerate(found):
-        u[k, :len(roots)] = roots
-        ok[k, :len(roots)] = True
+    u[rows, rank] = roots
+    ok[rows, rank] = True
     x_cam = _offset_point(spline, rho, u)
     w = np.asarray(cam_pose.origin[:, None] + cam_pose.rotation[:, None] * x_cam)
     w_local = complex(*mechanism.local(group.link, cam.point or ""))

@@ -35,6 +35,7 @@ __all__ = [
     "nearest_parameter",
     "periodic_spline",
     "roots_along",
+    "roots_by_row",
     "signed_area",
 ]
 
@@ -185,32 +186,42 @@ def _thomas(lower: Reals, diagonal: Reals, upper: Reals, rhs: Points) -> Points:
 
 def roots_along(spline: PeriodicSpline, function: Callable[[Reals], Reals], per_piece: int = 8) -> Reals:
     """The parameters in [0, L) where ``function`` (over arrays of parameters) changes sign, each to
-    the last bit of the parameter, sorted.
+    the last bit of the parameter, sorted (``roots_by_row`` for one row)."""
+    return roots_by_row(spline, lambda _, u: function(u), 1, per_piece)[1]
+
+
+def roots_by_row(spline: PeriodicSpline, function: Callable[[npt.NDArray[np.intp], Reals], Reals], rows: int,
+                 per_piece: int = 8) -> tuple[npt.NDArray[np.intp], Reals]:
+    """The roots of one function of the parameter per row: ``function(row, u)`` (arrays of one shape) changes
+    sign at each returned (row, u), u in [0, L) to the last bit, sorted by row and then by u.
 
     Each piece is sampled at ``per_piece`` equal steps; every sign change brackets one root, refined
-    by bisection, all brackets at once (about 50 halvings: safe where Newton's step could leave the
-    bracket, and cheap over arrays). A root where ``function`` touches zero without
+    by bisection, all brackets of all rows at once (about 50 halvings: safe where Newton's step could
+    leave the bracket, and cheap over arrays). A root where the function touches zero without
     changing sign (a grazing contact) is not found: it is a dead point, not an assembly."""
     step = np.diff(spline.knots)[:, None] * (np.arange(per_piece) / per_piece)[None, :]
     grid = (spline.knots[:-1, None] + step).ravel()
-    values = function(grid)
-    after = np.roll(values, -1)
+    every = np.arange(rows)[:, None] + np.zeros(len(grid), np.intp)[None, :]
+    values = function(every, np.broadcast_to(grid, every.shape))
+    after = np.roll(values, -1, axis=1)
     exact = values == 0.0
-    change = (np.sign(values) * np.sign(after) < 0.0) & ~exact
-    low = grid[change]
-    high = np.where(np.arange(len(grid))[change] == len(grid) - 1, spline.period, np.roll(grid, -1)[change])
-    f_low, f_high = values[change], after[change]
+    row, column = np.nonzero((np.sign(values) * np.sign(after) < 0.0) & ~exact)
+    low = grid[column]
+    high = np.where(column == len(grid) - 1, spline.period, grid[(column + 1) % len(grid)])
+    f_low = values[row, column]
     for _ in range(_BISECTIONS):
         if low.size == 0 or np.all(high - low <= 4.0 * np.spacing(np.maximum(np.abs(high), 1.0))):
             break
         mid = 0.5 * (low + high)
-        f_mid = function(mid)
+        f_mid = function(row, mid)
         left = np.sign(f_mid) == np.sign(f_low)
         low, f_low = np.where(left, mid, low), np.where(left, f_mid, f_low)
-        high, f_high = np.where(left, high, mid), np.where(left, f_high, f_mid)
-    roots = np.concatenate((grid[exact], 0.5 * (low + high)))
-    return np.sort(np.mod(roots, spline.period))
-
+        high = np.where(left, high, mid)
+    exact_row, exact_column = np.nonzero(exact)
+    all_rows = np.concatenate((exact_row, row))
+    roots = np.mod(np.concatenate((grid[exact_column], 0.5 * (low + high))), spline.period)
+    order = np.lexsort((roots, all_rows))
+    return all_rows[order], roots[order]
 
 def nearest_parameter(spline: PeriodicSpline, point: complex, offset: float = 0.0) -> float:
     """The parameter u of the point of the curve X(u) = r(u) + ``offset`` n(u) (n the unit left normal) nearest
