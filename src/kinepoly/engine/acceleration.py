@@ -400,8 +400,8 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
                            *, unit: str = "mm", record: bool = False, strict: bool = False, rules: Rules = RIGHT,
                            crossing: CrossLines = cross_lines) -> AccelerationResult:
     """Construct the acceleration polygon at every row for every group of ``plan``, on top of its velocity polygon."""
-    from kinepoly.engine.group import acceleration_by_linear_solve
     from kinepoly.engine.cam_polygons import acceleration_by_cam
+    from kinepoly.engine.group import acceleration_by_linear_solve
     from kinepoly.engine.plan import CamGroup, GearGroup
     from kinepoly.engine.rolling import acceleration_by_rolling
     from kinepoly.engine.triad import acceleration_by_assur_point, triad_of

@@ -83,7 +83,7 @@ class NearestGuess:
     def contact(self, mechanism: Mechanism, group: CamGroup, candidates: Candidates,
                 placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
         """The contact that puts the follower's guessed points nearest their guess."""
-        return guessed_contact(mechanism, group.link, candidates, self.guess)
+        return guessed_contact(mechanism, group, candidates, self.guess)
 
     def unreachable(self, message: str) -> None:
         raise AssemblyError(message)

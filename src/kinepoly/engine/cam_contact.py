@@ -33,7 +33,7 @@ from kinepoly.engine.polygon import Polygon
 from kinepoly.engine.steps import Step
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline, roots_by_row
-from kinepoly.model.array_pose import ArrayPose, pose_from_point
+from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import Pose
 from kinepoly.scene.spec import CamSpec, SliderSpec, Vector

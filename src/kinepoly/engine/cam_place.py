@@ -38,11 +38,11 @@ __all__ = ["follow_contact", "guessed_contact", "place_cam", "seeded_contact"]
 Vec = tuple[float, float]
 
 
-def guessed_contact(mechanism: Mechanism, link: str, candidates: Candidates,
+def guessed_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidates,
                     guess: Mapping[str, Vec]) -> tuple[Ints, tuple[Notice, ...]]:
     """Row by row, the contact that puts the follower's guessed points nearest their guess; with no point of
     the follower guessed, the first contact along the profile, with a ``default-assembly`` warning."""
-    found = candidates.found
+    found, link, name = candidates.found, group.link, group.cam.point
     score = np.zeros(found.shape)
     guessed = [p for p in mechanism.scene.link(link).points if p.name in guess]
     for p in guessed:
@@ -55,7 +55,6 @@ def guessed_contact(mechanism: Mechanism, link: str, candidates: Candidates,
     w = complex(candidates.w[0, int(choice[0])])
     others = ", ".join(f"({complex(z).real:.6g}, {complex(z).imag:.6g})"
                        for z, ok in zip(candidates.w[0], found[0], strict=True) if ok and complex(z) != w)
-    name = mechanism.scene.cams and next(c.point for c in mechanism.scene.cams if c.follower == link)
     return choice, (Notice("default-assembly", f"follower {link}: no [guess] tells its contacts with the cam apart, so "
                            f"the first along the profile was taken, which puts {name} at ({w.real:.6g}, {w.imag:.6g}); "
                            f"the others put it at {others} (give [guess] {name} = [x, y] near the one you mean)"),)

@@ -390,9 +390,9 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
     ``wanted`` holds (link, point) pairs: the velocity of ``point`` as a point of ``link``.
     ``record``: keep the steps of row 0; ``strict``: a parallel pair of lines raises (a solve).
     """
+    from kinepoly.engine.cam_polygons import velocity_by_cam
     from kinepoly.engine.contacts import record_equivalent_links
     from kinepoly.engine.group import velocity_by_linear_solve
-    from kinepoly.engine.cam_polygons import velocity_by_cam
     from kinepoly.engine.plan import CamGroup, GearGroup
     from kinepoly.engine.rolling import velocity_by_rolling
     from kinepoly.engine.triad import triad_of, velocity_by_assur_point

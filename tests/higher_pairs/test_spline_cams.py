@@ -1,0 +1,205 @@
+"""Spline cams solved through their equivalent link, against exact solutions derived here.
+
+The profiles are splines through samples of an eccentric circle (centre [15, 0], radius 40, in the cam's
+frame), whose exact follower motion has a closed form: for a knife edge on a vertical guide through the
+cam's pivot, y = e sin(theta) + sqrt(R^2 - e^2 cos(theta)^2) (its derivatives by mpmath, apart from any
+code of kinepoly); for the roller on a rocker, the two-circle closure of the four-bar O K W P
+(``test_cams._rocker``). The spline's error falls at its order as the points double.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import mpmath as mp
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from tests.higher_pairs.test_cams import _rocker
+
+import kinepoly
+from kinepoly.errors import AssemblyError
+from kinepoly.sweep import sweep
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+KNIFE = EXAMPLES / "spline-cam-knife.toml"
+ROCKER = EXAMPLES / "spline-cam-roller-rocker.toml"
+E, R = 15.0, 40.0
+PROFILE = re.compile(r"profile = \{ points = \[.*?\] \}", re.DOTALL)
+
+
+def _with_points(path: Path, points: list[list[float]] | None, replace: dict[str, str] | None = None) -> kinepoly.Scene:
+    """The example at ``path`` with its profile's points (None: its own) and texts replaced."""
+    text = path.read_text()
+    if points is not None:
+        text = PROFILE.sub(f"profile = {{ points = {points!r} }}", text)
+    for old, new in (replace or {}).items():
+        assert old in text
+        text = text.replace(old, new)
+    return kinepoly.loads_scene(text, path.name)
+
+
+def _circle(n: int) -> list[list[float]]:
+    return [[E + R * math.cos(2 * math.pi * k / n), R * math.sin(2 * math.pi * k / n)] for k in range(n)]
+
+
+def _knife_exact(theta: float, omega: float = 10.0, alpha: float = 5.0) -> tuple[float, float, float]:
+    """y, y_dot, y_ddot of the knife edge on the exact circle (mpmath, 30 digits)."""
+    with mp.workdps(30):
+        def y(t: mp.mpf) -> mp.mpf:
+            return E * mp.sin(t) + mp.sqrt(R**2 - E**2 * mp.cos(t) ** 2)
+
+        first, second = mp.diff(y, theta, 1), mp.diff(y, theta, 2)
+        return float(y(theta)), float(omega * first), float(omega**2 * second + alpha * first)
+
+
+def _knife_errors(n: int, steps: int = 72) -> tuple[float, float, float]:
+    result = sweep(_with_points(KNIFE, _circle(n)), steps=steps)
+    assert (result.status == 0).all()
+    exact = np.array([_knife_exact(t) for t in np.radians(result.input.values)])
+    return tuple(float(np.max(np.abs(result.column(c).values - exact[:, k])))  # type: ignore[return-value]
+                 for k, c in enumerate(("r_W_y", "v_W_y", "a_W_y")))
+
+
+def test_knife_example_agrees_with_the_exact_rise_over_a_turn() -> None:
+    result = sweep(kinepoly.load_scene(KNIFE), steps=360)
+    assert (result.status == 0).all()
+    exact = np.array([_knife_exact(t) for t in np.radians(result.input.values)])
+    # 36 points of a circle of radius 40: the documented accuracy (h^4, h^3, h^2) measured here
+    assert np.max(np.abs(result.column("r_W_y").values - exact[:, 0])) < 2e-4
+    assert np.max(np.abs(result.column("v_W_y").values - exact[:, 1])) < 0.03
+    assert np.max(np.abs(result.column("a_W_y").values - exact[:, 2])) < 25.0
+
+
+def test_error_falls_at_the_splines_order_as_the_points_double() -> None:
+    # measured: 36 -> 72 -> 144 points divide the errors by 16.7, 7.9, 4.0 (position, velocity, acceleration)
+    coarse, middle, fine = (_knife_errors(n) for n in (36, 72, 144))
+    for k, order in enumerate((4, 3, 2)):
+        for a, b in ((coarse, middle), (middle, fine)):
+            assert math.log2(a[k] / b[k]) == pytest.approx(order, abs=0.35)
+
+
+def test_solve_at_any_row_equals_the_sweep_row() -> None:
+    result = sweep(kinepoly.load_scene(KNIFE), steps=24)
+    for row in (0, 5, 11, 17, 23):
+        angle = float(result.input.values[row])
+        data = kinepoly.to_json(kinepoly.solve(_with_points(KNIFE, None, {"angle = 30": f"angle = {angle!r}"})))
+        point = data["points"]["W"]
+        assert point["position"][1] == pytest.approx(result.column("r_W_y").values[row], rel=1e-12)
+        assert point["velocity"][1] == pytest.approx(result.column("v_W_y").values[row], rel=1e-12, abs=1e-9)
+        assert point["acceleration"][1] == pytest.approx(result.column("a_W_y").values[row], rel=1e-12, abs=1e-9)
+        assert data["check"]["max_rel_error"] < 1e-12
+
+
+def _normal_residual(data: dict[str, object], omega_cam: float) -> float:
+    """|(v_follower(Q) - v_cam(Q)) . n| / |v_cam(Q)| at the contact Q (the cam turns about O = 0)."""
+    contact = data["contacts"]["23"]  # type: ignore[index]
+    q, n = complex(*contact["point"]), complex(*contact["normal"])
+    w = data["points"]["W"]  # type: ignore[index]
+    omega = data.get("links", {}).get("3", {}).get("omega", 0.0)  # type: ignore[attr-defined]
+    on_follower = complex(*w["velocity"]) + omega * 1j * (q - complex(*w["position"]))
+    on_cam = omega_cam * 1j * q
+    return abs(((on_follower - on_cam) * n.conjugate()).real) / abs(on_cam)
+
+
+@pytest.mark.parametrize(("path", "omega"), [(KNIFE, 10.0), (ROCKER, 20.0)])
+def test_the_contacts_normal_velocities_are_equal_at_every_row_of_a_turn(path: Path, omega: float) -> None:
+    worst = 0.0
+    for degrees in range(0, 360, 10):
+        data = kinepoly.to_json(kinepoly.solve(_with_points(path, None, {"angle = 30": f"angle = {degrees}"})))
+        contact = data["contacts"]["23"]
+        assert math.hypot(*contact["normal"]) == pytest.approx(1.0, rel=1e-14)
+        assert (complex(*contact["sliding_velocity"]) * complex(*contact["normal"]).conjugate()).real == (
+            pytest.approx(0.0, abs=1e-9))
+        worst = max(worst, _normal_residual(data, omega))
+        assert data["check"]["max_rel_error"] < 1e-12
+    assert worst < 1e-13  # measured: 3e-16 (knife), 4e-16 (rocker)
+
+
+def test_rocker_example_agrees_with_the_exact_four_bar() -> None:
+    result = sweep(kinepoly.load_scene(ROCKER), steps=180)
+    assert (result.status == 0).all()
+    theta = np.radians(result.input.values)
+    exact = [_rocker(float(t), 1.0) for t in theta]
+    w = result.column("r_W_x").values + 1j * result.column("r_W_y").values
+    # measured with 36 points: 9.5e-4 mm, 5.6e-3 rad/s (of 20), 4.8 rad/s^2 (of 875)
+    assert np.max(np.abs(w - np.array([e[0] for e in exact]))) < 1.5e-3
+    assert np.max(np.abs(result.column("omega_3").values - [e[1] for e in exact])) < 8e-3
+    assert np.max(np.abs(result.column("alpha_3").values - [e[2] for e in exact])) < 7.0
+
+
+def test_a_follower_that_cannot_reach_the_profile_exits_3_naming_the_pair() -> None:
+    scene = _with_points(KNIFE, _circle(36), {"line = { through = [0, 0], angle = 90 }":
+                                              "line = { through = [80, 0], angle = 90 }"})
+    with pytest.raises(AssemblyError, match=r"spline-cam-knife\.toml:\d+: cams\.23: cannot assemble follower 3 on "
+                       r"cam 2 at theta12 = 30 deg: the line W slides along on 1 misses the profile"):
+        kinepoly.solve(scene)
+    # a guide at x = 50 reaches the profile (x in 15 cos(theta) -+ 40) only while cos(theta) >= 2/3: a sweep
+    # marks the other rows instead
+    near = _with_points(KNIFE, None, {"line = { through = [0, 0], angle = 90 }":
+                                      "line = { through = [50, 0], angle = 90 }"})
+    result = sweep(near, steps=72)
+    reaches = np.cos(np.radians(result.input.values)) > 2.0 / 3.0
+    assert ((result.status == 0) == reaches).all()
+
+
+def _bean(n: int) -> list[list[float]]:
+    """r = 40 + 8 cos(3 phi): concave near phi = 60, 180, 300 deg (radius of curvature 25.6 there)."""
+    out = []
+    for k in range(n):
+        phi = 2 * math.pi * k / n
+        r = 40.0 + 8.0 * math.cos(3 * phi)
+        out.append([r * math.cos(phi), r * math.sin(phi)])
+    return out
+
+
+def _roller_on_the_bean(radius: int) -> kinepoly.Scene:
+    # at theta = 30 deg the bean's hollow at phi = 60 deg is on top, under the guide through O
+    return _with_points(KNIFE, _bean(90), {'knife = "W"': f'roller = {{ center = "W", radius = {radius} }}',
+                                           "W = [0, 50]": f"W = [0, {32 + radius}]"})
+
+
+def test_a_roller_larger_than_the_concave_radius_is_refused_with_the_radius() -> None:
+    data = kinepoly.to_json(kinepoly.solve(_roller_on_the_bean(20)))  # 20 < 25.6: it touches the hollow
+    assert data["contacts"]["23"]["point"] == pytest.approx([0.0, 32.0], abs=1e-9)
+    assert data["points"]["W"]["position"] == pytest.approx([0.0, 52.0], abs=1e-9)
+    assert data["check"]["max_rel_error"] < 1e-12
+    with pytest.raises(AssemblyError, match=r"cams\.23: the roller of radius 30 mm is larger than the profile's "
+                       r"concave radius 2\d\.\d+ mm at the contact at theta12 = 30 deg"):
+        kinepoly.solve(_roller_on_the_bean(30))
+
+
+def _polar_profile(n: int, a2: float, p2: float, a3: float, p3: float) -> list[list[float]]:
+    out = []
+    for k in range(n):
+        phi = 2 * math.pi * k / n
+        r = 40.0 + a2 * math.cos(2 * phi + p2) + a3 * math.cos(3 * phi + p3)
+        out.append([r * math.cos(phi), r * math.sin(phi)])
+    return out
+
+
+@settings(max_examples=25, deadline=None)
+@given(a2=st.floats(0.0, 2.0), p2=st.floats(0.0, 6.28), a3=st.floats(0.0, 1.0), p3=st.floats(0.0, 6.28),
+       offset=st.floats(-15.0, 15.0), angle=st.floats(0.0, 360.0), omega=st.floats(-20.0, 20.0),
+       alpha=st.floats(-50.0, 50.0), rocker=st.booleans())
+def test_random_convex_profiles_solve_and_check(a2: float, p2: float, a3: float, p3: float, offset: float,
+                                                angle: float, omega: float, alpha: float, rocker: bool) -> None:
+    # r'' <= 4 a2 + 9 a3 <= 17 and r >= 37, so r^2 + 2 r'^2 - r r'' > 0: every profile is convex
+    path = ROCKER if rocker else KNIFE
+    swaps = {"angle = 30": f"angle = {angle!r}", f"omega = {20 if rocker else 10}": f"omega = {omega!r}",
+             "alpha = 0" if rocker else "alpha = 5": f"alpha = {alpha!r}"}
+    if not rocker:
+        swaps["line = { through = [0, 0], angle = 90 }"] = f"line = {{ through = [{offset!r}, 0], angle = 90 }}"
+    data = kinepoly.to_json(kinepoly.solve(_with_points(path, _polar_profile(48, a2, p2, a3, p3), swaps)))
+    assert data["check"]["max_rel_error"] < 1e-9
+    if abs(omega) > 1e-3:
+        assert _normal_residual(data, omega) < 1e-11
+
+
+def test_without_a_guess_the_first_contact_is_taken_with_a_warning_naming_the_other() -> None:
+    text = KNIFE.read_text().replace("[guess]\nW = [0, 50]\n", "")
+    warnings = kinepoly.to_json(kinepoly.solve(kinepoly.loads_scene(text, "knife.toml")))["warnings"]
+    assert any("no [guess] tells its contacts with the cam apart" in str(w) and "-30.3319" in str(w) for w in warnings)
