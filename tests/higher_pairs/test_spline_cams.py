@@ -203,3 +203,21 @@ def test_without_a_guess_the_first_contact_is_taken_with_a_warning_naming_the_ot
     text = KNIFE.read_text().replace("[guess]\nW = [0, 50]\n", "")
     warnings = kinepoly.to_json(kinepoly.solve(kinepoly.loads_scene(text, "knife.toml")))["warnings"]
     assert any("no [guess] tells its contacts with the cam apart" in str(w) and "-30.3319" in str(w) for w in warnings)
+
+
+@pytest.mark.parametrize(("path", "omega", "find"), [
+    (KNIFE, 10.0, ('sliders = ["13"]', 'sliders = ["13"]\ninstant_centers = ["23"]')),
+    (ROCKER, 20.0, ('alpha = ["3"]', 'alpha = ["3"]\ninstant_centers = ["23", "13"]'))])
+def test_the_pairs_instant_center_is_on_the_common_normal_and_moves_with_both(path: Path, omega: float,
+                                                                               find: tuple[str, str]) -> None:
+    for degrees in (0, 75, 200, 310):
+        data = kinepoly.to_json(kinepoly.solve(_with_points(path, None, {"angle = 30": f"angle = {degrees}",
+                                                                          find[0]: find[1]})))
+        center = complex(*data["instant_centers"]["23"]["position"])
+        contact = data["contacts"]["23"]
+        q, n = complex(*contact["point"]), complex(*contact["normal"])
+        assert abs(((center - q) * n.conjugate()).imag) < 1e-9 * abs(center - q)  # on the common normal
+        w = data["points"]["W"]
+        omega3 = data.get("links", {}).get("3", {}).get("omega", 0.0)
+        on_follower = complex(*w["velocity"]) + omega3 * 1j * (center - complex(*w["position"]))
+        assert abs(on_follower - omega * 1j * center) < 1e-9 * abs(omega * center)  # one velocity on both links
