@@ -183,8 +183,9 @@ def _polar_profile(n: int, a2: float, p2: float, a3: float, p3: float) -> list[l
 
 @settings(max_examples=25, deadline=None)
 @given(a2=st.floats(0.0, 2.0), p2=st.floats(0.0, 6.28), a3=st.floats(0.0, 1.0), p3=st.floats(0.0, 6.28),
-       offset=st.floats(-15.0, 15.0), angle=st.floats(0.0, 360.0), omega=st.floats(-20.0, 20.0),
-       alpha=st.floats(-50.0, 50.0), rocker=st.booleans())
+       offset=st.floats(-15.0, 15.0), angle=st.floats(0.0, 360.0),
+       omega=st.one_of(st.floats(-20.0, -1.0), st.floats(1.0, 20.0)),
+       alpha=st.one_of(st.just(0.0), st.floats(-50.0, -0.5), st.floats(0.5, 50.0)), rocker=st.booleans())
 def test_random_convex_profiles_solve_and_check(a2: float, p2: float, a3: float, p3: float, offset: float,
                                                 angle: float, omega: float, alpha: float, rocker: bool) -> None:
     # r'' <= 4 a2 + 9 a3 <= 17 and r >= 37, so r^2 + 2 r'^2 - r r'' > 0: every profile is convex
@@ -195,8 +196,7 @@ def test_random_convex_profiles_solve_and_check(a2: float, p2: float, a3: float,
         swaps["line = { through = [0, 0], angle = 90 }"] = f"line = {{ through = [{offset!r}, 0], angle = 90 }}"
     data = kinepoly.to_json(kinepoly.solve(_with_points(path, _polar_profile(48, a2, p2, a3, p3), swaps)))
     assert data["check"]["max_rel_error"] < 1e-9
-    if abs(omega) > 1e-3:
-        assert _normal_residual(data, omega) < 1e-11
+    assert _normal_residual(data, omega) < 1e-11
 
 
 def test_without_a_guess_the_first_contact_is_taken_with_a_warning_naming_the_other() -> None:
