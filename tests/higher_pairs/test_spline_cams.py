@@ -221,3 +221,33 @@ def test_the_pairs_instant_center_is_on_the_common_normal_and_moves_with_both(pa
         omega3 = data.get("links", {}).get("3", {}).get("omega", 0.0)
         on_follower = complex(*w["velocity"]) + omega3 * 1j * (center - complex(*w["position"]))
         assert abs(on_follower - omega * 1j * center) < 1e-9 * abs(omega * center)  # one velocity on both links
+
+
+FLOATING = """title = "a follower held by two links, not one joint"
+[links]
+1 = { points = { O = [0, 0], B = [90, 30], D = [90, -30] } }
+2 = { points = { O = [0, 0] } }
+3 = { points = { A = [0, 0], C = [0, -40], W = [-40, 0] } }
+4 = { points = { B = [0, 0], A = [0, 20] } }
+5 = { points = { D = [0, 0], C = [0, 20] } }
+[[cams]]
+cam = "2"
+follower = "3"
+knife = "W"
+profile = { points = [[40, 0], [0, 40], [-40, 0], [0, -40]] }
+[input]
+link = "2"
+angle = 30
+omega = 1
+"""
+
+
+def test_a_floating_follower_is_refused_by_name_with_exit_2(tmp_path: Path) -> None:
+    from kinepoly.cli import main
+
+    scene = tmp_path / "floating.toml"
+    scene.write_text(FLOATING)
+    with pytest.raises(kinepoly.SceneError, match=r"floating\.toml:8: cams\.23: the follower 3 is not held by one "
+                       r"joint .* \(floating followers, and a follower that drives its cam, are not built\)"):
+        kinepoly.solve(kinepoly.load_scene(scene))
+    assert main(["solve", str(scene)]) == 2

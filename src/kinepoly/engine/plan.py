@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from kinepoly.errors import MobilityError
+from kinepoly.errors import MobilityError, SceneError
 from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import CamSpec, GearSpec, PitchCircle, SliderSpec
 
@@ -376,6 +376,14 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
         groups.append(group)
         known.update(group.links)
     rest = tuple(n for n in mechanism.link_names if n not in known)
+    for cam in mechanism.scene.cams:
+        if cam.is_spline and (cam.cam in rest or cam.follower in rest):
+            raise SceneError(
+                f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the follower {cam.follower} is not held by "
+                f"one joint (a pin or a slider whose block it is) to a link known before it, with the cam "
+                f"{cam.cam} known first; this version solves a points profile's contact only so (floating "
+                "followers, and a follower that drives its cam, are not built); join the follower to the frame "
+                "or to a link placed before it by one pin or slider")
     if rest:
         joints = tuple(j for j in mechanism.joints if any(x in rest for x in joint_links(j)))
         drives = tuple(d for d in mechanism.drives if not d.on_frame and (d.moving in rest or d.base in rest))
