@@ -17,7 +17,7 @@ link are kept.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from kinepoly.errors import MobilityError, SceneError
 from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
@@ -101,11 +101,10 @@ class DriveGroup:
 
 
 @dataclass(frozen=True)
-class GearGroup:
-    """A gear placed by rolling on a known gear: ``link`` is pinned at its pitch centre to the known
-    ``carrier`` (the frame, an arm), or is a rack sliding on it; ``known`` carries the other pitch curve."""
+class _HigherPairGroup:
+    """One link placed on a known one through a higher pair: ``link`` is held by one ``joint`` to the known
+    ``carrier``; ``known`` carries the other element of the pair."""
 
-    gear: GearSpec
     link: str
     known: str
     carrier: str
@@ -117,6 +116,14 @@ class GearGroup:
 
     def known_links(self) -> tuple[str, ...]:
         return (self.known, self.carrier)
+
+
+@dataclass(frozen=True)
+class GearGroup(_HigherPairGroup):
+    """A gear placed by rolling on a known gear: ``link`` is pinned at its pitch centre to the known
+    ``carrier`` (the frame, an arm), or is a rack sliding on it; ``known`` carries the other pitch curve."""
+
+    gear: GearSpec = field(kw_only=True)
 
     @property
     def name(self) -> str:
@@ -124,23 +131,12 @@ class GearGroup:
 
 
 @dataclass(frozen=True)
-class CamGroup:
-    """A spline cam's follower placed on the known ``cam`` link by its contact: ``link`` (the follower) is
-    held by one ``joint`` to the known ``carrier``, a pin (a pivoted rocker) or a slider whose block it is
-    (a translating follower); ``engine.cam_contact`` finds the contact."""
+class CamGroup(_HigherPairGroup):
+    """A spline cam's follower placed on the known cam link by its contact: ``link`` (the follower) is held
+    by one ``joint`` to the known ``carrier``, a pin (a pivoted rocker) or a slider whose block it is (a
+    translating follower); ``engine.cam_contact`` finds the contact."""
 
-    cam: CamSpec
-    link: str
-    known: str
-    carrier: str
-    joint: Joint
-
-    @property
-    def links(self) -> tuple[str, ...]:
-        return (self.link,)
-
-    def known_links(self) -> tuple[str, ...]:
-        return (self.known, self.carrier)
+    cam: CamSpec = field(kw_only=True)
 
     @property
     def name(self) -> str:
@@ -319,7 +315,7 @@ def _find_gear(mechanism: Mechanism, known: set[str]) -> GearGroup | None:
                 continue
             if isinstance(joint, SliderSpec) and joint.block != link:
                 continue
-            return GearGroup(gear, link, other, _far_side(joint, link), joint)
+            return GearGroup(link, other, _far_side(joint, link), joint, gear=gear)
     return None
 
 
@@ -337,7 +333,7 @@ def _find_cam(mechanism: Mechanism, known: set[str]) -> CamGroup | None:
             continue
         if isinstance(joint, SliderSpec) and joint.block != cam.follower:
             continue
-        return CamGroup(cam, cam.follower, cam.cam, _far_side(joint, cam.follower), joint)
+        return CamGroup(cam.follower, cam.cam, _far_side(joint, cam.follower), joint, cam=cam)
     return None
 
 
