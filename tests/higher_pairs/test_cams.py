@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 import kinepoly
-from kinepoly.errors import SceneError
 from kinepoly.sweep import sweep
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -110,10 +109,3 @@ def test_roller_solve_matches_the_sweep_row_and_the_check() -> None:
     assert abs(((i23 - k) * n.conjugate()).imag) < 1e-9 * 100.0
     assert data["check"]["max_rel_error"] < 1e-12
 
-
-def test_a_flat_face_on_a_spline_profile_is_refused_by_name() -> None:
-    text = (EXAMPLES / "eccentric-cam-flat.toml").read_text().replace(
-        "profile = { circle = { center = [12, 0], radius = 35 } }",
-        "profile = { points = [[40, 0], [0, 40], [-40, 0], [0, -40]] }")
-    with pytest.raises(SceneError, match=r"cams\.1\.flat: a flat face on a points profile is not solved in this version"):
-        kinepoly.loads_scene(text, "cam.toml")

@@ -69,6 +69,9 @@ def _bench(args: argparse.Namespace) -> list[str]:
     if isinstance(scene.input, GivenInput):
         raise SceneError(f"{scene.source}: given: kinepoly bench needs a scene driven by [input] (a crank or a "
                          "driven slider); a [given] scene has no input to vary")
+    if any(cam.is_spline for cam in scene.cams):
+        raise SceneError(f"{scene.source}: cams: kinepoly bench is not built yet for a points profile (its 50-digit "
+                         "reference has no spline contact); expected a scene without [[cams]] points profiles")
     if scene.gears:
         raise SceneError(f"{scene.source}: gears: kinepoly bench is not built yet for [[gears]] (its 50-digit "
                          "reference has no rolling constraint); expected a scene without gears")

@@ -31,6 +31,7 @@ import numpy.typing as npt
 from kinepoly.engine.plan import CamGroup
 from kinepoly.engine.polygon import Polygon
 from kinepoly.engine.steps import Step
+from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline, roots_by_row
 from kinepoly.model.array_pose import ArrayPose
@@ -132,8 +133,22 @@ def _block_pose(mechanism: Mechanism, joint: SliderSpec, link: str, carrier_pose
     return ArrayPose(np.asarray(on_line - rotation * complex(*mechanism.local(link, joint.point))), rotation)
 
 
+def _packed(rows: Ints, roots: Reals, n: int) -> tuple[Reals, Bools]:
+    """The roots of each row side by side, padded: (u, found), ``n`` rows."""
+    counts = np.bincount(rows, minlength=n)
+    width = max(1, int(counts.max(initial=0)))
+    rank = np.arange(len(rows)) - np.concatenate(([0], np.cumsum(counts)))[rows]
+    u = np.zeros((n, width))
+    found = np.zeros((n, width), np.bool_)
+    u[rows, rank] = roots
+    found[rows, rank] = True
+    return u, found
+
+
 def contact_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, ArrayPose]) -> Candidates:
     """Every contact of the pair at every row, with the follower's pose each gives."""
+    if group.cam.kind == "flat":
+        return _flat_candidates(mechanism, group, poses)
     cam, spline, rho = group.cam, cam_spline(group.cam), offset_of(group.cam)
     cam_pose, carrier_pose = poses[group.known], poses[group.carrier]
     start, direction, radius = _path_function(group, mechanism, cam_pose, carrier_pose)
@@ -144,14 +159,7 @@ def contact_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, A
     else:
         def gap(row: Ints, u: Reals) -> Reals:
             return np.asarray(((_offset_point(spline, rho, u) - start[row]) * direction[row].conjugate()).imag)
-    rows, roots = roots_by_row(spline, gap, n)
-    counts = np.bincount(rows, minlength=n)
-    width = max(1, int(counts.max(initial=0)))
-    rank = np.arange(len(rows)) - np.concatenate(([0], np.cumsum(counts)))[rows]
-    u = np.zeros((n, width))
-    ok = np.zeros((n, width), np.bool_)
-    u[rows, rank] = roots
-    ok[rows, rank] = True
+    u, ok = _packed(*roots_by_row(spline, gap, n), n)
     x_cam = _offset_point(spline, rho, u)
     w = np.asarray(cam_pose.origin[:, None] + cam_pose.rotation[:, None] * x_cam)
     w_local = complex(*mechanism.local(group.link, cam.point or ""))
@@ -165,10 +173,66 @@ def contact_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, A
         origin = np.asarray(pivot - rotation * pivot_local)
     else:
         s = ((x_cam - start[:, None]) * direction.conj()[:, None]).real
-        rotation = np.asarray(np.broadcast_to((carrier_pose.rotation * turn(joint.angle_rad))[:, None], u.shape))
-        on_line = carrier_pose.world(joint.through)[:, None] + s * rotation
-        origin = np.asarray(on_line - rotation * complex(*mechanism.local(group.link, joint.point)))
+        origin, rotation = _slid(mechanism, group, carrier_pose, s)
     return Candidates(u, ok, origin, rotation, w)
+
+
+def _slid(mechanism: Mechanism, group: CamGroup, carrier_pose: ArrayPose, s: Reals) -> tuple[Points, Points]:
+    """A translating follower's poses (origin, rotation) at slide values ``s`` (rows x candidates)."""
+    joint = group.joint
+    assert isinstance(joint, SliderSpec)
+    rotation = np.asarray(np.broadcast_to((carrier_pose.rotation * turn(joint.angle_rad))[:, None], s.shape))
+    on_line = carrier_pose.world(joint.through)[:, None] + s * rotation
+    return np.asarray(on_line - rotation * complex(*mechanism.local(group.link, joint.point))), rotation
+
+
+def _flat_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, ArrayPose]) -> Candidates:
+    """A flat face touches where the profile's tangent runs along the face (the cam on the face's left):
+    a translating follower's face turns with its guide, so the tangent's direction is known; a rocker's
+    face keeps its distance h from the pivot, so the tangent line at P(u) must pass h from it."""
+    cam, spline = group.cam, cam_spline(group.cam)
+    assert cam.flat is not None
+    (fx, fy), face_angle = cam.flat
+    face_local, along_local = complex(fx, fy), turn(face_angle)
+    cam_pose, carrier_pose = poses[group.known], poses[group.carrier]
+    n = len(cam_pose.origin)
+    joint = group.joint
+    if isinstance(joint, Revolute):
+        pivot_local = complex(*mechanism.local(group.link, joint.point))
+        pivot = carrier_pose.world(mechanism.local(group.carrier, joint.point))
+        pivot_cam = cam_pose.to_local(pivot)
+        h = ((face_local - pivot_local) * along_local.conjugate()).imag
+
+        def gap(row: Ints, u: Reals) -> Reals:
+            frame = spline.frame(u)
+            return np.asarray(((frame.point - pivot_cam[row]) * frame.tangent.conjugate()).imag - h)
+        u, ok = _packed(*roots_by_row(spline, gap, n), n)
+        frame = spline.frame(u)
+        rotation = np.asarray(cam_pose.rotation[:, None] * frame.tangent / along_local)
+        origin = np.asarray(pivot[:, None] - rotation * pivot_local)
+    else:
+        assert isinstance(joint, SliderSpec)
+        along_cam = np.asarray(carrier_pose.rotation * turn(joint.angle_rad) * along_local
+                               * cam_pose.rotation.conjugate())
+
+        def gap(row: Ints, u: Reals) -> Reals:
+            return np.asarray((spline.frame(u).tangent * along_cam[row].conjugate()).imag)
+        u, ok = _packed(*roots_by_row(spline, gap, n), n)
+        frame = spline.frame(u)
+        ok &= (frame.tangent * along_cam[:, None].conjugate()).real > 0.0  # the same sense: the cam on the left
+        across = along_local.conjugate().imag  # Im(conj(d) e), e the block's x-axis along the slide
+        if abs(across) < 1e-12:
+            raise SceneError(f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the flat face runs along the "
+                             f"slide of {joint.name}, so the cam cannot move the follower; expected a face across the slide")
+        zero = np.zeros((n, 1))
+        start_origin, start_rotation = _slid(mechanism, group, carrier_pose, zero)
+        face_world = start_origin + start_rotation * face_local
+        point = cam_pose.origin[:, None] + cam_pose.rotation[:, None] * frame.point
+        direction = start_rotation * along_local
+        s = ((point - face_world) * direction.conjugate()).imag / across
+        origin, rotation = _slid(mechanism, group, carrier_pose, np.asarray(s))
+    point = np.asarray(cam_pose.origin[:, None] + cam_pose.rotation[:, None] * frame.point)
+    return Candidates(u, ok, origin, rotation, point)
 
 
 @dataclass(frozen=True)
@@ -212,15 +276,20 @@ def contact_on_profile(cam: CamSpec, pose: Pose) -> tuple[complex, complex]:
 
 
 def record_spline_equivalent(polygon: Polygon, cam: CamSpec) -> None:
-    """The step that says the pair is replaced, at this instant, by the link K W (K the centre of curvature)."""
-    k, w = centre_label(cam), cam.point or ""
+    """The step that says the pair is replaced, at this instant, by the link K W (K the centre of curvature),
+    or for a flat face by a block pinned at K sliding on the follower parallel to the face."""
+    k = centre_label(cam)
     if k not in polygon.positions.marks:
         return
+    w = cam.point or contact_label(cam)
     length = abs(complex(polygon.world(w)[0]) - complex(polygon.world(k)[0]))
+    flat = cam.kind == "flat"
     polygon.step(Step(polygon="velocity", kind="known",
-                      equation=f"cam {cam.name}: equivalent link from {k} (the profile's centre of curvature at the "
-                               f"contact) to {w}",
-                      result=f"{k}{w}", topic="equivalent-link",
+                      equation=(f"cam {cam.name}: equivalent block pinned at {k} (the profile's centre of curvature at "
+                                f"the contact), sliding on {cam.follower} along the face" if flat else
+                                f"cam {cam.name}: equivalent link from {k} (the profile's centre of curvature at the "
+                                f"contact) to {w}"),
+                      result=k if flat else f"{k}{w}", topic="equivalent-link",
                       params=(("pair", cam.name), ("cam", cam.cam), ("follower", cam.follower),
-                              ("link", f"{k}{w}"), ("centre", k), ("point", w), ("length", length),
+                              ("link", k if flat else f"{k}{w}"), ("centre", k), ("point", w), ("length", length),
                               ("kind", cam.kind), ("spline", "yes"))))

@@ -42,7 +42,8 @@ def guessed_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidate
                     guess: Mapping[str, Vec]) -> tuple[Ints, tuple[Notice, ...]]:
     """Row by row, the contact that puts the follower's guessed points nearest their guess; with no point of
     the follower guessed, the first contact along the profile, with a ``default-assembly`` warning."""
-    found, link, name = candidates.found, group.link, group.cam.point
+    found, link = candidates.found, group.link
+    name = group.cam.point or f"the contact of {group.cam.name}"
     score = np.zeros(found.shape)
     guessed = [p for p in mechanism.scene.link(link).points if p.name in guess]
     for p in guessed:
@@ -57,7 +58,7 @@ def guessed_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidate
                        for z, ok in zip(candidates.w[0], found[0], strict=True) if ok and complex(z) != w)
     return choice, (Notice("default-assembly", f"follower {link}: no [guess] tells its contacts with the cam apart, so "
                            f"the first along the profile was taken, which puts {name} at ({w.real:.6g}, {w.imag:.6g}); "
-                           f"the others put it at {others} (give [guess] {name} = [x, y] near the one you mean)"),)
+                           f"the others put it at {others} (give [guess] positions of the follower's points near the ones you mean)"),)
 
 
 def follow_contact(candidates: Candidates, seed_row: int, seed_choice: int) -> Ints:
@@ -79,10 +80,13 @@ def follow_contact(candidates: Candidates, seed_row: int, seed_choice: int) -> I
 
 def seeded_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidates, seed_row: int,
                    seed: Mapping[str, LinkPose]) -> int:
-    """The seed row's contact: the one that puts W where the seed pose has it."""
-    target = complex(*seed[group.link].world(mechanism.local(group.link, group.cam.point or "")))
-    gaps = np.where(candidates.found[seed_row], np.abs(candidates.w[seed_row] - target), np.inf)
-    return int(np.argmin(gaps))
+    """The seed row's contact: the one that puts the follower's points where the seed pose has them."""
+    pose = seed[group.link]
+    gaps = np.zeros(candidates.found.shape[1])
+    for p in mechanism.scene.link(group.link).points:
+        target = complex(*pose.world(p.local))
+        gaps += np.abs(candidates.origin[seed_row] + candidates.rotation[seed_row] * complex(*p.local) - target) ** 2
+    return int(np.argmin(np.where(candidates.found[seed_row], gaps, np.inf)))
 
 
 def _where(mechanism: Mechanism, rows: Bools) -> str:
@@ -95,20 +99,29 @@ def _where(mechanism: Mechanism, rows: Bools) -> str:
 def _unreachable_message(mechanism: Mechanism, group: CamGroup, rows: Bools) -> str:
     cam = group.cam
     joint = group.joint
+    start = (f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: cannot assemble follower {group.link} on cam "
+             f"{group.known} {_where(mechanism, rows)}: ")
+    if cam.kind == "flat":
+        return start + ("no tangent of the profile runs at the face's distance from the pivot "
+                        f"{getattr(joint, 'point', '')}, so the face cannot be laid on the profile; move the pivot or "
+                        "the face toward the cam")
     path = (f"the circle W runs on about the pivot {joint.point}" if isinstance(joint, Revolute)
             else f"the line W slides along on {group.carrier}")
     what = f"the roller's centre {cam.point}" if cam.kind == "roller" else f"the knife edge {cam.point}"
-    return (f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: cannot assemble follower {group.link} on cam "
-            f"{group.known} {_where(mechanism, rows)}: {path} misses the profile{' offset by the roller' if cam.kind == 'roller' else ''}, "
-            f"so {what} cannot reach it; move the follower's joint or its point toward the cam")
+    offset = " offset by the roller" if cam.kind == "roller" else ""
+    return start + (f"{path} misses the profile{offset}, so {what} cannot reach it; move the follower's joint or "
+                    "its point toward the cam")
 
 
 def _undercut(group: CamGroup, curvature: np.ndarray) -> Bools:
-    """Rows where a roller is larger than the profile's concave radius at the contact."""
+    """Rows where a roller is larger than the profile's concave radius at the contact, or a flat face
+    touches a concave stretch (it would cut into the cam on both sides of the contact)."""
     cam = group.cam
+    concave = -curvature if not cam.inside else curvature
+    if cam.kind == "flat":
+        return np.asarray(concave > 0.0)
     if cam.kind != "roller":
         return np.zeros(len(curvature), np.bool_)
-    concave = -curvature if not cam.inside else curvature
     return np.asarray(concave * cam.roller_radius >= 1.0)
 
 
@@ -133,10 +146,13 @@ def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: 
         k = int(np.flatnonzero(undercut)[0])
         radius = 1.0 / abs(float(rows.curvature[k]))
         unit = mechanism.scene.units.length
-        message = (f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the roller of radius {cam.roller_radius:g} "
-                   f"{unit} is larger than the profile's concave radius {radius:.6g} {unit} at the contact "
-                   f"{_where(mechanism, undercut)}: it cannot touch the profile there; use a smaller roller or a "
-                   "profile whose hollows are wider than the roller")
+        where = f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: "
+        message = (where + f"the flat face meets the profile where it is concave (radius {radius:.6g} {unit}) "
+                   f"{_where(mechanism, undercut)}: a flat face can touch only a convex profile; make the profile "
+                   "convex there, or use a knife edge or a roller" if cam.kind == "flat" else
+                   where + f"the roller of radius {cam.roller_radius:g} {unit} is larger than the profile's concave "
+                   f"radius {radius:.6g} {unit} at the contact {_where(mechanism, undercut)}: it cannot touch the "
+                   "profile there; use a smaller roller or a profile whose hollows are wider than the roller")
         policy.unreachable(message)
         failures = (*failures, Failure(group.name, cam.point or "", undercut, lambda _: message))
         ok = ok & ~undercut

@@ -17,10 +17,12 @@ omega_KW is read off the velocity crossing (the length of the first direction is
 
 from __future__ import annotations
 
+import numpy as np
+
 from kinepoly.engine.cam_contact import centre_label
 from kinepoly.engine.plan import CamGroup
 from kinepoly.engine.polygon import Line, Polygon
-from kinepoly.engine.steps import DrawnVector
+from kinepoly.engine.steps import Direction, DrawnVector
 from kinepoly.engine.velocity import (
     _known_pairs,
     _parallel,
@@ -32,7 +34,7 @@ from kinepoly.engine.velocity import (
     _slide_rel,
     read_rate,
 )
-from kinepoly.geom.arrays import Points, Reals
+from kinepoly.geom.arrays import Points, turn
 from kinepoly.model.mechanism import Revolute
 from kinepoly.scene.spec import SliderSpec
 
@@ -44,30 +46,70 @@ def _ends(group: CamGroup) -> tuple[str, str]:
     return centre_label(group.cam), group.cam.point or ""
 
 
+def _face_direction(polygon: Polygon, group: CamGroup) -> Points:
+    """The flat face's unit direction in the frame at every row (it turns with the follower)."""
+    assert group.cam.flat is not None
+    return np.asarray(polygon.positions.poses[group.link].rotation * turn(group.cam.flat[1]))
+
+
+def _own_line(polygon: Polygon, group: CamGroup, point: str, size_link: str | None,
+              tip: str) -> tuple[Line, str, str, Direction]:
+    """The follower's own direction line for ``point``: perpendicular to pivot-point through the pivot's tip
+    (a rocker), or along the slide through the tip of ``point`` on the guide; with its label, the known end
+    of its term and the term's direction (``tip``: the unknown tip's label)."""
+    joint = group.joint
+    if isinstance(joint, Revolute):
+        far = joint.point
+        return (_revolute_line(polygon, group.carrier, far, point, size_link),
+                _perpendicular_label(polygon, group.carrier, far, point), far,
+                _perpendicular(polygon, f"v_{tip}/{far}", group.carrier, far, point))
+    assert isinstance(joint, SliderSpec)
+    far = polygon.label(group.carrier, point)
+    return (_slide_line(polygon, joint, group.carrier, point),
+            f"parallel to slider {joint.name} through {far.lower()}", far,
+            _parallel(polygon, f"v_{tip}/{far}", joint, group.carrier, point))
+
+
+def _flat_velocity(polygon: Polygon, group: CamGroup, sliding: dict[str, Points],
+                   equivalent: dict[str, Points]) -> None:
+    """The block pinned at K on the cam slides along the face: K's tip as a point of the follower lies on
+    the line through k along the face and on the follower's own line (about its pivot, or along its slide)."""
+    k = centre_label(group.cam)
+    on_cam = polygon.tip(group.known, k)
+    along_face: Line = (on_cam, _face_direction(polygon, group), 1.0)
+    label2 = f"parallel to the face of {group.link} through {polygon.label(group.known, k).lower()}"
+    joint = group.joint
+    line1, label1, far, direction1 = _own_line(polygon, group, k, None, polygon.label(group.link, k))
+    crossing = polygon.cross_lines(line1, along_face, k, group.name, (label1, label2))
+    tip = polygon.add_tip(group.link, k, crossing.point)
+    equivalent[group.cam.name] = np.asarray(on_cam - crossing.point)  # v of the block over the face
+    if polygon.record:
+        k_label = polygon.label(group.known, k)
+        _record_intersection(polygon, tip, f"v_{tip} = v_{far} + v_{tip}/{far} = v_{k_label} + v_{tip}/{k_label}",
+                             line1, along_face, (label1, label2), crossing,
+                             _known_pairs((f"v_{far}", f"v_{tip}/{far}"), (f"v_{k_label}", f"v_{tip}/{k_label}")),
+                             (direction1, Direction(f"v_{tip}/{k_label}", "face", group.link, k_label.lower())))
+    if isinstance(joint, Revolute):
+        read_rate(polygon, group.link, joint.point, tip, crossing.along_first)
+    else:
+        _slide_rel(polygon, joint, group.link, k, sliding)
+
+
 def velocity_by_cam(polygon: Polygon, group: CamGroup, sliding: dict[str, Points],
-                    equivalent: dict[str, Reals]) -> None:
+                    equivalent: dict[str, Points]) -> None:
+    if group.cam.kind == "flat":
+        _flat_velocity(polygon, group, sliding, equivalent)
+        return
     k, w = _ends(group)
     line1 = _revolute_line(polygon, group.known, k, w, None)
     label1 = _perpendicular_label(polygon, group.known, k, w)
     joint = group.joint
-    if isinstance(joint, Revolute):
-        line2 = _revolute_line(polygon, group.carrier, joint.point, w, group.link)
-        label2 = _perpendicular_label(polygon, group.carrier, joint.point, w)
-    else:
-        assert isinstance(joint, SliderSpec)
-        line2 = _slide_line(polygon, joint, group.carrier, w)
-        label2 = f"parallel to slider {joint.name} through {polygon.label(group.carrier, w).lower()}"
+    line2, label2, far, direction2 = _own_line(polygon, group, w, group.link, w)
     crossing = polygon.cross_lines(line1, line2, w, group.name, (label1, label2))
     polygon.add_tip(group.link, w, crossing.point)
-    equivalent[group.cam.name] = crossing.along_first
+    equivalent[group.cam.name] = np.asarray(crossing.along_first + 0j)
     k_label = polygon.label(group.known, k)
     if polygon.record:
-        if isinstance(joint, Revolute):
-            far = joint.point
-            direction2 = _perpendicular(polygon, f"v_{w}/{far}", group.carrier, far, w)
-        else:
-            far = polygon.label(group.carrier, w)
-            direction2 = _parallel(polygon, f"v_{w}/{far}", joint, group.carrier, w)
         _record_intersection(polygon, w, f"v_{w} = v_{k_label} + v_{w}/{k_label} = v_{far} + v_{w}/{far}", line1, line2,
                              (label1, label2), crossing,
                              _known_pairs((f"v_{k_label}", f"v_{w}/{k_label}"), (f"v_{far}", f"v_{w}/{far}")),
@@ -78,13 +120,58 @@ def velocity_by_cam(polygon: Polygon, group: CamGroup, sliding: dict[str, Points
         _slide_rel(polygon, joint, group.link, w, sliding)
 
 
+def _flat_acceleration(ctx: object, group: CamGroup) -> None:
+    """a_K@cam = a_K@follower + a^c (2 omega_follower x the block's velocity over the face) + a term along the
+    face: the line through a_K@cam - a^c along the face, crossed with the follower's own line."""
+    from kinepoly.engine.acceleration import _along_normal, _along_slide, _record
+
+    b: Polygon = ctx.b  # type: ignore[attr-defined]
+    k = centre_label(group.cam)
+    on_cam = b.tip(group.known, k)
+    relative = ctx.v.equivalent[group.cam.name]  # type: ignore[attr-defined]
+    coriolis = np.asarray(ctx.rules.coriolis * 2.0 * b.omega_of(group.link) * (1j * relative))  # type: ignore[attr-defined]
+    start = np.asarray(on_cam - coriolis)
+    along_face: Line = (start, _face_direction(b, group), 1.0)
+    joint = group.joint
+    line1: Line
+    laid: list[DrawnVector] = []
+    if isinstance(joint, Revolute):
+        line1, normal, label1 = ctx.normal_line(group.carrier, joint.point, k, group.link, rigid=False)  # type: ignore[attr-defined]
+        laid += [normal] if normal else []
+    else:
+        assert isinstance(joint, SliderSpec)
+        line1, slid = ctx.slide_line(joint, group.carrier, group.link, k)  # type: ignore[attr-defined]
+        laid += slid
+        label1 = f"sliding term along slider {joint.name}"
+    label2 = f"along the face of {group.link}, after the Coriolis term"
+    crossing = b.cross_lines(line1, along_face, k, group.name, (label1, label2))
+    tip = b.add_tip(group.link, k, crossing.point)
+    if b.record:
+        k_label = b.label(group.known, k)
+        term = f"a^c_{k_label}/{tip}"
+        vectors = [*laid, DrawnVector(term, b.vec(on_cam), b.vec(start), "coriolis")]
+        _record(ctx, tip, f"a_{k_label} = a_{tip} + {term} + a_{k_label}/{tip}", line1, along_face,  # type: ignore[arg-type]
+                (label1, label2), crossing, vectors,
+                (_along_normal(ctx, f"a^t_{tip}/{joint.point}", group.carrier, joint.point, k, laid[-1] if laid else None)  # type: ignore[arg-type]
+                 if isinstance(joint, Revolute) else _along_slide(ctx, f"a_{tip}/{b.label(group.carrier, k)}", joint,  # type: ignore[arg-type]
+                                                                  group.carrier, k, laid),
+                 Direction(f"a_{k_label}/{tip}", "face", group.link, k_label.lower(), after=term)))
+    if isinstance(joint, Revolute):
+        read_rate(b, group.link, joint.point, tip, crossing.along_first)
+    else:
+        ctx.slide_values(joint, group.link, k)  # type: ignore[attr-defined]
+
+
 def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
     """The acceleration polygon's part (``ctx`` is ``engine.acceleration``'s context)."""
     from kinepoly.engine.acceleration import _along_normal, _along_slide, _record
 
+    if group.cam.kind == "flat":
+        _flat_acceleration(ctx, group)
+        return
     b: Polygon = ctx.b  # type: ignore[attr-defined]
     k, w = _ends(group)
-    omega = ctx.v.equivalent[group.cam.name]  # type: ignore[attr-defined]
+    omega = np.asarray(ctx.v.equivalent[group.cam.name].real)  # type: ignore[attr-defined]
     line1, n1, label1 = ctx.normal_line(group.known, k, w, group.link, rigid=False, omega=omega)  # type: ignore[attr-defined]
     vectors: list[DrawnVector] = [n1] if n1 else []
     joint = group.joint

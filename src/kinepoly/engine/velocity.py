@@ -35,8 +35,9 @@ class VelocityResult:
     polygon: Polygon
     sliding: dict[str, Points]
     line_sines: dict[str, Reals]
-    equivalent: dict[str, Reals] = field(default_factory=dict)
-    """omega of each spline cam's equivalent link K W, by pair (``engine.cam_polygons``)."""
+    equivalent: dict[str, Points] = field(default_factory=dict)
+    """Each spline cam's equivalent link, by pair (``engine.cam_polygons``): omega of the link K W (its real
+    part), or for a flat face the velocity of the block at K over the face."""
 
     @property
     def tips(self) -> dict[str, Points]:
@@ -400,7 +401,7 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
     polygon = Polygon(positions, "velocity", unit=unit, record=record, strict=strict, crossing=crossing)
     sliding: dict[str, Points] = {}
     sines: dict[str, Reals] = {}
-    equivalent: dict[str, Reals] = {}
+    equivalent: dict[str, Points] = {}
     _drive(polygon, sliding)
     record_equivalent_links(polygon)
     for group in plan.groups:

@@ -227,11 +227,6 @@ class HigherPairTables(ReaderState):
         if base.inside:
             self.report.add(path + ("contact",), 'a flat face cannot touch a disc from inside; expected "outside"')
             return None
-        if base.is_spline:
-            self.report.add(key, "a flat face on a points profile is not solved in this version (knife edges and "
-                            'rollers are); expected knife = "W" or roller = { center = "W", radius = r } on a '
-                            "points profile, or a circle profile for a flat face")
-            return None
         found = self._line(key, table["flat"])
         return None if found is None else _with(base, kind="flat", flat=found)
 
