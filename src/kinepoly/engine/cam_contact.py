@@ -120,17 +120,9 @@ def _path_function(group: CamGroup, mechanism: Mechanism, cam_pose: ArrayPose,
         px, py = mechanism.local(follower, joint.point)
         radius = math.hypot(w_local[0] - px, w_local[1] - py)
         return cam_pose.to_local(pivot), np.zeros(len(pivot), np.complex128), radius
-    assert isinstance(joint, SliderSpec)
-    block = _block_pose(mechanism, joint, follower, carrier_pose, np.zeros(len(carrier_pose.origin)))
-    direction = np.asarray(carrier_pose.rotation * turn(joint.angle_rad))
-    return cam_pose.to_local(block.world(w_local)), np.asarray(direction * cam_pose.rotation.conjugate()), None
-
-
-def _block_pose(mechanism: Mechanism, joint: SliderSpec, link: str, carrier_pose: ArrayPose, s: Reals) -> ArrayPose:
-    """The follower, the block of ``joint``, at slide value ``s`` on its guide (it turns with the guide)."""
-    rotation = np.asarray(carrier_pose.rotation * turn(joint.angle_rad))
-    on_line = carrier_pose.world(joint.through) + s * rotation
-    return ArrayPose(np.asarray(on_line - rotation * complex(*mechanism.local(link, joint.point))), rotation)
+    origin, rotation = _slid(mechanism, group, carrier_pose, np.zeros((len(carrier_pose.origin), 1)))
+    start = origin[:, 0] + rotation[:, 0] * complex(*w_local)
+    return cam_pose.to_local(start), np.asarray(rotation[:, 0] * cam_pose.rotation.conjugate()), None
 
 
 def _packed(rows: Ints, roots: Reals, n: int) -> tuple[Reals, Bools]:
