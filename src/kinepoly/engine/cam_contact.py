@@ -13,7 +13,11 @@ W's path on the carrier, seen in the cam's frame, crosses X:
 * a translating follower (the block of a slider on the carrier): X(u) on the line W travels along,
   s read off along the slide.
 
-Each row has every root (``geom.spline.roots_along``); the assembly policy keeps one per row (nearest the
+A flat face touches where the profile's tangent runs along the face, the cam on the face's left: a
+translating face keeps its direction (tangent(u) parallel to it), a rocker's face keeps its distance h from
+the pivot Q (the tangent line at P(u) passes h from Q), the follower then turned to the tangent.
+
+Each row has every root (``geom.spline.roots_by_row``, all rows at once); the assembly policy keeps one per row (nearest the
 ``[guess]`` for a solve, followed by continuity in a sweep). The centre of curvature K = P + n / kappa (the
 same for the offset curve) is a point of the cam at that instant: the equivalent link K W replaces the pair
 for the polygons (``engine.cam_polygons``).
