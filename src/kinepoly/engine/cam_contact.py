@@ -281,10 +281,8 @@ def record_spline_equivalent(polygon: Polygon, cam: CamSpec) -> None:
     length = abs(complex(polygon.world(w)[0]) - complex(polygon.world(k)[0]))
     flat = cam.kind == "flat"
     polygon.step(Step(polygon="velocity", kind="known",
-                      equation=(f"cam {cam.name}: equivalent block pinned at {k} (the profile's centre of curvature at "
-                                f"the contact), sliding on {cam.follower} along the face" if flat else
-                                f"cam {cam.name}: equivalent link from {k} (the profile's centre of curvature at the "
-                                f"contact) to {w}"),
+                      equation=(f"cam {cam.name}: equivalent block {k} pinned at {k}, sliding on {cam.follower}" if flat
+                                else f"cam {cam.name}: equivalent link {k}{w} from {k} to {w}"),
                       result=k if flat else f"{k}{w}", topic="equivalent-link",
                       params=(("pair", cam.name), ("cam", cam.cam), ("follower", cam.follower),
                               ("link", k if flat else f"{k}{w}"), ("centre", k), ("point", w), ("length", length),

@@ -35,7 +35,7 @@ from kinepoly.engine.velocity import (
     read_rate,
 )
 from kinepoly.geom.arrays import Points, turn
-from kinepoly.model.mechanism import Revolute
+from kinepoly.model.mechanism import Joint, Revolute
 from kinepoly.scene.spec import SliderSpec
 
 __all__ = ["acceleration_by_cam", "velocity_by_cam"]
@@ -148,18 +148,26 @@ def _flat_acceleration(ctx: object, group: CamGroup) -> None:
     tip = b.add_tip(group.link, k, crossing.point)
     if b.record:
         k_label = b.label(group.known, k)
-        term = f"a^c_{k_label}/{tip}"
+        far = joint.point if isinstance(joint, Revolute) else b.label(group.carrier, k)
+        term = f"a^c_{tip}/{k_label}"
         vectors = [*laid, DrawnVector(term, b.vec(on_cam), b.vec(start), "coriolis")]
-        _record(ctx, tip, f"a_{k_label} = a_{tip} + {term} + a_{k_label}/{tip}", line1, along_face,  # type: ignore[arg-type]
-                (label1, label2), crossing, vectors,
-                (_along_normal(ctx, f"a^t_{tip}/{joint.point}", group.carrier, joint.point, k, laid[-1] if laid else None)  # type: ignore[arg-type]
-                 if isinstance(joint, Revolute) else _along_slide(ctx, f"a_{tip}/{b.label(group.carrier, k)}", joint,  # type: ignore[arg-type]
-                                                                  group.carrier, k, laid),
-                 Direction(f"a_{k_label}/{tip}", "face", group.link, k_label.lower(), after=term)))
+        own = (_along_normal(ctx, f"a^t_{tip}/{far}", group.carrier, far, k, laid[-1] if laid else None)  # type: ignore[arg-type]
+               if isinstance(joint, Revolute) else _along_slide(ctx, f"a_{tip}/{far}", joint, group.carrier, k, laid))  # type: ignore[arg-type]
+        _record(ctx, tip, f"a_{tip} = {_own_side(joint, tip, far, laid)} = a_{k_label} + {term} + a_{tip}/{k_label}",  # type: ignore[arg-type]
+                line1, along_face, (label1, label2), crossing, vectors,
+                (own, Direction(f"a_{tip}/{k_label}", "face", group.link, k_label.lower(), after=term)))
     if isinstance(joint, Revolute):
         read_rate(b, group.link, joint.point, tip, crossing.along_first)
     else:
         ctx.slide_values(joint, group.link, k)  # type: ignore[attr-defined]
+
+
+def _own_side(joint: Joint, tip: str, far: str, laid: list[DrawnVector]) -> str:
+    """The follower's side of an acceleration equation: about its pivot, or along its slide (with the
+    Coriolis term where the guide turns)."""
+    if isinstance(joint, Revolute):
+        return f"a_{far} + a^n_{tip}/{far} + a^t_{tip}/{far}"
+    return "".join([f"a_{far}", *(f" + {v.label}" for v in laid if v.term == "coriolis"), f" + a_{tip}/{far}"])
 
 
 def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
@@ -191,7 +199,7 @@ def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
         far = joint.point if isinstance(joint, Revolute) else b.label(group.carrier, w)
         second = (_along_normal(ctx, f"a^t_{w}/{far}", group.carrier, far, w, vectors[-1] if len(vectors) > 1 else None)  # type: ignore[arg-type]
                   if isinstance(joint, Revolute) else _along_slide(ctx, f"a_{w}/{far}", joint, group.carrier, w, laid))  # type: ignore[arg-type]
-        _record(ctx, w, f"a_{w} = a_{k_label} + a^n_{w}/{k_label} + a^t_{w}/{k_label} = a_{far} + a_{w}/{far}",  # type: ignore[arg-type]
+        _record(ctx, w, f"a_{w} = a_{k_label} + a^n_{w}/{k_label} + a^t_{w}/{k_label} = {_own_side(joint, w, far, laid)}",  # type: ignore[arg-type]
                 line1, line2, (label1, label2), crossing, [*vectors, *laid],
                 (_along_normal(ctx, f"a^t_{w}/{k_label}", group.known, k, w, n1), second))  # type: ignore[arg-type]
     if isinstance(joint, Revolute):
