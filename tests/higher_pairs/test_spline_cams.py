@@ -328,3 +328,25 @@ def test_a_flat_face_on_a_concave_stretch_exits_3_with_the_radius() -> None:
     with pytest.raises(AssemblyError, match=r"cams\.23: the flat face meets the profile where it is concave "
                        r"\(radius 2\d\.\d+ mm\) at theta12 = 30 deg"):
         kinepoly.solve(kinepoly.loads_scene(text, "flat.toml"))
+
+
+def test_each_row_records_the_contact_parameter_point_and_centre_of_curvature() -> None:
+    from kinepoly.engine.assembly import position_at_input
+    from kinepoly.engine.plan import make_plan
+    from kinepoly.geom.spline import periodic_spline
+    from kinepoly.model.mechanism import build_mechanism
+
+    mechanism = build_mechanism(kinepoly.load_scene(ROCKER))
+    positions = position_at_input(mechanism, make_plan(mechanism))
+    u = float(positions.contact_parameters["23"][0])
+    cam = mechanism.scene.cams[0]
+    frame = periodic_spline(cam.profile_points).frame(np.array([u]))
+    theta = math.radians(30.0)
+    turned = complex(math.cos(theta), math.sin(theta))
+    q, k = complex(positions.marks["Q23"][0]), complex(positions.marks["K23"][0])
+    assert q == pytest.approx(turned * complex(frame.point[0]), abs=1e-12)
+    assert k == pytest.approx(turned * complex(frame.centre_of_curvature[0]), abs=1e-12)
+    assert abs(k - q) == pytest.approx(40.0, rel=1e-2)  # the circle's radius, to the spline's curvature error
+    w = complex(positions.point("W")[0])
+    assert abs(w - q) == pytest.approx(10.0, rel=1e-12)  # the roller's centre, r from the contact on the normal
+    assert abs(((w - q) / (k - q)).imag) < 1e-9
