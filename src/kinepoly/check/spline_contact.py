@@ -35,6 +35,15 @@ from kinepoly.model.mechanism import Mechanism
 __all__ = ["spline_contacts"]
 
 
+class _LengthRow:
+    """One row of Phi, a length, whose velocity right-hand side is zero (no input drives it)."""
+
+    angle_rows: tuple[bool, ...] = (False,)
+
+    def nu(self) -> np.ndarray:
+        return np.zeros(1)
+
+
 @dataclass(frozen=True)
 class _Local:
     """The contact's curve quantities at u*, in the cam's frame."""
@@ -47,13 +56,12 @@ class _Local:
 
 
 @dataclass(frozen=True)
-class _SplineContact:
+class _SplineContact(_LengthRow):
     cam: str
     follower: str
     w: np.ndarray
     spline: PeriodicSpline
     rho: float
-    angle_rows: tuple[bool, ...] = (False,)
 
     def _world_w(self, b: dict[str, Body]) -> np.ndarray:
         f = b[self.follower]
@@ -87,9 +95,6 @@ class _SplineContact:
                 out[0, k + 2] += sign * float(n_w @ (J @ arm))
         return out
 
-    def nu(self) -> np.ndarray:
-        return np.zeros(1)
-
     def gamma(self, b: dict[str, Body]) -> np.ndarray:
         c, f, here = b[self.cam], b[self.follower], self._local(b)
         arm_c, arm_f = c.A @ here.x, f.A @ self.w
@@ -110,7 +115,7 @@ def _vector(z: complex) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class _SplineFace:
+class _SplineFace(_LengthRow):
     """A flat face (through f, direction d_l in the follower's frame; the cam on its left) on the profile:
     m = -J A_f d_l the profile's outward normal at the contact, u* the profile's support point along m,
     Phi = m . (r_c + A_c r(u*) - r_f - A_f f).
@@ -127,7 +132,6 @@ class _SplineFace:
     f: np.ndarray
     d: np.ndarray
     spline: PeriodicSpline
-    angle_rows: tuple[bool, ...] = (False,)
 
     def _support(self, b: dict[str, Body]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """m (frame), then r, r', r'' at u* (cam frame)."""
@@ -166,9 +170,6 @@ class _SplineFace:
                 out[0, k : k + 2] += sign * m
                 out[0, k + 2] += sign * float(m @ (J @ arm)) + extra
         return out
-
-    def nu(self) -> np.ndarray:
-        return np.zeros(1)
 
     def gamma(self, b: dict[str, Body]) -> np.ndarray:
         c, f = b[self.cam], b[self.follower]
