@@ -141,16 +141,24 @@ def test_rocker_example_agrees_with_the_exact_four_bar() -> None:
 def test_a_follower_that_cannot_reach_the_profile_exits_3_naming_the_pair() -> None:
     scene = _with_points(KNIFE, _circle(36), {"line = { through = [0, 0], angle = 90 }":
                                               "line = { through = [80, 0], angle = 90 }"})
-    with pytest.raises(AssemblyError, match=r"spline-cam-knife\.toml:\d+: cams\.23: cannot assemble follower 3 on "
-                       r"cam 2 at theta12 = 30 deg: the line W slides along on 1 misses the profile"):
+    with pytest.raises(AssemblyError, match=r"spline-cam-knife\.toml:\d+: cams\.23: at theta12 = 30 deg, follower 3 "
+                       r"cannot touch cam 2: the line W slides along on 1 misses the profile"):
         kinepoly.solve(scene)
     # a guide at x = 50 reaches the profile (x in 15 cos(theta) -+ 40) only while cos(theta) >= 2/3: a sweep
     # marks the other rows instead
     near = _with_points(KNIFE, None, {"line = { through = [0, 0], angle = 90 }":
                                       "line = { through = [50, 0], angle = 90 }"})
-    result = sweep(near, steps=72)
+    result = sweep(near, steps=72, start=0.0, stop=360.0)
     reaches = np.cos(np.radians(result.input.values)) > 2.0 / 3.0
+    assert reaches.any() and not reaches.all()
     assert ((result.status == 0) == reaches).all()
+    row = int(np.flatnonzero(~reaches)[0])
+    assert "follower 3 cannot touch cam 2: the line W slides along on 1 misses the profile" in result.warnings[row]
+    # without a range, the sweep runs where the follower reaches: |theta| <= acos(2/3) = 48.19 deg on the
+    # circle, 48.18 on the spline (the edge is a grazing contact: the spline's 1e-4 mm moves it 0.01 deg)
+    ends = sweep(near, steps=12).input.values
+    assert (ends[0], ends[-1]) == pytest.approx((-math.degrees(math.acos(2 / 3)), math.degrees(math.acos(2 / 3))),
+                                                abs=0.02)
 
 
 def _bean(n: int) -> list[list[float]]:
@@ -174,8 +182,8 @@ def test_a_roller_larger_than_the_concave_radius_is_refused_with_the_radius() ->
     assert data["contacts"]["23"]["point"] == pytest.approx([0.0, 32.0], abs=1e-9)
     assert data["points"]["W"]["position"] == pytest.approx([0.0, 52.0], abs=1e-9)
     assert data["check"]["max_rel_error"] < 1e-12
-    with pytest.raises(AssemblyError, match=r"cams\.23: the roller of radius 30 mm is larger than the profile's "
-                       r"concave radius 2\d\.\d+ mm at the contact at theta12 = 30 deg"):
+    with pytest.raises(AssemblyError, match=r"cams\.23: at theta12 = 30 deg, the roller of radius 30 mm is larger "
+                       r"than the profile's concave radius 2\d\.\d+ mm at the contact"):
         kinepoly.solve(_roller_on_the_bean(30))
 
 
@@ -329,8 +337,8 @@ def test_a_flat_face_on_a_concave_stretch_exits_3_with_the_radius() -> None:
     assert data["contacts"]["23"]["normal"] == pytest.approx([0.0, 1.0], abs=1e-9)
     assert data["points"]["T"]["position"][1] == pytest.approx(34.646, abs=1e-3)  # above the hollow (32)
     text = text.replace("T = [0, 43]", "T = [0, 32]")
-    with pytest.raises(AssemblyError, match=r"cams\.23: the flat face meets the profile where it is concave "
-                       r"\(radius 2\d\.\d+ mm\) at theta12 = 30 deg"):
+    with pytest.raises(AssemblyError, match=r"cams\.23: at theta12 = 30 deg, the flat face meets the profile where "
+                       r"it is concave \(radius 2\d\.\d+ mm\)"):
         kinepoly.solve(kinepoly.loads_scene(text, "flat.toml"))
 
 

@@ -10,7 +10,7 @@ and the contact parameter of the kept contact are recorded for the polygons.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
@@ -25,10 +25,11 @@ from kinepoly.engine.cam_contact import (
     contact_rows,
 )
 from kinepoly.engine.plan import CamGroup
-from kinepoly.geom.arrays import Bools
+from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
+from kinepoly.scene.spec import CamSpec
 
 if TYPE_CHECKING:
     from kinepoly.engine.position import Placement, Policy
@@ -89,28 +90,42 @@ def seeded_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidates
     return int(np.argmin(np.where(candidates.found[seed_row], gaps, np.inf)))
 
 
-def _where(mechanism: Mechanism, rows: Bools) -> str:
+def _where(mechanism: Mechanism, cam: CamSpec) -> str:
+    """The start of a solve's message: the file, the pair, the input."""
     from kinepoly.engine.position import describe_input
 
-    k = int(np.flatnonzero(rows)[0])
-    return f"at {describe_input(mechanism)}" + ("" if len(rows) == 1 else f" (row {k} of the sweep)")
+    return f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: at {describe_input(mechanism)}, "
 
 
-def _unreachable_message(mechanism: Mechanism, group: CamGroup, rows: Bools) -> str:
+def _unreachable(group: CamGroup) -> str:
+    """Why a row has no contact."""
     cam = group.cam
     joint = group.joint
-    start = (f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: cannot assemble follower {group.link} on cam "
-             f"{group.known} {_where(mechanism, rows)}: ")
     if cam.kind == "flat":
-        return start + ("no tangent of the profile runs at the face's distance from the pivot "
-                        f"{getattr(joint, 'point', '')}, so the face cannot be laid on the profile; move the pivot or "
-                        "the face toward the cam")
+        return (f"follower {group.link} cannot touch cam {group.known}: no tangent of the profile runs at the face's "
+                f"distance from the pivot {getattr(joint, 'point', '')}, so the face cannot be laid on the profile; "
+                "move the pivot or the face toward the cam")
     path = (f"the circle W runs on about the pivot {joint.point}" if isinstance(joint, Revolute)
             else f"the line W slides along on {group.carrier}")
     what = f"the roller's centre {cam.point}" if cam.kind == "roller" else f"the knife edge {cam.point}"
     offset = " offset by the roller" if cam.kind == "roller" else ""
-    return start + (f"{path} misses the profile{offset}, so {what} cannot reach it; move the follower's joint or "
-                    "its point toward the cam")
+    return (f"follower {group.link} cannot touch cam {group.known}: {path} misses the profile{offset}, so {what} "
+            "cannot reach it; move the follower's joint or its point toward the cam")
+
+
+def _concave(group: CamGroup, curvature: Reals, unit: str) -> Callable[[int], str]:
+    """Why a row's contact cannot be touched: the concave radius there."""
+    cam = group.cam
+
+    def why(row: int) -> str:
+        radius = f"{1.0 / abs(float(curvature[row])):.6g} {unit}"
+        if cam.kind == "flat":
+            return (f"the flat face meets the profile where it is concave (radius {radius}): a flat face can touch "
+                    "only a convex profile; make the profile convex there, or use a knife edge or a roller")
+        return (f"the roller of radius {cam.roller_radius:g} {unit} is larger than the profile's concave radius "
+                f"{radius} at the contact: it cannot touch the profile there; use a smaller roller or a profile "
+                "whose hollows are wider than the roller")
+    return why
 
 
 def _undercut(group: CamGroup, curvature: np.ndarray) -> Bools:
@@ -134,27 +149,17 @@ def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: 
     ok, failures = placed.ok, placed.failures
     missing = ok & ~candidates.found.any(axis=1)
     if missing.any():
-        message = _unreachable_message(mechanism, group, missing)
-        policy.unreachable(message)
-        failures = (*failures, Failure(group.name, cam.point or "", missing, lambda _: message))
+        policy.unreachable(_where(mechanism, cam) + _unreachable(group))
+        failures = (*failures, Failure(group.name, cam.point or "", missing, lambda _: _unreachable(group)))
         ok = ok & ~missing
     choice, notices = policy.contact(mechanism, group, candidates, replace(placed, ok=ok))
     u = candidates.parameter(choice)
     rows = contact_rows(cam, placed.poses[group.known], u)
     undercut = ok & _undercut(group, rows.curvature)
     if undercut.any():
-        k = int(np.flatnonzero(undercut)[0])
-        radius = 1.0 / abs(float(rows.curvature[k]))
-        unit = mechanism.scene.units.length
-        where = f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: "
-        message = (where + f"the flat face meets the profile where it is concave (radius {radius:.6g} {unit}) "
-                   f"{_where(mechanism, undercut)}: a flat face can touch only a convex profile; make the profile "
-                   "convex there, or use a knife edge or a roller" if cam.kind == "flat" else
-                   where + f"the roller of radius {cam.roller_radius:g} {unit} is larger than the profile's concave "
-                   f"radius {radius:.6g} {unit} at the contact {_where(mechanism, undercut)}: it cannot touch the "
-                   "profile there; use a smaller roller or a profile whose hollows are wider than the roller")
-        policy.unreachable(message)
-        failures = (*failures, Failure(group.name, cam.point or "", undercut, lambda _: message))
+        why = _concave(group, rows.curvature, mechanism.scene.units.length)
+        policy.unreachable(_where(mechanism, cam) + why(int(np.flatnonzero(undercut)[0])))
+        failures = (*failures, Failure(group.name, cam.point or "", undercut, why))
         ok = ok & ~undercut
     marks = {**placed.marks, centre_label(cam): rows.centre, contact_label(cam): rows.point}
     return replace(placed, poses={**placed.poses, group.link: candidates.pose(choice)}, ok=ok, failures=failures,
