@@ -13,6 +13,12 @@ tip is found as in an RRR (a rocker) or RRP (a translating follower) dyad, with 
   follower's normal term and perpendicular (a rocker), or the Coriolis term and the slide (a translating one).
 
 omega_KW is read off the velocity crossing (the length of the first direction is |K W|).
+
+A flat face: K stays the radius of curvature from the face to second order, so the pair acts as a block
+pinned to the cam at K sliding on the follower parallel to the face (an RPR dyad for a rocker, PRP for a
+translating follower). K's tip as a point of the follower is where the line through k along the face
+crosses the follower's own line; for accelerations the Coriolis term 2 omega_follower x v (the block over
+the face) is laid from k first.
 """
 
 from __future__ import annotations
