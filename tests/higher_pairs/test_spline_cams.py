@@ -201,18 +201,21 @@ def _polar_profile(n: int, a2: float, p2: float, a3: float, p3: float) -> list[l
        offset=st.floats(-15.0, 15.0), angle=st.floats(0.0, 360.0),
        omega=st.one_of(st.floats(-20.0, -1.0), st.floats(1.0, 20.0)),
        alpha=st.one_of(st.just(0.0), st.floats(-50.0, -0.5), st.floats(0.5, 50.0)), rocker=st.booleans(),
-       flat=st.booleans())
+       touch=st.sampled_from(["knife", "roller", "flat"]))
 def test_random_convex_profiles_solve_and_check(a2: float, p2: float, a3: float, p3: float, offset: float,
                                                 angle: float, omega: float, alpha: float, rocker: bool,
-                                                flat: bool) -> None:
+                                                touch: str) -> None:
     # r'' <= 4 a2 + 9 a3 <= 17 and r >= 37, so r^2 + 2 r'^2 - r r'' > 0: every profile is convex
     path = ROCKER if rocker else KNIFE
     swaps = {"angle = 30": f"angle = {angle!r}", f"omega = {20 if rocker else 10}": f"omega = {omega!r}",
              "alpha = 0" if rocker else "alpha = 5": f"alpha = {alpha!r}"}
     if not rocker:
         swaps["line = { through = [0, 0], angle = 90 }"] = f"line = {{ through = [{offset!r}, 0], angle = 90 }}"
-        if flat:  # a face square to the guide through W, the cam below it
+        if touch == "flat":  # a face through W, square to the guide turned by up to 15 deg, the cam below it
             swaps['knife = "W"'] = f"flat = {{ through = [0, 0], angle = {90.0 + offset!r} }}"
+        elif touch == "roller":
+            swaps['knife = "W"'] = 'roller = { center = "W", radius = 6 }'
+            swaps["W = [0, 50]"] = "W = [0, 56]"
     data = kinepoly.to_json(kinepoly.solve(_with_points(path, _polar_profile(48, a2, p2, a3, p3), swaps)))
     assert data["check"]["max_rel_error"] < 1e-9
     assert _normal_residual(data, omega) < 1e-11
