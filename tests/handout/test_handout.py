@@ -131,6 +131,11 @@ def test_each_direction_line_is_what_its_data_says(name: str) -> None:
                 ax, ay = world(first)
                 bx, by = world(second)
                 assert abs(d[0] * (bx - ax) + d[1] * (by - ay)) <= 1e-12 * size * math.hypot(bx - ax, by - ay)
+            elif direction.relation == "face":  # along a follower's flat face (a spline cam's block)
+                face = next(c.flat for c in mechanism.scene.cams if c.follower == direction.reference)
+                assert face is not None
+                angle = pose.links[direction.reference].theta + face[1]
+                assert abs(d[0] * math.sin(angle) - d[1] * math.cos(angle)) <= 1e-12 * size
             else:
                 spec = mechanism.slider(direction.reference)
                 angle = pose.links[spec.guide].theta + spec.angle_rad

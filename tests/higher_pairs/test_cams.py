@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 
 import kinepoly
-from kinepoly.errors import SceneError
 from kinepoly.sweep import sweep
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -110,9 +109,3 @@ def test_roller_solve_matches_the_sweep_row_and_the_check() -> None:
     assert abs(((i23 - k) * n.conjugate()).imag) < 1e-9 * 100.0
     assert data["check"]["max_rel_error"] < 1e-12
 
-
-def test_spline_profiles_are_refused_by_name() -> None:
-    text = (EXAMPLES / "cam-roller-rocker.toml").read_text().replace(
-        "profile = { circle = { center = [15, 0], radius = 40 } }", "profile = { points = [[40, 0], [0, 40], [-40, 0]] }")
-    with pytest.raises(SceneError, match=r"cams\.1\.profile\.points: spline profiles \(points\) are not built yet"):
-        kinepoly.loads_scene(text, "cam.toml")

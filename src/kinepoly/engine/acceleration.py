@@ -84,13 +84,14 @@ class _Context:
         return self.v.tips[self.b.label(link, point)]
 
     def normal_line(self, known_link: str, known_point: str, point: str, moving: str,
-                    rigid: bool = True) -> tuple[Line, DrawnVector | None, str]:
+                    rigid: bool = True, omega: Reals | None = None) -> tuple[Line, DrawnVector | None, str]:
         """a_known + a^n (toward known_point), then the line perpendicular to known_point -> point
-        (``rigid``: both are points of ``moving``, so the direction's length is a link length)."""
+        (``rigid``: both are points of ``moving``, so the direction's length is a link length; ``omega``:
+        the turning rate of known_point -> point when it is not ``moving``'s, as an equivalent link's)."""
         b = self.b
         start = b.tip(known_link, known_point)
         r = b.world(point) - b.world(known_point)
-        w = b.omega_of(moving)
+        w = b.omega_of(moving) if omega is None else omega
         normal = (w * w) * r
         end = np.asarray(start - normal if self.rules.normal < 0.0 else start + normal)
         size = link_length(b.mechanism, moving, known_point, point) if rigid else None
@@ -399,8 +400,9 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
                            *, unit: str = "mm", record: bool = False, strict: bool = False, rules: Rules = RIGHT,
                            crossing: CrossLines = cross_lines) -> AccelerationResult:
     """Construct the acceleration polygon at every row for every group of ``plan``, on top of its velocity polygon."""
+    from kinepoly.engine.cam_polygons import acceleration_by_cam
     from kinepoly.engine.group import acceleration_by_linear_solve
-    from kinepoly.engine.plan import GearGroup
+    from kinepoly.engine.plan import CamGroup, GearGroup
     from kinepoly.engine.rolling import acceleration_by_rolling
     from kinepoly.engine.triad import acceleration_by_assur_point, triad_of
 
@@ -419,6 +421,8 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
             _drive_group(ctx, group)
         elif isinstance(group, GearGroup):
             acceleration_by_rolling(ctx, group)
+        elif isinstance(group, CamGroup):
+            acceleration_by_cam(ctx, group)
         elif (triad := triad_of(polygon.mechanism, group)) is not None:
             acceleration_by_assur_point(ctx, triad)
         else:

@@ -23,9 +23,11 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from kinepoly.engine.branches import follow_branch
+from kinepoly.engine.cam_contact import Candidates, Ints
+from kinepoly.engine.cam_place import follow_contact, guessed_contact, seeded_contact
 from kinepoly.engine.closures import Choice, Closure
 from kinepoly.engine.newton import group_size, newton_row, start_poses
-from kinepoly.engine.plan import NewtonGroup, PositionPlan
+from kinepoly.engine.plan import CamGroup, NewtonGroup, PositionPlan
 from kinepoly.engine.position import Failure, Placement, Positions, describe_input, input_values, solve_positions
 from kinepoly.errors import AssemblyError, SingularityError
 from kinepoly.geom.arrays import Bools
@@ -77,6 +79,14 @@ class NearestGuess:
         if closure.singular[0]:
             raise SingularityError(f"singular position of group {name} at {where}: {closure.why(0)}")
         raise AssemblyError(f"cannot assemble joint {closure.joint} of group {name} at {where}: {closure.why(0)}")
+
+    def contact(self, mechanism: Mechanism, group: CamGroup, candidates: Candidates,
+                placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
+        """The contact that puts the follower's guessed points nearest their guess."""
+        return guessed_contact(mechanism, group, candidates, self.guess)
+
+    def unreachable(self, message: str) -> None:
+        raise AssemblyError(message)
 
     def choose(self, mechanism: Mechanism, closure: Closure, placed: Placement,
                later: Callable[[int], Placement]) -> Choice | Placement:
@@ -198,6 +208,17 @@ class Continuity:
 
     def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
         """Rows that do not close are marked by the executor; nothing to raise."""
+
+    def unreachable(self, message: str) -> None:
+        """Rows where a cam's follower cannot touch are marked by the executor; nothing to raise."""
+
+    def contact(self, mechanism: Mechanism, group: CamGroup, candidates: Candidates,
+                placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
+        """The seed row's contact (where the solve puts W), followed by continuity."""
+        if not candidates.found[self.seed_row].any():
+            return follow_contact(candidates, self.seed_row, 0), ()
+        seed = seeded_contact(mechanism, group, candidates, self.seed_row, self._seed())
+        return follow_contact(candidates, self.seed_row, seed), ()
 
     def choose(self, mechanism: Mechanism, closure: Closure, placed: Placement,
                later: Callable[[int], Placement]) -> Choice | Placement:

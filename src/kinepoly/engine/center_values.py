@@ -13,7 +13,7 @@ from kinepoly.geom.homogeneous import Place, Triple
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Joint
 from kinepoly.notice import Notice
-from kinepoly.scene.spec import GearSpec
+from kinepoly.scene.spec import CamSpec, GearSpec
 
 __all__ = ["CenterPlan", "InstantCenter", "InstantCenters", "KennedyLine", "KennedyStep"]
 
@@ -107,7 +107,7 @@ class CenterPlan:
     """Made before the position: the circle diagram's plan, the joints, what the scene asks."""
 
     kennedy: KennedyPlan
-    joints: dict[Edge, Joint | GearSpec]
+    joints: dict[Edge, Joint | GearSpec | CamSpec]
     asked: tuple[tuple[str, Edge], ...]
     links_needed: frozenset[str]
 

@@ -32,7 +32,7 @@ from kinepoly.errors import SceneError
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute, joint_links
 from kinepoly.model.pose import Pose
-from kinepoly.scene.spec import GearSpec
+from kinepoly.scene.spec import CamSpec, GearSpec
 
 __all__ = [
     "CenterPlan",
@@ -52,13 +52,16 @@ def _asked_edge(source: str, key: str, links: tuple[str, ...]) -> Edge:
         raise SceneError(f"{source}: find.instant_centers: {key!r} is not a pair of links of the scene") from None
 
 
-def _joints(mechanism: Mechanism) -> dict[Edge, Joint | GearSpec]:
+def _joints(mechanism: Mechanism) -> dict[Edge, Joint | GearSpec | CamSpec]:
     """Each primary center's joint: a pin is the center of every two links it joins (a compound
     hinge of k links gives k (k - 1) / 2 of them), a slider the center of its block and guide."""
     links = mechanism.link_names
-    out: dict[Edge, Joint | GearSpec] = {}
+    out: dict[Edge, Joint | GearSpec | CamSpec] = {}
     for gear in mechanism.scene.gears:  # a rolling pair's center is its pitch point
         out.setdefault(edge(*gear.links, links), gear)
+    for cam in mechanism.scene.cams:  # a spline cam's: on its common normal and on the line of both frame centers
+        if cam.is_spline and all(_frame_joint(mechanism, link) is not None for link in (cam.cam, cam.follower)):
+            out.setdefault(edge(cam.cam, cam.follower, links), cam)
     for joint in mechanism.joints:
         a, b = joint_links(joint)
         out.setdefault(edge(a, b, links), joint)
@@ -70,11 +73,19 @@ def _joints(mechanism: Mechanism) -> dict[Edge, Joint | GearSpec]:
     return out
 
 
-def _joint_links_needed(mechanism: Mechanism, joint: Joint | GearSpec, solved_index: dict[str, int]) -> set[str]:
+def _frame_joint(mechanism: Mechanism, link: str) -> Joint | None:
+    """The joint that holds ``link`` to the frame, if any."""
+    return next((j for j in mechanism.joints_of(link) if mechanism.ground in joint_links(j)), None)
+
+
+def _joint_links_needed(mechanism: Mechanism, joint: Joint | GearSpec | CamSpec,
+                        solved_index: dict[str, int]) -> set[str]:
     """A pin's place needs one of its links solved, a slide's direction one of its two; the ground none;
     a pitch point both gears."""
     if isinstance(joint, GearSpec):
         return {link for link in joint.links if link != mechanism.ground}
+    if isinstance(joint, CamSpec):
+        return {joint.cam, joint.follower}
     a, b = joint_links(joint)
     if mechanism.ground in (a, b):
         return set()

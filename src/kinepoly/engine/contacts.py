@@ -15,7 +15,7 @@ The steps record, for each cam, that its equivalent link is used and where its e
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -68,7 +68,7 @@ class ContactRows:
 def contact_links(mechanism: Mechanism) -> set[str]:
     """The links a contact needs placed."""
     out = {link for gear in mechanism.scene.gears for link in gear.links}
-    out |= {link for cam in mechanism.scene.cams for link in (cam.cam, cam.follower, cam.equivalent)}
+    out |= {link for cam in mechanism.scene.cams for link in (cam.cam, cam.follower, cam.equivalent) if link}
     return out
 
 
@@ -113,7 +113,13 @@ def _world(mechanism: Mechanism, poses: dict[str, ArrayPose], link: str, point: 
     return poses[link].world(mechanism.local(link, point))
 
 
-def _cam_contact(mechanism: Mechanism, poses: dict[str, ArrayPose], cam: CamSpec) -> tuple[Points, Points]:
+def _cam_contact(mechanism: Mechanism, poses: dict[str, ArrayPose], cam: CamSpec,
+                 parameters: Mapping[str, Reals]) -> tuple[Points, Points]:
+    if cam.is_spline:
+        from kinepoly.engine.cam_contact import contact_rows
+
+        found = contact_rows(cam, poses[cam.cam], parameters[cam.name])
+        return found.point, found.normal
     k = _world(mechanism, poses, cam.cam, cam.center_point)
     if cam.kind == "flat":
         assert cam.flat is not None
@@ -131,10 +137,11 @@ def _placed(poses: dict[str, ArrayPose], links: tuple[str, ...]) -> bool:
     return all(link in poses for link in links)
 
 
-def contacts_over_rows(mechanism: Mechanism, poses: dict[str, ArrayPose],
-                       velocity: LinkVelocity | None) -> dict[str, ContactRows]:
+def contacts_over_rows(mechanism: Mechanism, poses: dict[str, ArrayPose], velocity: LinkVelocity | None,
+                       parameters: Mapping[str, Reals]) -> dict[str, ContactRows]:
     """Every placed pair's contact at every row of ``poses``; ``velocity`` (``polygon_velocity``) gives the
-    sliding velocities, None leaves them out."""
+    sliding velocities, None leaves them out; ``parameters`` the contact's parameter on each spline profile
+    (``Positions.contact_parameters``)."""
     out: dict[str, ContactRows] = {}
     for gear in mechanism.scene.gears:
         if _placed(poses, gear.links):
@@ -144,7 +151,7 @@ def contacts_over_rows(mechanism: Mechanism, poses: dict[str, ArrayPose],
     for cam in mechanism.scene.cams:
         if not _placed(poses, (cam.cam, cam.follower)):
             continue
-        point, normal = _cam_contact(mechanism, poses, cam)
+        point, normal = _cam_contact(mechanism, poses, cam, parameters)
         sliding = None
         if velocity is not None:
             on_follower, on_cam = velocity(cam.follower, point), velocity(cam.cam, point)
@@ -160,7 +167,12 @@ def contacts_at(mechanism: Mechanism, pose: Pose, velocity: VelocityPolygon | No
     """Every pair's contact at a solve's ``pose`` (a batch of one); points moved by ``offset`` (the solve's
     frame to the user's)."""
     poses = {link: ArrayPose.of_rows([p]) for link, p in pose.links.items()}
-    rows = contacts_over_rows(mechanism, poses, None if velocity is None else _row_velocity(mechanism, velocity))
+    from kinepoly.engine.cam_contact import parameter_at
+
+    parameters = {cam.name: np.array([parameter_at(cam, pose)]) for cam in mechanism.scene.cams
+                  if cam.is_spline and cam.cam in pose.links}
+    rows = contacts_over_rows(mechanism, poses, None if velocity is None else _row_velocity(mechanism, velocity),
+                              parameters)
     return {name: found.row(0, complex(*offset)) for name, found in rows.items()}
 
 
@@ -224,6 +236,11 @@ def record_equivalent_links(polygon: Polygon) -> None:
         return
     mechanism = polygon.mechanism
     for cam in mechanism.scene.cams:
+        if cam.is_spline:
+            from kinepoly.engine.cam_contact import record_spline_equivalent
+
+            record_spline_equivalent(polygon, cam)
+            continue
         point = cam.point or cam.center_point
         if cam.kind == "flat":
             length = cam.radius

@@ -38,10 +38,10 @@ from kinepoly.geom.homogeneous import LocalFrame, Place, Projective, Wedge, cano
 from kinepoly.geom.tolerances import LOUD_ERROR, NEAR_SINGULAR_SIN
 from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, sub
 from kinepoly.model.array_pose import ArrayPose
-from kinepoly.model.mechanism import Joint, Mechanism, Revolute
+from kinepoly.model.mechanism import Joint, Mechanism, Revolute, joint_links
 from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
-from kinepoly.scene.spec import GearSpec
+from kinepoly.scene.spec import CamSpec, GearSpec
 
 __all__ = ["KennedyResult", "derive_centers"]
 
@@ -91,9 +91,11 @@ def _frame(mechanism: Mechanism, pose: Pose, offset: Vec) -> LocalFrame:
 
 
 def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame,
-                  joint: Joint | GearSpec) -> tuple[Projective, Place] | None:
+                  joint: Joint | GearSpec | CamSpec) -> tuple[Projective, Place] | None:
     """A pin's point, the point at infinity perpendicular to a slide, or a gear pair's pitch point; None
     when its links were not solved."""
+    if isinstance(joint, CamSpec):
+        return _cam_center(mechanism, pose, frame, joint)
     if isinstance(joint, GearSpec):
         if not all(link in pose.links for link in joint.links):
             return None
@@ -118,7 +120,34 @@ def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame,
     return value, Place(None, canonical_direction(perp(slide)), value.error)
 
 
-def _joint_name(joint: Joint | GearSpec) -> str:
+def _cam_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame, cam: CamSpec) -> tuple[Projective, Place] | None:
+    """A spline cam's center: where its common normal crosses the line of the cam's and the follower's
+    centers with the frame (Kennedy's theorem on the triangle of the frame, the cam and the follower)."""
+    from kinepoly.engine.cam_contact import contact_on_profile
+
+    if not all(link in pose.links for link in (cam.cam, cam.follower)):
+        return None
+    ends = []
+    for link in (cam.cam, cam.follower):
+        joint = next(j for j in mechanism.joints_of(link) if mechanism.ground in joint_links(j))
+        found = _joint_center(mechanism, pose, frame, joint)
+        if found is None:
+            return None
+        ends.append(found[0])
+    point, normal = contact_on_profile(cam, pose)
+    normal_line = wedge(frame.point((point.real, point.imag)), frame.point_at_infinity((normal.real, normal.imag)))
+    frame_line = wedge(ends[0], ends[1])
+    if normal_line.value is None or frame_line.value is None:
+        return None
+    meet = wedge(frame_line.value, normal_line.value)
+    if meet.value is None:
+        return None
+    return meet.value, replace(frame, offset=(0.0, 0.0)).place(meet.value)
+
+
+def _joint_name(joint: Joint | GearSpec | CamSpec) -> str:
+    if isinstance(joint, CamSpec):
+        return f"common normal of cam {joint.name}"
     if isinstance(joint, GearSpec):
         return f"pitch point of gears {joint.name}"
     return f"pin {joint.point}" if isinstance(joint, Revolute) else f"slider {joint.name}"

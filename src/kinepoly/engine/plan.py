@@ -17,13 +17,14 @@ link are kept.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
-from kinepoly.errors import MobilityError
+from kinepoly.errors import MobilityError, SceneError
 from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
-from kinepoly.scene.spec import GearSpec, PitchCircle, SliderSpec
+from kinepoly.scene.spec import CamSpec, GearSpec, PitchCircle, SliderSpec
 
 __all__ = [
+    "CamGroup",
     "DriveGroup",
     "Dyad",
     "GearGroup",
@@ -100,11 +101,10 @@ class DriveGroup:
 
 
 @dataclass(frozen=True)
-class GearGroup:
-    """A gear placed by rolling on a known gear: ``link`` is pinned at its pitch centre to the known
-    ``carrier`` (the frame, an arm), or is a rack sliding on it; ``known`` carries the other pitch curve."""
+class _HigherPairGroup:
+    """One link placed on a known one through a higher pair: ``link`` is held by one ``joint`` to the known
+    ``carrier``; ``known`` carries the other element of the pair."""
 
-    gear: GearSpec
     link: str
     known: str
     carrier: str
@@ -117,9 +117,30 @@ class GearGroup:
     def known_links(self) -> tuple[str, ...]:
         return (self.known, self.carrier)
 
+
+@dataclass(frozen=True)
+class GearGroup(_HigherPairGroup):
+    """A gear placed by rolling on a known gear: ``link`` is pinned at its pitch centre to the known
+    ``carrier`` (the frame, an arm), or is a rack sliding on it; ``known`` carries the other pitch curve."""
+
+    gear: GearSpec = field(kw_only=True)
+
     @property
     def name(self) -> str:
         return f"{self.link} rolling on {self.known} (gears {self.gear.name})"
+
+
+@dataclass(frozen=True)
+class CamGroup(_HigherPairGroup):
+    """A spline cam's follower placed on the known cam link by its contact: ``link`` (the follower) is held
+    by one ``joint`` to the known ``carrier``, a pin (a pivoted rocker) or a slider whose block it is (a
+    translating follower); ``engine.cam_contact`` finds the contact."""
+
+    cam: CamSpec = field(kw_only=True)
+
+    @property
+    def name(self) -> str:
+        return f"{self.link} on cam {self.known} (cam {self.cam.name})"
 
 
 @dataclass(frozen=True)
@@ -204,7 +225,7 @@ class NewtonGroup:
         return tuple(sorted({x for j in self.joints for x in joint_links(j) if x not in self.links}))
 
 
-Group = Dyad | DriveGroup | GearGroup | NewtonGroup
+Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
 
 
 @dataclass(frozen=True)
@@ -294,7 +315,25 @@ def _find_gear(mechanism: Mechanism, known: set[str]) -> GearGroup | None:
                 continue
             if isinstance(joint, SliderSpec) and joint.block != link:
                 continue
-            return GearGroup(gear, link, other, _far_side(joint, link), joint)
+            return GearGroup(link, other, _far_side(joint, link), joint, gear=gear)
+    return None
+
+
+def _find_cam(mechanism: Mechanism, known: set[str]) -> CamGroup | None:
+    """A spline cam's follower not yet placed, on a placed cam, held by one pin (not at its contact point)
+    or as the block of one slider to a placed link."""
+    for cam in mechanism.scene.cams:
+        if not cam.is_spline or cam.cam not in known or cam.follower in known:
+            continue
+        outer = [jt for jt in _free_joints(mechanism, cam.follower) if any(x in known for x in joint_links(jt))]
+        if len(outer) != 1:
+            continue
+        joint = outer[0]
+        if isinstance(joint, Revolute) and joint.point == cam.point:
+            continue
+        if isinstance(joint, SliderSpec) and joint.block != cam.follower:
+            continue
+        return CamGroup(cam.follower, cam.cam, _far_side(joint, cam.follower), joint, cam=cam)
     return None
 
 
@@ -327,12 +366,20 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
     groups: list[Group] = []
     while True:
         group: Group | None = (_find_drive(mechanism, known) or _find_gear(mechanism, known)
-                               or _find_dyad(mechanism, known) or _find_carried(mechanism, known))
+                               or _find_cam(mechanism, known) or _find_dyad(mechanism, known) or _find_carried(mechanism, known))
         if group is None:
             break
         groups.append(group)
         known.update(group.links)
     rest = tuple(n for n in mechanism.link_names if n not in known)
+    for cam in mechanism.scene.cams:
+        if cam.is_spline and (cam.cam in rest or cam.follower in rest):
+            raise SceneError(
+                f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the follower {cam.follower} is not held by "
+                f"one joint (a pin or a slider whose block it is) to a link known before it, with the cam "
+                f"{cam.cam} known first; this version solves a points profile's contact only so (floating "
+                "followers, and a follower that drives its cam, are not built); join the follower to the frame "
+                "or to a link placed before it by one pin or slider")
     if rest:
         joints = tuple(j for j in mechanism.joints if any(x in rest for x in joint_links(j)))
         drives = tuple(d for d in mechanism.drives if not d.on_frame and (d.moving in rest or d.base in rest))

@@ -11,20 +11,23 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
 from kinepoly.engine.carry import drive_values, place_on
 from kinepoly.engine.closures import Choice, Closure, close_dyad
 from kinepoly.engine.gears import Rolled, place_rolling
-from kinepoly.engine.plan import DriveGroup, GearGroup, Group, NewtonGroup, PositionPlan
+from kinepoly.engine.plan import CamGroup, DriveGroup, GearGroup, Group, NewtonGroup, PositionPlan
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.model.array_pose import ArrayPose, pose_from_point, still_pose
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
+
+if TYPE_CHECKING:
+    from kinepoly.engine.cam_contact import Candidates, Ints
 
 __all__ = ["Failure", "Placement", "Policy", "Positions", "describe_input", "driver_poses", "input_values", "place_groups", "solve_positions"]
 
@@ -52,6 +55,10 @@ class Placement:
     """Each input's value at every row (``engine.carry.drive_values``)."""
     rolled: dict[str, Rolled] = field(default_factory=dict)
     """The gears placed by rolling, with how far each has rolled (``engine.gears``)."""
+    marks: dict[str, Points] = field(default_factory=dict)
+    """Points found while placing (a spline cam's contact and centre of curvature), by name."""
+    contact_parameters: dict[str, Reals] = field(default_factory=dict)
+    """Each spline cam's contact parameter on its profile at every row (``engine.cam_place``)."""
 
 
 @dataclass
@@ -68,6 +75,8 @@ class Positions:
     """Each input's value at every row: theta (rad) or s (length)."""
     marks: dict[str, Points] = field(default_factory=dict)
     """Points the construction found on the mechanism (a triad's Assur point), by name."""
+    contact_parameters: dict[str, Reals] = field(default_factory=dict)
+    """Each spline cam's contact parameter on its profile at every row."""
     _points: dict[str, Points] = field(default_factory=dict)
 
     @property
@@ -172,6 +181,13 @@ class Policy(Protocol):
     def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
         """Rows where a dyad does not close: a solve raises here, a sweep marks them."""
 
+    def contact(self, mechanism: Mechanism, group: CamGroup, candidates: Candidates,
+                placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
+        """The contact of a spline cam each row keeps (-1 where it has none), with any warning."""
+
+    def unreachable(self, message: str) -> None:
+        """Rows where a spline cam's follower cannot touch its profile: a solve raises, a sweep marks them."""
+
 
 def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placement, policy: Policy) -> Placement:
     """Place ``groups`` in order on top of ``placed``."""
@@ -184,6 +200,11 @@ def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placem
                                          placed.poses, placed.rolled, placed.values)
             turned = placed.rolled if rolled is None else {**placed.rolled, group.link: rolled}
             placed = replace(placed, poses={**placed.poses, group.link: pose}, rolled=turned)
+            continue
+        if isinstance(group, CamGroup):
+            from kinepoly.engine.cam_place import place_cam
+
+            placed = place_cam(mechanism, group, placed, policy)
             continue
         if isinstance(group, DriveGroup):
             pose = place_on(mechanism, group.drive, group.link, placed.poses[group.known],
@@ -224,4 +245,8 @@ def solve_positions(mechanism: Mechanism, plan: PositionPlan, inputs: Reals, pol
     if isinstance(mechanism.scene.input, GivenInput):
         return Positions(mechanism, start.poses, start.ok)
     placed = place_groups(mechanism, plan.groups, start, policy)
-    return Positions(mechanism, placed.poses, placed.ok, placed.failures, placed.near, placed.notices, values)
+    positions = Positions(mechanism, placed.poses, placed.ok, placed.failures, placed.near, placed.notices, values,
+                          contact_parameters=placed.contact_parameters)
+    for name, at in placed.marks.items():
+        positions.add_point(name, at)
+    return positions

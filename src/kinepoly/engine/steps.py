@@ -12,7 +12,7 @@ __all__ = ["Direction", "DrawnVector", "Step", "Term"]
 Vec = tuple[float, float]
 Term = Literal["absolute", "relative", "normal", "tangential", "coriolis", "sliding"]
 StepKind = Literal["known", "image", "proportional", "intersection", "coriolis", "read", "linear-solve"]
-Relation = Literal["perpendicular", "parallel", "at-angle", "along"]
+Relation = Literal["perpendicular", "parallel", "at-angle", "along", "face"]
 
 
 @dataclass(frozen=True)

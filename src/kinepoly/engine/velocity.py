@@ -10,7 +10,7 @@ crossing's ``along`` (``read_rate``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -35,6 +35,9 @@ class VelocityResult:
     polygon: Polygon
     sliding: dict[str, Points]
     line_sines: dict[str, Reals]
+    equivalent: dict[str, Points] = field(default_factory=dict)
+    """Each spline cam's equivalent link, by pair (``engine.cam_polygons``): omega of the link K W (its real
+    part), or for a flat face the velocity of the block at K over the face."""
 
     @property
     def tips(self) -> dict[str, Points]:
@@ -388,15 +391,17 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
     ``wanted`` holds (link, point) pairs: the velocity of ``point`` as a point of ``link``.
     ``record``: keep the steps of row 0; ``strict``: a parallel pair of lines raises (a solve).
     """
+    from kinepoly.engine.cam_polygons import velocity_by_cam
     from kinepoly.engine.contacts import record_equivalent_links
     from kinepoly.engine.group import velocity_by_linear_solve
-    from kinepoly.engine.plan import GearGroup
+    from kinepoly.engine.plan import CamGroup, GearGroup
     from kinepoly.engine.rolling import velocity_by_rolling
     from kinepoly.engine.triad import triad_of, velocity_by_assur_point
 
     polygon = Polygon(positions, "velocity", unit=unit, record=record, strict=strict, crossing=crossing)
     sliding: dict[str, Points] = {}
     sines: dict[str, Reals] = {}
+    equivalent: dict[str, Points] = {}
     _drive(polygon, sliding)
     record_equivalent_links(polygon)
     for group in plan.groups:
@@ -408,10 +413,12 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
             _drive_group(polygon, group, sliding)
         elif isinstance(group, GearGroup):
             velocity_by_rolling(polygon, group, sliding)
+        elif isinstance(group, CamGroup):
+            velocity_by_cam(polygon, group, sliding, equivalent)
         elif (triad := triad_of(polygon.mechanism, group)) is not None:
             velocity_by_assur_point(polygon, triad, sliding)
         else:
             velocity_by_linear_solve(polygon, group, sliding)
     for link, point in wanted:
         polygon.tip(link, point)
-    return VelocityResult(polygon, sliding, sines)
+    return VelocityResult(polygon, sliding, sines, equivalent)

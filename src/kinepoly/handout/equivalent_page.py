@@ -49,7 +49,8 @@ def equivalent_page(context: Context, say: Catalogue, step: Step, number: int, t
     contact_name = f"C{pair}"
     contact = solution.contacts.get(pair)
     what, _ = step_words(step, say, context)
-    why = say.say("higher_pairs.why_block" if p["kind"] == "flat" else "higher_pairs.why_link", contact=contact_name,
+    key = "higher_pairs.why_block" if p["kind"] == "flat" else "higher_pairs.why_link"
+    why = say.say(key + ("_spline" if p.get("spline") == "yes" else ""), contact=contact_name,
                   centre=str(p["centre"]), point=str(p["point"]), follower=str(p["follower"]),
                   length=say.number(float(p["length"])), unit=unit)
     at = say.pair(*contact.point) if contact is not None else "?"

@@ -47,6 +47,8 @@ class _Writer(Words):
             return self.say.say("table.perpendicular", reference=direction.reference)
         if direction.relation == "parallel":
             return self.say.say("table.parallel", slider=direction.reference)
+        if direction.relation == "face":
+            return self.say.say("table.face", link=direction.reference)
         return self.say.say("table.known")
 
     def absolute_row(self, polygon: str, term: str) -> tuple[str, str, str]:

@@ -272,7 +272,7 @@ def build_mechanism(scene: Scene) -> Mechanism:
         return mechanism
     n = len(scene.links)
     j = len(mechanism.joints)
-    h = len(scene.gears)
+    h = len(scene.gears) + sum(1 for cam in scene.cams if cam.is_spline)  # a spline cam's contact: one pair
     mobility = 3 * (n - 1) - 2 * j - h
     inputs = len(scene.inputs)
     if mobility != inputs:
@@ -280,7 +280,7 @@ def build_mechanism(scene: Scene) -> Mechanism:
         given = "one input" if inputs == 1 else f"{inputs} inputs"
         formula = (f"3(n - 1) - 2j = 3*({n} - 1) - 2*{j}" if not h else
                    f"3(n - 1) - 2j - h = 3*({n} - 1) - 2*{j} - {h}")
-        pairs = f" and h = {h} rolling pairs" if h else ""
+        pairs = f" and h = {h} higher pairs (gears, spline cams)" if h else ""
         raise MobilityError(
             f"{scene.source}: links: Gruebler's count gives mobility {formula} = "
             f"{mobility} for n = {n} links and j = {j} joints ({len(mechanism.revolutes)} revolute, "
@@ -323,6 +323,8 @@ def _check_connected(mechanism: Mechanism) -> None:
         link = frontier.pop()
         others = [x for joint in mechanism.joints_of(link or "") for x in joint_links(joint)]
         others += [x for gear in mechanism.scene.gears if link in gear.links for x in gear.links]
+        others += [x for cam in mechanism.scene.cams if cam.is_spline and link in (cam.cam, cam.follower)
+                   for x in (cam.cam, cam.follower)]
         for other in others:
             if other not in seen:
                 seen.add(other)

@@ -447,9 +447,10 @@ class _Phrase:
         through = direction.through
         label = next((k for k in self.w.tips(self.polygon) if k.lower() == through), through)
         tip = self.w.tip_or_pole(self.polygon, label)
-        key = "line.parallel" if direction.relation == "parallel" else "line.perpendicular"
+        key = {"parallel": "line.parallel", "face": "line.face"}.get(direction.relation, "line.perpendicular")
         return self.say.say(key + ("_end" if direction.after else ""), through=tip, after=direction.after,
-                            term=direction.term, slider=direction.reference, reference=direction.reference)
+                            term=direction.term, slider=direction.reference, reference=direction.reference,
+                            link=direction.reference)
 
     def _intersection(self) -> tuple[str, str]:
         step = self.step
@@ -481,7 +482,10 @@ class _Phrase:
 
     def _equivalent_link(self) -> tuple[str, str]:
         p = self.p
-        key = "higher_pairs.equivalent_block" if p["kind"] == "flat" else "higher_pairs.equivalent_link"
+        spline = "_spline" if p.get("spline") == "yes" else ""
+        key = (f"higher_pairs.equivalent{spline}_block" if p["kind"] == "flat" else
+               "higher_pairs.equivalent_spline" if spline else
+               "higher_pairs.equivalent_block" if p["kind"] == "flat" else "higher_pairs.equivalent_link")
         text = self.say.say(key, pair=str(p["pair"]), cam=str(p["cam"]), follower=str(p["follower"]),
                             link=str(p["link"]), centre=str(p["centre"]), point=str(p["point"]),
                             length=self.w.n(float(p["length"]), "position"), unit=self.w.unit)

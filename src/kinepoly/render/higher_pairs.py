@@ -59,6 +59,23 @@ def _profile(solution: Solution, cam: CamSpec) -> list[Vec]:
     return [_world(solution, cam.cam, p) for p in outline(cam, _PROFILE_POINTS)]
 
 
+def _size(cam: CamSpec) -> float:
+    """The profile's size, which sets how far the face and the normal reach: a circle's radius, a spline's
+    largest distance from the middle of its points."""
+    if not cam.is_spline:
+        return cam.radius
+    xs, ys = [p[0] for p in cam.profile_points], [p[1] for p in cam.profile_points]
+    return 0.5 * max(max(xs) - min(xs), max(ys) - min(ys))
+
+
+def _centre(solution: Solution, cam: CamSpec) -> Vec | None:
+    """The profile's centre of curvature at the contact (a circle's centre; None on a straight stretch)."""
+    if not cam.is_spline:
+        return _point(solution, cam.cam, cam.center_point)
+    k = solution.pose.marks.get(f"K{cam.name}")
+    return k if k is not None and all(math.isfinite(c) for c in k) else None
+
+
 def _circle_points(center: Vec, radius: float) -> list[Vec]:
     return [(center[0] + radius * c, center[1] + radius * s) for c, s in ((1, 0), (-1, 0), (0, 1), (0, -1))]
 
@@ -86,7 +103,7 @@ def _flat_face(solution: Solution, cam: CamSpec) -> tuple[Vec, Vec]:
     d = (math.cos(angle + turn), math.sin(angle + turn))
     contact = solution.contacts[cam.name].point if cam.name in solution.contacts else through
     along = [0.0, (contact[0] - through[0]) * d[0] + (contact[1] - through[1]) * d[1]]
-    lo, hi = min(along) - 0.5 * cam.radius, max(along) + 0.5 * cam.radius
+    lo, hi = min(along) - 0.5 * _size(cam), max(along) + 0.5 * _size(cam)
     return add(through, scale(lo, d)), add(through, scale(hi, d))
 
 
@@ -142,20 +159,23 @@ def _cam_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[Item]:
 def _equivalent_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[Item]:
     """The equivalent link dashed between its ends (the disc's centre and the roller's or edge's point); for a
     flat face, the dashed block at the centre and its slide, parallel to the face."""
-    if cam.equivalent not in solution.pose.links:
+    placed = cam.equivalent in solution.pose.links if not cam.is_spline else cam.follower in solution.pose.links
+    centre = _centre(solution, cam) if placed else None
+    if centre is None:
         return []
-    k = panel.paper(_point(solution, cam.cam, cam.center_point))
+    k = panel.paper(centre)
+    name = cam.equivalent or f"K{cam.name}{cam.point or ''}"
     if cam.kind != "flat":
         assert cam.point is not None
         w = panel.paper(_point(solution, cam.follower, cam.point))
-        return [Path((k, w), _EQUIVALENT, role=f"equivalent link {cam.equivalent}")]
-    slider = next(s for s in solution.mechanism.sliders if s.block == cam.equivalent)
-    turn = solution.pose.links[slider.guide].theta + slider.angle_rad
+        return [Path((k, w), _EQUIVALENT, role=f"equivalent link {name}")]
+    assert cam.flat is not None
+    turn = solution.pose.links[cam.follower].theta + cam.flat[1]
     d = (math.cos(turn), math.sin(turn))
-    reach = 0.6 * cam.radius * panel.scale
+    reach = 0.6 * _size(cam) * panel.scale
     slide = Path((add(k, scale(-reach, d)), add(k, scale(reach, d))), _EQUIVALENT,
-                 role=f"equivalent slide {slider.name}")
-    return [slide, replace(block_symbol(k, d, f"equivalent block {cam.equivalent}"), stroke=_EQUIVALENT)]
+                 role=f"equivalent slide {cam.follower}-{name}")
+    return [slide, replace(block_symbol(k, d, f"equivalent block {name}"), stroke=_EQUIVALENT)]
 
 
 def _gear_items(solution: Solution, gear: GearSpec, panel: Panel) -> list[Item]:
@@ -182,9 +202,10 @@ def _normal_ends(solution: Solution, pair: str, at: Vec, n: Vec) -> tuple[float,
     size = 1.0
     for cam in solution.scene.cams:
         if cam.name == pair:
-            ends.append(_point(solution, cam.cam, cam.center_point))
+            centre = _centre(solution, cam)
+            ends += [centre] if centre is not None else []
             ends += [_point(solution, cam.follower, cam.point)] if cam.point is not None else []
-            size = cam.radius
+            size = _size(cam)
     for gear in solution.scene.gears:
         if gear.name == pair:
             ends += [_point(solution, link, c.center) for link, c in zip(gear.links, gear.pitch)
@@ -210,10 +231,12 @@ def higher_pair_items(solution: Solution, panel: Panel) -> tuple[list[Item], lis
         lo, hi = _normal_ends(solution, pair, contact.point, contact.normal)
         ends = (add(contact.point, scale(lo, contact.normal)), add(contact.point, scale(hi, contact.normal)))
         items.append(Path((panel.paper(ends[0]), panel.paper(ends[1])), _NORMAL, role=f"common normal {pair}"))
-    for pair, contact in solution.contacts.items():
-        name = contact_label(solution, pair)
-        at = panel.paper(contact.point)
-        items.append(Circle(at, 0.7, Stroke(_NORMAL.color, 0.3), fill=_NORMAL.color, role=f"contact {name}"))
+    marked = [("contact", contact_label(solution, pair), contact.point) for pair, contact in solution.contacts.items()]
+    marked += [("centre of curvature", f"K{cam.name}", centre) for cam in solution.scene.cams
+               if cam.is_spline and cam.follower in solution.pose.links and (centre := _centre(solution, cam)) is not None]
+    for kind, name, where in marked:
+        at = panel.paper(where)
+        items.append(Circle(at, 0.7, Stroke(_NORMAL.color, 0.3), fill=_NORMAL.color, role=f"{kind} {name}"))
         requests.append(Request(LAYER, panel.drawing_rect, point_runs(name, LABEL_MM), at, color=_NORMAL.color,
                                 role=f"point {name}", priority=0, gap=PIN_RADIUS_MM))
     return items, requests

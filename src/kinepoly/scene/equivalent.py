@@ -42,7 +42,7 @@ def _center_point(scene: Scene, cam: CamSpec, taken: set[str]) -> str:
 
 def with_equivalent_links(scene: Scene) -> Scene:
     """``scene`` with each cam's equivalent link (and, for a flat face, its slider) added."""
-    if not scene.cams:
+    if not any(not cam.is_spline for cam in scene.cams):
         return scene
     links = {link.name: link for link in scene.links}
     points = {p.name for link in scene.links for p in link.points}
@@ -50,6 +50,9 @@ def with_equivalent_links(scene: Scene) -> Scene:
     sliders = list(scene.sliders)
     cams = []
     for cam in scene.cams:
+        if cam.is_spline:  # its centre of curvature moves on the cam: placed row by row (engine.cam_place)
+            cams.append(cam)
+            continue
         k = _center_point(scene, cam, points)
         if k not in scene.link(cam.cam).point_names:
             owner = links[cam.cam]
@@ -69,4 +72,4 @@ def with_equivalent_links(scene: Scene) -> Scene:
                                                                                           cam.line)), cam.line)
         cams.append(replace(cam, equivalent=link, center_point=k))
     return replace(scene, links=tuple(links.values()), sliders=tuple(sliders), cams=tuple(cams),
-                   equivalent_links=tuple(c.equivalent for c in cams))
+                   equivalent_links=tuple(c.equivalent for c in cams if not c.is_spline))

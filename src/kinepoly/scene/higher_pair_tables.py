@@ -13,6 +13,7 @@ from dataclasses import replace
 
 from kinepoly.scene.lines import KeyPath
 from kinepoly.scene.problems import no_such, show_value, suggest
+from kinepoly.scene.profile_points import read_profile_points
 from kinepoly.scene.reader_state import ReaderState
 from kinepoly.scene.source import Table
 from kinepoly.scene.spec import CamSpec, GearSpec, PitchCircle, PitchLine, Vector
@@ -199,7 +200,7 @@ class HigherPairTables(ReaderState):
         if name is None:
             return None
         base = CamSpec(name, cam, follower, circle[0], circle[1], "knife", inside=contact == "inside",
-                       line=self.report.line(path))
+                       line=self.report.line(path), profile_points=circle[2])
         kind = kinds[0]
         key = path + (kind,)
         if kind == "knife":
@@ -218,7 +219,7 @@ class HigherPairTables(ReaderState):
             r = self._positive(key + ("radius",), radius)
             if point is None or r is None:
                 return None
-            if base.inside and not r < base.radius:
+            if base.inside and not base.is_spline and not r < base.radius:
                 self.report.add(key + ("radius",), f"a roller of radius {r:g} inside a groove of radius "
                                 f"{base.radius:g}; expected a roller smaller than the profile")
                 return None
@@ -229,15 +230,20 @@ class HigherPairTables(ReaderState):
         found = self._line(key, table["flat"])
         return None if found is None else _with(base, kind="flat", flat=found)
 
-    def read_profile(self, path: KeyPath, value: object) -> tuple[Vector, float] | None:
+    def read_profile(self, path: KeyPath, value: object) -> tuple[Vector, float, tuple[Vector, ...]] | None:
+        """A circle's (centre, radius, ()), or a ``points`` profile's ((0, 0), 0, points)."""
         table = read_table(self.report, path, value, "{ circle = { center = [x, y], radius = R } }")
         if table is None:
             return None
         check_keys(self.report, path, table, _PROFILE_KEYS)
         if "points" in table:
-            self.report.add(path + ("points",), "spline profiles (points) are not built yet in this version; "
-                            "expected profile = { circle = { center = [x, y], radius = R } }")
-            return None
+            if "circle" in table:
+                self.report.add(path, "a profile is a circle or points; expected one of them")
+                return None
+            points = read_profile_points(self.report, path + ("points",), table["points"], self.kinds.length)
+            if points is None:
+                return None
+            return ((0.0, 0.0), 0.0, points)
         circle_value = require(self.report, path, table, "circle", "circle = { center = [x, y], radius = R }")
         circle = None if circle_value is None else read_table(self.report, path + ("circle",), circle_value,
                                                                 "{ center = [x, y], radius = R }")
@@ -250,7 +256,7 @@ class HigherPairTables(ReaderState):
             return None
         center = quantity_pair(self.report, path + ("circle", "center"), center_value, self.kinds.length)
         radius = self._positive(path + ("circle", "radius"), radius_value)
-        return None if center is None or radius is None else (center, radius)
+        return None if center is None or radius is None else (center, radius, ())
 
     def _follower_point(self, path: KeyPath, value: object, follower: str) -> str | None:
         name = read_name(self.report, path, value, "a point name", "W")

@@ -119,7 +119,7 @@ class GearSpec:
 
 @dataclass(frozen=True)
 class CamSpec:
-    """A circle profile on ``cam`` touching ``follower`` (``[[cams]]``): by a roller (``roller`` a point of
+    """A circle (or ``points``) profile on ``cam`` touching ``follower`` (``[[cams]]``): by a roller (``roller`` a point of
     the follower and ``roller_radius``), a flat face (``flat``: through, angle in the follower's frame) or a
     knife edge (``knife``, a point of the follower). ``equivalent``: the link the pair is replaced by."""
 
@@ -138,6 +138,14 @@ class CamSpec:
     """The name of the equivalent link (a binary link or a block), set when the scene is made."""
     center_point: str = ""
     """The name of the profile's centre as a point of the cam (and of the equivalent link)."""
+    profile_points: tuple[Vector, ...] = ()
+    """A ``points`` profile: the points the closed spline runs through, counter-clockwise, in the cam's
+    frame (empty for a circle; ``center`` and ``radius`` describe a circle profile only)."""
+
+    @property
+    def is_spline(self) -> bool:
+        """Whether the profile is a closed spline through ``profile_points`` rather than a circle."""
+        return bool(self.profile_points)
 
 
 @dataclass(frozen=True)

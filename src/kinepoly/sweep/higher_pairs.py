@@ -42,7 +42,7 @@ def _cam_columns(out: _Builder, velocity: VelocityResult | None, acceleration: A
     mech, positions = out.mechanism, out.positions
     deg = mech.scene.units.angle == "deg"
     moving = polygon_velocity(mech, velocity.polygon) if velocity is not None else None
-    contacts = contacts_over_rows(mech, positions.poses, moving)
+    contacts = contacts_over_rows(mech, positions.poses, moving, positions.contact_parameters)
     followers: list[Follower] = []
     for cam in mech.scene.cams:
         follower = follower_coordinate(mech, cam)

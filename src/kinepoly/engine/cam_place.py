@@ -1,0 +1,167 @@
+"""A spline cam's follower placed at every row: the contacts found, one kept per row as the policy says.
+
+``engine.cam_contact`` finds every contact at every row; the assembly policy (``engine.assembly``) keeps
+the one nearest the ``[guess]`` (a solve) or follows the seed row's by continuity (a sweep), with the helpers
+below. A row without any contact (the follower cannot reach the profile) and a row where a roller is larger
+than the concave profile's radius at the contact (it cannot touch there: the profile would be undercut) are
+the policy's to raise (a solve: exit 3) or to mark (a sweep). The contact point Q, the centre of curvature K
+and the contact parameter of the kept contact are recorded for the polygons.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from kinepoly.engine.cam_contact import (
+    Candidates,
+    Ints,
+    centre_label,
+    contact_candidates,
+    contact_label,
+    contact_rows,
+)
+from kinepoly.engine.plan import CamGroup
+from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.model.mechanism import Mechanism, Revolute
+from kinepoly.model.pose import LinkPose
+from kinepoly.notice import Notice
+from kinepoly.scene.spec import CamSpec
+
+if TYPE_CHECKING:
+    from kinepoly.engine.position import Placement, Policy
+
+__all__ = ["follow_contact", "guessed_contact", "place_cam", "seeded_contact"]
+
+Vec = tuple[float, float]
+
+
+def guessed_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidates,
+                    guess: Mapping[str, Vec]) -> tuple[Ints, tuple[Notice, ...]]:
+    """Row by row, the contact that puts the follower's guessed points nearest their guess; with no point of
+    the follower guessed, the first contact along the profile, with a ``default-assembly`` warning."""
+    found, link = candidates.found, group.link
+    name = group.cam.point or f"the contact of {group.cam.name}"
+    score = np.zeros(found.shape)
+    guessed = [p for p in mechanism.scene.link(link).points if p.name in guess]
+    for p in guessed:
+        at = candidates.origin + candidates.rotation * complex(*p.local)
+        score += np.abs(at - complex(*guess[p.name])) ** 2
+    score = np.where(found, score, np.inf)
+    choice = np.where(found.any(axis=1), np.argmin(score, axis=1), -1)
+    if guessed or found[0].sum() < 2:
+        return choice, ()
+    w = complex(candidates.w[0, int(choice[0])])
+    others = ", ".join(f"({complex(z).real:.6g}, {complex(z).imag:.6g})"
+                       for z, ok in zip(candidates.w[0], found[0], strict=True) if ok and complex(z) != w)
+    return choice, (Notice("default-assembly", f"follower {link}: no [guess] tells its contacts with the cam apart, so "
+                           f"the first along the profile was taken, which puts {name} at ({w.real:.6g}, {w.imag:.6g}); "
+                           f"the others put it at {others} (give [guess] positions of the follower's points near the ones you mean)"),)
+
+
+def follow_contact(candidates: Candidates, seed_row: int, seed_choice: int) -> Ints:
+    """From the seed row's contact, each row's contact nearest the row before it (W's place), forward and
+    backward; -1 where a row has none (the next row follows the last one found)."""
+    n = len(candidates.found)
+    choice = np.full(n, -1, np.intp)
+    choice[seed_row] = seed_choice
+    for order in (range(seed_row + 1, n), range(seed_row - 1, -1, -1)):
+        last = complex(candidates.w[seed_row, seed_choice])
+        for row in order:
+            if not candidates.found[row].any():
+                continue
+            gaps = np.where(candidates.found[row], np.abs(candidates.w[row] - last), np.inf)
+            choice[row] = int(np.argmin(gaps))
+            last = complex(candidates.w[row, choice[row]])
+    return choice
+
+
+def seeded_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidates, seed_row: int,
+                   seed: Mapping[str, LinkPose]) -> int:
+    """The seed row's contact: the one that puts the follower's points where the seed pose has them."""
+    pose = seed[group.link]
+    gaps = np.zeros(candidates.found.shape[1])
+    for p in mechanism.scene.link(group.link).points:
+        target = complex(*pose.world(p.local))
+        gaps += np.abs(candidates.origin[seed_row] + candidates.rotation[seed_row] * complex(*p.local) - target) ** 2
+    return int(np.argmin(np.where(candidates.found[seed_row], gaps, np.inf)))
+
+
+def _where(mechanism: Mechanism, cam: CamSpec) -> str:
+    """The start of a solve's message: the file, the pair, the input."""
+    from kinepoly.engine.position import describe_input
+
+    return f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: at {describe_input(mechanism)}, "
+
+
+def _unreachable(group: CamGroup) -> str:
+    """Why a row has no contact."""
+    cam = group.cam
+    joint = group.joint
+    if cam.kind == "flat":
+        return (f"follower {group.link} cannot touch cam {group.known}: no tangent of the profile runs at the face's "
+                f"distance from the pivot {getattr(joint, 'point', '')}, so the face cannot be laid on the profile; "
+                "move the pivot or the face toward the cam")
+    path = (f"the circle W runs on about the pivot {joint.point}" if isinstance(joint, Revolute)
+            else f"the line W slides along on {group.carrier}")
+    what = f"the roller's centre {cam.point}" if cam.kind == "roller" else f"the knife edge {cam.point}"
+    offset = " offset by the roller" if cam.kind == "roller" else ""
+    return (f"follower {group.link} cannot touch cam {group.known}: {path} misses the profile{offset}, so {what} "
+            "cannot reach it; move the follower's joint or its point toward the cam")
+
+
+def _concave(group: CamGroup, curvature: Reals, unit: str) -> Callable[[int], str]:
+    """Why a row's contact cannot be touched: the concave radius there."""
+    cam = group.cam
+
+    def why(row: int) -> str:
+        radius = f"{1.0 / abs(float(curvature[row])):.6g} {unit}"
+        if cam.kind == "flat":
+            return (f"the flat face meets the profile where it is concave (radius {radius}): a flat face can touch "
+                    "only a convex profile; make the profile convex there, or use a knife edge or a roller")
+        return (f"the roller of radius {cam.roller_radius:g} {unit} is larger than the profile's concave radius "
+                f"{radius} at the contact: it cannot touch the profile there; use a smaller roller or a profile "
+                "whose hollows are wider than the roller")
+    return why
+
+
+def _undercut(group: CamGroup, curvature: np.ndarray) -> Bools:
+    """Rows where a roller is larger than the profile's concave radius at the contact, or a flat face
+    touches a concave stretch (it would cut into the cam on both sides of the contact)."""
+    cam = group.cam
+    concave = -curvature if not cam.inside else curvature
+    if cam.kind == "flat":
+        return np.asarray(concave > 0.0)
+    if cam.kind != "roller":
+        return np.zeros(len(curvature), np.bool_)
+    return np.asarray(concave * cam.roller_radius >= 1.0)
+
+
+def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: Policy) -> Placement:
+    """The follower of ``group`` placed on its cam at every row, with its contact recorded."""
+    from kinepoly.engine.position import Failure
+
+    cam = group.cam
+    candidates = contact_candidates(mechanism, group, placed.poses)
+    ok, failures = placed.ok, placed.failures
+    missing = ok & ~candidates.found.any(axis=1)
+    if missing.any():
+        policy.unreachable(_where(mechanism, cam) + _unreachable(group))
+        failures = (*failures, Failure(group.name, cam.point or "", missing, lambda _: _unreachable(group)))
+        ok = ok & ~missing
+    choice, notices = policy.contact(mechanism, group, candidates, replace(placed, ok=ok))
+    u = candidates.parameter(choice)
+    rows = contact_rows(cam, placed.poses[group.known], u)
+    undercut = ok & _undercut(group, rows.curvature)
+    if undercut.any():
+        why = _concave(group, rows.curvature, mechanism.scene.units.length)
+        policy.unreachable(_where(mechanism, cam) + why(int(np.flatnonzero(undercut)[0])))
+        failures = (*failures, Failure(group.name, cam.point or "", undercut, why))
+        ok = ok & ~undercut
+    marks = {**placed.marks, centre_label(cam): rows.centre, contact_label(cam): rows.point}
+    return replace(placed, poses={**placed.poses, group.link: candidates.pose(choice)}, ok=ok, failures=failures,
+                   notices=(*placed.notices, *notices), marks=marks,
+                   contact_parameters={**placed.contact_parameters, cam.name: u})
