@@ -1,16 +1,23 @@
 """The handout as one self-contained web page that steps through the construction.
 
-Every page of the handout is a section: its drawing as inline SVG (``render.svg``; the drawing
-without the band, the text beside it in HTML) and its text. A small inline script shows one
-section at a time: the Previous and Next buttons, a slider over all pages, the arrow keys
-(Home and End jump to the problem and the answers), and the address's ``#page-N``, which the
-page keeps up to date, so a step can be linked to. Nothing is fetched from anywhere.
+Every page of the handout is a section: its drawing (the drawing without the band, the text beside
+it in HTML) and its text. A small inline script shows one section at a time: the Previous and Next
+buttons, a slider over all pages, the arrow keys (Home and End jump to the problem and the answers),
+and the address's ``#page-N``, which the page keeps up to date, so a step can be linked to. Nothing
+is fetched from anywhere.
+
+The drawing is ONE inline SVG for all pages (``render.svg``), so the page grows with the number of
+steps, not with its square: each element is written once, in an order that keeps every page's own
+order (``merged_pages``); the elements not on every page are grouped in a ``<g data-pages="3-9 12">``
+by the pages that show them. The script moves the drawing into the section shown and hides the
+groups that page does not show (``display="none"``, as written for page 1), and sets its title.
 """
 
 from __future__ import annotations
 
 import html
 import re
+from collections.abc import Sequence
 from typing import Any
 
 from kinepoly.handout.build import crowded_labels, drawn_kinds, handout_content
@@ -19,11 +26,12 @@ from kinepoly.handout.drawing import Frame, band_frame, blank_sheet, drawing_lay
 from kinepoly.handout.notation import html_of
 from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.layout import larger_papers, paper_size
+from kinepoly.render.primitives import LAYERS, Item
 from kinepoly.render.sheet import roomy
 from kinepoly.render.style import TERM_COLORS
 from kinepoly.solution import Solution
 
-__all__ = ["handout_html"]
+__all__ = ["handout_html", "merged_pages", "page_ranges"]
 
 _LEGEND_ORDER = ("absolute", "relative", "sliding", "normal", "tangential", "coriolis")
 
@@ -72,8 +80,25 @@ _SCRIPT = """
   var next = document.getElementById("next");
   var where = document.getElementById("where");
   var current = 0;
+  var drawing = document.querySelector("section.page svg");
+  var caption = drawing.querySelector("title");
+  var parts = Array.prototype.slice.call(drawing.querySelectorAll("g[data-pages]")).map(function (group) {
+    return [group, group.getAttribute("data-pages").split(" ").map(function (range) {
+      var ends = range.split("-");
+      return [parseInt(ends[0], 10), parseInt(ends[ends.length - 1], 10)];
+    })];
+  });
+  function draw(number) {
+    parts.forEach(function (part) {
+      var shown = part[1].some(function (range) { return range[0] <= number && number <= range[1]; });
+      if (shown) { part[0].removeAttribute("display"); } else { part[0].setAttribute("display", "none"); }
+    });
+    caption.textContent = pages[number - 1].getAttribute("data-title");
+    pages[number - 1].querySelector(".drawing").appendChild(drawing);
+  }
   function show(k) {
     k = Math.max(0, Math.min(pages.length - 1, k));
+    draw(k + 1);
     pages.forEach(function (page, n) { page.hidden = n !== k; });
     current = k;
     slider.value = String(k + 1);
@@ -139,15 +164,102 @@ def _column(column: Column, kinds: list[str], say: Catalogue) -> str:
     return "".join(_paragraph(p) if isinstance(p, Paragraph) else _table(p) for p in column.parts)
 
 
-def _svg(solution: Solution, frame: Frame, page: Page, say: Catalogue, groups: dict[Any, str]) -> str:
-    """The page's drawing as inline SVG; ``groups`` holds the layers already written (the pages share most)."""
+def merged_pages(pages: Sequence[Sequence[Item]]) -> list[tuple[Item, list[int]]]:
+    """One layer's items of every page (page 1 first) merged into one sequence of (item, the pages showing it).
+
+    The items a page shows come in that page's order; an item comes once for all the pages where that order
+    allows it, again where a page has it before one it followed elsewhere. Items are told apart by identity
+    (``drawing_layers`` gives an equal item as the same object on every page): one item per page is looked at.
+    """
+    order: list[tuple[Item, list[int]]] = []
+    kept: dict[int, list[tuple[Item, list[int]]]] = {}  # by the item's id, its entries in ``order``
+    for number, items in enumerate(pages, 1):
+        position = dict(zip(map(id, order), range(len(order))))  # by the entry's id (this page's new ones: none)
+        merged: list[tuple[Item, list[int]]] = []
+        start = 0
+        for item in items:
+            found = min((p for e in kept.get(id(item), ()) if (p := position.get(id(e), -1)) >= start), default=None)
+            if found is None:
+                entry: tuple[Item, list[int]] = (item, [number])
+                kept.setdefault(id(item), []).append(entry)
+                merged.append(entry)
+                continue
+            merged += order[start:found]
+            order[found][1].append(number)
+            merged.append(order[found])
+            start = found + 1
+        order = merged + order[start:]
+    return order
+
+
+def page_ranges(numbers: Sequence[int]) -> str:
+    """Increasing page numbers as ranges: ``[3, 4, 5, 9]`` is ``"3-5 9"``."""
+    ranges: list[list[int]] = []
+    for n in numbers:
+        if ranges and ranges[-1][1] == n - 1:
+            ranges[-1][1] = n
+        else:
+            ranges.append([n, n])
+    return " ".join(str(a) if a == b else f"{a}-{b}" for a, b in ranges)
+
+
+_ELEMENT = re.compile(r"<(?![/?!]|tspan\b)")
+"""The start of an element that is not inside another (only a text's runs are; ``<`` is escaped elsewhere)."""
+
+
+def _page_layers(solution: Solution, frame: Frame, page: Page, say: Catalogue, border: list[Item]) -> list[list[Item]]:
+    """The items of a page's drawing, layer by layer in the order of ``LAYERS``."""
+    layers = drawing_layers(solution, frame, page.drawing, say)
+    layers["title"] += border
+    return [layers[name] for name in LAYERS]
+
+
+def _group(group: str, shown: list[tuple[Item, list[int]]], made: dict[Any, str], height: float, count: int) -> str:
+    """A layer's ``<g>`` as ``svg_text`` wrote it, the runs of elements shown on the same pages (not all ``count``)
+    wrapped in a ``<g data-pages>``, hidden unless page 1 shows them."""
+    if not shown:
+        return group
+    shell, *elements = group.removesuffix("\n</g>").split("\n<")
+    sizes = [len(_ELEMENT.findall(made[item, height])) for item, _ in shown]
+    if sum(sizes) != len(elements):
+        raise AssertionError("the SVG's elements do not match the items drawn")  # render.svg's own layout changed
+    out = [shell]
+    at = 0
+    runs: list[tuple[list[int], list[str]]] = []
+    for (_, numbers), size in zip(shown, sizes, strict=True):
+        if not runs or runs[-1][0] != numbers:
+            runs.append((numbers, []))
+        runs[-1][1].extend("<" + e for e in elements[at:at + size])
+        at += size
+    for numbers, parts in runs:
+        if len(numbers) == count:
+            out += parts
+        else:
+            hidden = "" if numbers[0] == 1 else ' display="none"'
+            out += [f'<g data-pages="{page_ranges(numbers)}"{hidden}>', *parts, "</g>"]
+    return "\n".join(out) + "\n</g>"
+
+
+def _svg(solution: Solution, frame: Frame, handout: Handout, say: Catalogue) -> str:
+    """The drawing of every page as one inline SVG, each element written once (see the module's text)."""
     from kinepoly.render.svg import svg_text
 
-    layers = drawing_layers(solution, frame, page.drawing, say)
-    layers["title"] += page_frame_items(frame)
-    text = svg_text(blank_sheet(frame, f"{solution.scene.title}: {page.heading}", layers), groups)
-    text = text.split("\n", 1)[1]  # no XML declaration inside HTML
-    return re.sub(r'(<g\b[^>]*?) id="([a-z-]+)"', r'\1 class="layer-\2"', text)  # ids once per document
+    border = page_frame_items(frame)
+    per_page = [_page_layers(solution, frame, page, say, border) for page in handout.pages]
+    shown = [merged_pages([layers[n] for layers in per_page]) for n in range(len(LAYERS))]
+    sheet = blank_sheet(frame, _title(solution, handout.pages[0]),
+                        {name: [item for item, _ in items] for name, items in zip(LAYERS, shown, strict=True)})
+    made: dict[Any, str] = {}
+    text = svg_text(sheet, made)
+    groups = [made[layer, frame.height] for layer in sheet.layers]
+    head = text.split("\n", 1)[1].split(groups[0], 1)[0]  # no XML declaration inside HTML
+    body = "\n".join(_group(group, items, made, frame.height, len(per_page)) for group, items in zip(groups, shown, strict=True))
+    text = head + body + "\n</svg>"
+    return re.sub(r'(<g\b[^>]*?) id="([a-z-]+)"', r'\1 class="layer-\2"', text)  # ids kept for the document
+
+
+def _title(solution: Solution, page: Page) -> str:
+    return f"{solution.scene.title}: {page.heading}"
 
 
 def _label(page: Page, say: Catalogue) -> str:
@@ -158,12 +270,13 @@ def _label(page: Page, say: Catalogue) -> str:
     return page.heading
 
 
-def _section(solution: Solution, frame: Frame, page: Page, number: int, kinds: list[str], say: Catalogue,
-             groups: dict[Any, str]) -> str:
+def _section(solution: Solution, page: Page, number: int, kinds: list[str], say: Catalogue, drawing: str) -> str:
+    """A page's section; ``drawing`` (the one SVG) in the first, which the script moves to the page shown."""
     text = "".join(_column(c, kinds, say) for c in page.columns)
     return (f'<section class="page" id="page-{number}" data-kind="{page.kind}" '
-            f'data-label="{html.escape(_label(page, say))}" data-equation="{html.escape(page.equation)}"'
-            f'{" hidden" if number > 1 else ""}>\n<div class="drawing">{_svg(solution, frame, page, say, groups)}</div>\n'
+            f'data-label="{html.escape(_label(page, say))}" data-equation="{html.escape(page.equation)}" '
+            f'data-title="{html.escape(_title(solution, page))}"'
+            f'{" hidden" if number > 1 else ""}>\n<div class="drawing">{drawing}</div>\n'
             f'<div class="text">{text}</div>\n</section>\n')
 
 
@@ -185,8 +298,9 @@ def handout_html(solution: Solution, say: Catalogue, paper: str | tuple[float, f
     kinds = drawn_kinds(frame)
     crowded_labels(solution, frame)  # the whole drawing's labels first: each page keeps those it shows
     count = len(handout.pages)
-    groups: dict[Any, str] = {}
-    sections = "".join(_section(solution, frame, page, k, kinds, say, groups) for k, page in enumerate(handout.pages, 1))
+    drawing = _svg(solution, frame, handout, say)
+    sections = "".join(_section(solution, page, k, kinds, say, drawing if k == 1 else "")
+                       for k, page in enumerate(handout.pages, 1))
     title = html.escape(handout.title)
     return handout, (
         f'<!DOCTYPE html>\n<html lang="{html.escape(say.code)}">\n<head>\n<meta charset="utf-8">\n'
