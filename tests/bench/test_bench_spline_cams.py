@@ -181,3 +181,13 @@ def test_the_construction_agrees_with_the_reference_on_random_convex_profiles(
     errors = _construction_error(kinepoly.solve(loads_scene(text, "random.toml")))
     assert max(errors.values()) < 1e-12, errors
 
+
+
+def test_a_bench_sweep_of_a_spline_cam_is_exact_at_every_input(capsys: pytest.CaptureFixture[str]) -> None:
+    # each input's reference starts its contact parameter afresh, across every stretch of the spline
+    assert main(["bench", str(EXAMPLES / "spline-cam-flat-rocker.toml"), "--sweep", "7", "--json",
+                 "--budget", "0.002"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [p["status"] for p in data["sweep"]["points"]] == ["ok"] * 7
+    construction = data["methods"][0]
+    assert construction["name"].startswith("construction") and construction["error"] < 1e-12

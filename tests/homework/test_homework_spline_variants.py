@@ -9,14 +9,13 @@ mpmath, ``bench.spline_pairs``: no engine code), and the lengths round-trip thro
 from __future__ import annotations
 
 import math
-import tomllib
 from pathlib import Path
-from typing import Any
 
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from tests.cli_support import run
+from tests.homework.test_homework_higher_pairs import _key, _variants
 from tests.scenes import EXAMPLES
 
 import kinepoly
@@ -26,16 +25,6 @@ from kinepoly.homework.toml_out import scene_toml
 from kinepoly.scene.loader import loads_scene
 
 SPLINE_EXAMPLES = ("spline-cam-knife", "spline-cam-roller-rocker", "spline-cam-flat-rocker")
-
-
-def _variants(capsys: pytest.CaptureFixture[str], folder: Path, name: str, *options: str) -> list[Path]:
-    code, out, err = run(capsys, "variants", str(EXAMPLES / f"{name}.toml"), "-o", str(folder), *options)
-    assert code == 0, out + err
-    return sorted(p for p in folder.glob("*.toml") if not p.name.endswith(".answers.toml"))
-
-
-def _key(scene: Path) -> dict[str, Any]:
-    return tomllib.loads(scene.with_name(scene.stem + ".answers.toml").read_text())
 
 
 @pytest.mark.parametrize("name", SPLINE_EXAMPLES)
