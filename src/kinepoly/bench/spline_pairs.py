@@ -165,17 +165,17 @@ class SplineContact:
         return [at[0] - w[0], at[1] - w[1]]
 
     def start(self, mp: Any, mechanism: Mechanism, q: list[Any], world: World, angle: Angle) -> Any:
-        """The sample of the profile that best meets the rows at the pose ``q`` (Newton refines it)."""
-        best: tuple[Any, Any] | None = None
-        for k in range(len(self.spline.stretches)):
-            low, high = self.spline.knots[k], self.spline.knots[k + 1]
-            for j in range(_START_SAMPLES):
-                u = low + (high - low) * j / _START_SAMPLES
-                miss = sum(abs(r) for r in self.rows(mp, mechanism, q, u, world, angle))
-                if best is None or miss < best[0]:
-                    best = (miss, u)
-        assert best is not None
-        return best[1]
+        """The sample of the profile that best meets the rows at the pose ``q`` (Newton refines it): the best
+        point first, then ``_START_SAMPLES`` along each of the two stretches that meet there."""
+        knots, count = self.spline.knots, len(self.spline.stretches)
+
+        def miss(u: Any) -> Any:
+            return sum(abs(r) for r in self.rows(mp, mechanism, q, u, world, angle))
+
+        best = min(range(count), key=lambda k: miss(knots[k]))
+        samples = [knots[k] + (knots[k + 1] - knots[k]) * j / _START_SAMPLES
+                   for k in ((best - 1) % count, best) for j in range(_START_SAMPLES)]
+        return min(samples, key=miss)
 
 
 def spline_contacts(mp: Any, mechanism: Mechanism, norm: Callable[[Any], Any]) -> list[SplineContact]:
