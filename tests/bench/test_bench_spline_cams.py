@@ -159,6 +159,7 @@ def _scene(points: list[tuple[float, float]], touch: str, angle: float, omega: f
     text = KNIFE.read_text()
     start, end = text.index("profile = {"), text.index("] }", text.index("profile = {")) + 3
     follower = {"knife": 'knife = "W"', "roller": 'roller = { center = "W", radius = 5 }',
+                "inside": 'roller = { center = "W", radius = 5 }\ncontact = "inside"',
                 "flat": "flat = { through = [0, 0], angle = 90 }"}[touch]
     swaps = {'knife = "W"': follower, "angle = 30": f"angle = {angle!r}", "omega = 10": f"omega = {omega!r}",
              "alpha = 5": f"alpha = {alpha!r}", "W = [0, 50]": "W = [0, 80]"}
@@ -172,11 +173,12 @@ def _scene(points: list[tuple[float, float]], touch: str, angle: float, omega: f
 @settings(max_examples=8, deadline=None)
 @given(n=st.integers(8, 24), a=st.floats(30.0, 50.0), ratio=st.floats(0.6, 1.0), turn=st.floats(0.0, 6.28),
        shift=st.floats(-8.0, 8.0), angle=st.floats(0.0, 360.0), omega=st.floats(1.0, 20.0),
-       alpha=st.floats(-10.0, 10.0), touch=st.sampled_from(["knife", "roller", "flat"]))
+       alpha=st.floats(-10.0, 10.0), touch=st.sampled_from(["knife", "roller", "inside", "flat"]))
 def test_the_construction_agrees_with_the_reference_on_random_convex_profiles(
         n: int, a: float, ratio: float, turn: float, shift: float, angle: float, omega: float, alpha: float,
         touch: str) -> None:
-    # an ellipse's points, every one at least 18 from the pivot on the guide: the follower always reaches
+    # an ellipse's points round the pivot (the shift is below the least semi-axis): the guide always crosses it;
+    # its least radius of curvature b^2 / a >= 10.8 holds a roller of 5 inside
     text = _scene(_ellipse(n, a, a * ratio, turn, shift), touch, angle, omega, alpha)
     errors = _construction_error(kinepoly.solve(loads_scene(text, "random.toml")))
     assert max(errors.values()) < 1e-12, errors
