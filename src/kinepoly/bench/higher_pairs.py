@@ -32,7 +32,7 @@ from typing import Any
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import CamSpec, GearSpec, PitchCircle, PitchLine
 
-__all__ = ["PHASE_TOLERANCE", "GearRow", "cam_row", "gear_rows", "replaced_links"]
+__all__ = ["PHASE_TOLERANCE", "GearRow", "cam_row", "gear_rows", "replaced_links", "square_root"]
 
 PHASE_TOLERANCE = 1e-7
 """How far (relative to the radii) the construction's rolled arcs may be from the phase rule's."""
@@ -62,8 +62,10 @@ def _atan(mp: Any, z: Any) -> Any:
     return _near_real(mp, z, mp.atan, lambda a: 1 / (1 + a * a))
 
 
-def _sqrt(mp: Any, z: Any) -> Any:
+def square_root(mp: Any, z: Any) -> Any:
+    """sqrt(z) for z real or with a complex step (see ``_near_real``)."""
     return _near_real(mp, z, mp.sqrt, lambda a: 1 / (2 * mp.sqrt(a)))
+
 
 
 def _dot(a: Pair, b: Pair) -> Any:
@@ -80,7 +82,7 @@ def _left(a: Pair) -> Pair:
 
 
 def cam_row(mp: Any, mechanism: Mechanism, cam: CamSpec, q: list[Any], world: World, angle: Angle) -> Any:
-    """The contact of ``cam``'s circle with its follower: zero when they touch."""
+    """The contact of ``cam``'s circle with its follower: zero when they touch (a spline cam: ``bench.spline_pairs``)."""
     k = world(q, cam.cam, mechanism.local(cam.cam, cam.center_point))
     if cam.kind == "flat":
         assert cam.flat is not None
@@ -92,7 +94,7 @@ def cam_row(mp: Any, mechanism: Mechanism, cam: CamSpec, q: list[Any], world: Wo
     w = world(q, cam.follower, mechanism.local(cam.follower, cam.point))
     gap = _minus(w, k)
     reach = mp.mpf(cam.radius) + (-1 if cam.inside else 1) * mp.mpf(cam.roller_radius)
-    return _sqrt(mp, _dot(gap, gap)) - reach
+    return square_root(mp, _dot(gap, gap)) - reach
 
 
 @dataclass(frozen=True)
@@ -139,7 +141,7 @@ def _pitch_point(mp: Any, row: GearRow, mechanism: Mechanism, q: list[Any], worl
         radii = (mp.mpf(one.curve.radius), mp.mpf(two.curve.radius))
         base = 0 if not row.gear.internal or radii[0] > radii[1] else 1
         d = _minus(o[1 - base], o[base])
-        size = _sqrt(mp, _dot(d, d))
+        size = square_root(mp, _dot(d, d))
         return o[base][0] + radii[base] * d[0] / size, o[base][1] + radii[base] * d[1] / size
     circle, line = (one, two) if isinstance(one.curve, PitchCircle) else (two, one)
     assert isinstance(circle.curve, PitchCircle)

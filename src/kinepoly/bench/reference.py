@@ -4,8 +4,8 @@ It is written from the position equations alone and shares no derivative with th
 solver: the unknowns are every moving link's pose q = (x, y, theta); the equations Phi(q, t) = 0
 are the pins (r_i + A_i p_i = r_j + A_j p_j), the sliders (the block turns with its guide; its
 point stays on the line), the higher pairs from their own geometry (``bench.higher_pairs``: a gear
-pair's rolling with the phase rule, a cam's contact; a cam's equivalent link is not an unknown) and
-the driver (theta = t, or the slider variable s = t).
+pair's rolling with the phase rule, a cam's contact; a cam's equivalent link is not an unknown; a
+spline cam's contact parameter is, ``bench.spline_pairs``) and the driver (theta = t, or the slider variable s = t).
 
 * Jacobians by the complex step, dPhi/dq_k = Im Phi(q + i h e_k) / h, which has no
   cancellation: with h = 1e-40 it is exact to the working precision (80 digits).
@@ -25,8 +25,9 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from kinepoly.bench.higher_pairs import cam_row, gear_rows, replaced_links
+from kinepoly.bench.higher_pairs import cam_row, gear_rows, replaced_links, square_root
 from kinepoly.bench.motion import LinkMotion, Trig, evaluate
+from kinepoly.bench.spline_pairs import spline_contacts
 from kinepoly.errors import SingularityError
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import Pose
@@ -81,6 +82,9 @@ class _Equations:
         self.start_q = [mp.mpf(v) for k in self.moving for v in (start.links[k].x, start.links[k].y,
                                                                    start.links[k].theta)]
         self.gears = gear_rows(mp, mechanism, self.start_q, self._world, self._angle)
+        self.splines = spline_contacts(mp, mechanism, lambda z: square_root(mp, z))
+        self.poses = len(self.start_q)  # each spline cam's contact parameter follows the poses
+        self.start_q += [c.start(mp, mechanism, self.start_q, self._world, self._angle) for c in self.splines]
 
     def _pose(self, q: list[Any], link: str) -> tuple[Any, Any, Any, Any, Any]:
         mp = self.mp
@@ -107,7 +111,9 @@ class _Equations:
             rows += [a[0] - b[0], a[1] - b[1]]
         for name in self.sliders:
             rows += self._slider_rows(q, name, t)
-        rows += [cam_row(mp, mech, cam, q, self._world, self._angle) for cam in mech.scene.cams]
+        rows += [cam_row(mp, mech, cam, q, self._world, self._angle) for cam in mech.scene.cams if not cam.is_spline]
+        for n, contact in enumerate(self.splines):
+            rows += contact.rows(mp, mech, q, q[self.poses + n], self._world, self._angle)
         rows += [gear.value(mp, mech, q, self._world, self._angle) for gear in self.gears]
         for drive, value, rate, accel in self.drives:
             target = value + rate * t + accel * t * t / 2

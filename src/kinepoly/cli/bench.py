@@ -69,9 +69,6 @@ def _bench(args: argparse.Namespace) -> list[str]:
     if isinstance(scene.input, GivenInput):
         raise SceneError(f"{scene.source}: given: kinepoly bench needs a scene driven by [input] (a crank or a "
                          "driven slider); a [given] scene has no input to vary")
-    if any(cam.is_spline for cam in scene.cams):
-        raise SceneError(f"{scene.source}: cams: kinepoly bench is not built yet for a points profile (its 50-digit "
-                         "reference has no spline contact); expected a scene without [[cams]] points profiles")
     if args.sweep is not None and args.sweep < 2:
         raise SceneError(f"--sweep {args.sweep}: expected at least 2 inputs")
     t0 = time.perf_counter()

@@ -6,7 +6,7 @@ added to the cam), written with its ``[[cams]]`` and ``[[gears]]`` as they were,
 (:func:`with_equivalent_links`) before it is solved.
 
 The lengths a pair carries belong to a link and take that link's factor: a cam's profile centre and
-radius are the cam's, its roller's radius and flat face the follower's; a pitch circle's radius, a
+radius (a ``points`` profile: every point's coordinates, so that the whole curve scales) are the cam's, its roller's radius and flat face the follower's; a pitch circle's radius, a
 pitch line's ``through`` and a rack's phase (a length) their gear's.
 """
 
@@ -18,7 +18,8 @@ from collections.abc import Sequence
 from kinepoly.scene.equivalent import with_equivalent_links
 from kinepoly.scene.spec import CamSpec, GearSpec, LinkSpec, PitchCircle, PitchLine, Scene
 
-__all__ = ["as_written", "pair_lengths", "pair_owners", "solvable", "with_pair_lengths"]
+__all__ = ["PROFILE_EXTRA_DIGITS", "as_written", "pair_extra_digits", "pair_lengths", "pair_owners", "solvable",
+           "with_pair_lengths"]
 
 
 def _added_centre(scene: Scene, cam: CamSpec, link: LinkSpec) -> str | None:
@@ -48,43 +49,63 @@ def solvable(scene: Scene) -> Scene:
     return with_equivalent_links(scene)
 
 
-def _cam_lengths(cam: CamSpec) -> list[tuple[str, float]]:
-    out = [(cam.cam, cam.center[0]), (cam.cam, cam.center[1]), (cam.cam, cam.radius),
-           (cam.follower, cam.roller_radius)]
+PROFILE_EXTRA_DIGITS = 2
+"""Decimal places a ``points`` profile's coordinates keep beyond the variant's other lengths: rounded as
+coarsely, 36 points a few millimetres apart would make a wavy curve (its curvature, which the
+construction uses, off by tens of percent); two more keep it within a few percent."""
+
+
+def _cam_lengths(cam: CamSpec) -> list[tuple[str, float, int]]:
+    if cam.is_spline:
+        out = [(cam.cam, x, PROFILE_EXTRA_DIGITS) for point in cam.profile_points for x in point]
+    else:
+        out = [(cam.cam, cam.center[0], 0), (cam.cam, cam.center[1], 0), (cam.cam, cam.radius, 0)]
+    out.append((cam.follower, cam.roller_radius, 0))
     if cam.flat is not None:
-        out += [(cam.follower, cam.flat[0][0]), (cam.follower, cam.flat[0][1])]
+        out += [(cam.follower, cam.flat[0][0], 0), (cam.follower, cam.flat[0][1], 0)]
     return out
 
 
-def _gear_lengths(gear: GearSpec) -> list[tuple[str, float]]:
-    out: list[tuple[str, float]] = []
+def _gear_lengths(gear: GearSpec) -> list[tuple[str, float, int]]:
+    out: list[tuple[str, float, int]] = []
     for link, curve, phase in zip(gear.links, gear.pitch, gear.phase, strict=True):
         if isinstance(curve, PitchCircle):
-            out.append((link, curve.radius))
+            out.append((link, curve.radius, 0))
         else:
-            out += [(link, curve.through[0]), (link, curve.through[1]), (link, phase)]
+            out += [(link, curve.through[0], 0), (link, curve.through[1], 0), (link, phase, 0)]
     return out
 
 
-def _lengths(scene: Scene) -> list[tuple[str, float]]:
+def _lengths(scene: Scene) -> list[tuple[str, float, int]]:
     return [x for cam in scene.cams for x in _cam_lengths(cam)] + [x for gear in scene.gears
                                                                     for x in _gear_lengths(gear)]
 
 
 def pair_lengths(scene: Scene) -> tuple[float, ...]:
     """Every length the scene's cams and gears carry, in one order."""
-    return tuple(value for _, value in _lengths(scene))
+    return tuple(value for _, value, _ in _lengths(scene))
 
 
 def pair_owners(scene: Scene) -> tuple[str, ...]:
     """The link whose factor scales each of :func:`pair_lengths`."""
-    return tuple(link for link, _ in _lengths(scene))
+    return tuple(link for link, _, _ in _lengths(scene))
+
+
+def pair_extra_digits(scene: Scene) -> tuple[int, ...]:
+    """The decimal places each of :func:`pair_lengths` keeps beyond the variant's rounding of lengths."""
+    return tuple(extra for _, _, extra in _lengths(scene))
 
 
 def _cam(cam: CamSpec, values: list[float]) -> CamSpec:
-    centre, radius, roller = (values.pop(0), values.pop(0)), values.pop(0), values.pop(0)
+    if cam.is_spline:
+        points = tuple((values.pop(0), values.pop(0)) for _ in cam.profile_points)
+        centre, radius = cam.center, cam.radius
+    else:
+        points, centre, radius = (), (values.pop(0), values.pop(0)), values.pop(0)
+    roller = values.pop(0)
     flat = None if cam.flat is None else ((values.pop(0), values.pop(0)), cam.flat[1])
-    return dataclasses.replace(cam, center=centre, radius=radius, roller_radius=roller, flat=flat)
+    return dataclasses.replace(cam, center=centre, radius=radius, roller_radius=roller, flat=flat,
+                               profile_points=points)
 
 
 def _gear(gear: GearSpec, values: list[float]) -> GearSpec:

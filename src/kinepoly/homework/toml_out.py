@@ -56,9 +56,18 @@ def _name_line(name: str, first: str, second: str) -> list[str]:
     return [] if name == default else [f"name = {json.dumps(name, ensure_ascii=False)}"]
 
 
+def _profile_toml(cam: CamSpec) -> str:
+    """``profile = ...``: the circle, or the points the spline runs through, four to a line."""
+    if not cam.is_spline:
+        return f"profile = {{ circle = {{ center = {_pair(cam.center)}, radius = {toml_number(cam.radius)} }} }}"
+    pairs = [_pair(p) for p in cam.profile_points]
+    rows = [", ".join(pairs[k:k + 4]) + "," for k in range(0, len(pairs), 4)]
+    return "profile = { points = [\n" + "\n".join(f"  {row}" for row in rows) + "\n] }"
+
+
 def _cam_toml(scene: Scene, cam: CamSpec) -> list[str]:
     out = ["", "[[cams]]", f"cam = {json.dumps(cam.cam)}", f"follower = {json.dumps(cam.follower)}",
-           f"profile = {{ circle = {{ center = {_pair(cam.center)}, radius = {toml_number(cam.radius)} }} }}"]
+           _profile_toml(cam)]
     if cam.kind == "roller":
         out.append(f"roller = {{ center = {json.dumps(cam.point)}, radius = {toml_number(cam.roller_radius)} }}")
     elif cam.kind == "knife":

@@ -38,7 +38,14 @@ from pathlib import Path
 from kinepoly.errors import AssemblyError, KinepolyError, SceneError
 from kinepoly.geom.vec import norm, unit
 from kinepoly.homework.answers import AnswerKey, Value
-from kinepoly.homework.higher_pairs import as_written, pair_lengths, pair_owners, solvable, with_pair_lengths
+from kinepoly.homework.higher_pairs import (
+    as_written,
+    pair_extra_digits,
+    pair_lengths,
+    pair_owners,
+    solvable,
+    with_pair_lengths,
+)
 from kinepoly.homework.reference import asked_keys, values_of
 from kinepoly.homework.toml_out import answers_toml, scene_toml
 from kinepoly.homework.vary import Range, Ranges
@@ -161,12 +168,12 @@ def _factors(rng: random.Random, scene: Scene, ranges: Ranges) -> dict[str, floa
     return {link.name: factor for link in scene.links}
 
 
-def _length_rounder(scene: Scene) -> Callable[[float], float]:
-    """Lengths to a grid a student can draw; with gears the scaled lengths exactly (a factor of two decimals
-    times the scene's), so that a sum of radii stays the distance it was."""
+def _length_rounder(scene: Scene, extra_digits: int = 0) -> Callable[[float], float]:
+    """Lengths to a grid a student can draw (``extra_digits`` finer); with gears the scaled lengths exactly (a
+    factor of two decimals times the scene's), so that a sum of radii stays the distance it was."""
     if scene.gears:
         return lambda x: float(f"{x:.12g}") + 0.0
-    return _rounder(_length_exponent(scene))
+    return _rounder(_length_exponent(scene) - extra_digits)
 
 
 def _draw(rng: random.Random, scene: Scene, ranges: Ranges) -> _Numbers:
@@ -187,7 +194,8 @@ def _draw(rng: random.Random, scene: Scene, ranges: Ranges) -> _Numbers:
         else:
             x = _rounder(_value_exponent(drawn))(x)
         inputs.append((name, x + 0.0))  # never -0.0
-    pairs = tuple(length(factors[owner] * x) for owner, x in zip(pair_owners(scene), pair_lengths(scene)))
+    pairs = tuple(_length_rounder(scene, extra)(factors[owner] * x) for owner, x, extra in
+                  zip(pair_owners(scene), pair_lengths(scene), pair_extra_digits(scene), strict=True))
     return _Numbers(points, through, tuple(inputs), pairs)
 
 
