@@ -168,3 +168,18 @@ def test_pivoted_face_with_the_disc_on_its_right_against_the_closed_form(branch:
     assert isinstance(links, dict)
     assert links["3"]["omega"] == pytest.approx(omega3, rel=1e-7)
     assert links["3"]["alpha"] == pytest.approx(alpha3, rel=1e-4, abs=1e-3)
+
+
+@pytest.mark.parametrize("guess_x", [-60.0, 60.0])
+def test_a_follower_that_is_the_guide_of_a_frame_block(guess_x: float) -> None:
+    # the follower slides along the frame's x-axis (its rotation read from the slider, not from two points);
+    # its face is vertical through T: x_T = e cos t + R (disc on the face's left) or - R (on its right)
+    text = _translating(12.0, 35.0, 40.0, 15.0, 0.0, f"[guess]\nT = [{guess_x!r}, 0]")
+    text = text.replace('block = "3"\nguide = "1"\npoint = "T"\nline = { through = [0, 0], angle = 90 }',
+                        'block = "1"\nguide = "3"\npoint = "O"\nline = { through = [0, 0], angle = 0 }')
+    data = kinepoly.to_json(kinepoly.solve(kinepoly.loads_scene(text)))
+    t = math.radians(40.0)
+    assert "default-assembly" not in _warnings(data)
+    assert _point(data, "T", "position") == pytest.approx(
+        complex(12.0 * math.cos(t) + math.copysign(35.0, guess_x), 0.0), abs=1e-12)
+    assert _point(data, "T", "velocity") == pytest.approx(complex(-12.0 * 15.0 * math.sin(t), 0.0), abs=1e-11)
