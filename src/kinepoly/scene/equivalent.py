@@ -6,8 +6,11 @@ position, the same lower-pair linkage:
 * a roller turning on W: a binary link K W of length R + r (R - r when it runs inside a groove);
 * a knife edge at W: a binary link K W of length R (the edge rides the circle);
 * a flat face: a block pinned at K sliding on the follower along the face's line moved R toward
-  the disc. The disc touches the face on the face's left (counter-clockwise of its direction);
-  write the face's angle turned half a turn for the other side.
+  the disc. Which side of the face the disc touches is an assembly, told by the ``[guess]``
+  (``scene.flat_side``): where the disc's centre lies on the face's right at the guessed position,
+  the face's angle is turned half a turn, so that the disc is on its left (counter-clockwise of its
+  direction) from then on; where the guess does not tell, the left is taken (a ``default-assembly``
+  warning at the solve).
 
 The equivalent link and its joints are added to the scene (``Scene.equivalent_links``) so that the
 plan's dyads, the polygons, the analytic check and Kennedy's theorem use it like any other link.
@@ -18,6 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from kinepoly.scene.flat_side import flat_side
 from kinepoly.scene.spec import CamSpec, LinkSpec, PointSpec, Scene, SliderSpec
 
 __all__ = ["with_equivalent_links"]
@@ -59,6 +63,9 @@ def with_equivalent_links(scene: Scene) -> Scene:
             links[cam.cam] = replace(owner, points=(*owner.points, PointSpec(k, cam.center, cam.line)))
         link = _fresh(f"eq{cam.name}", names)
         if cam.kind == "flat":
+            assert cam.flat is not None
+            if flat_side(scene, cam) == "right":
+                cam = replace(cam, flat=(cam.flat[0], cam.flat[1] + math.pi))
             assert cam.flat is not None
             (x, y), angle = cam.flat
             left = (-math.sin(angle), math.cos(angle))
