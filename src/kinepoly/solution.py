@@ -25,7 +25,7 @@ from kinepoly.check.analytic import AnalyticSolution, solve_analytic
 from kinepoly.check.compare import CheckReport, Quantity, compare
 from kinepoly.engine.centers import InstantCenters, find_instant_centers, plan_instant_centers
 from kinepoly.engine.construct import Wanted, construct_row
-from kinepoly.engine.contacts import Contact, contact_links, contacts_at
+from kinepoly.engine.contacts import Contact, contact_links
 from kinepoly.engine.plan import PositionPlan, make_plan
 from kinepoly.engine.position import describe_input
 from kinepoly.engine.row import AccelerationPolygon, SliderValues, VelocityPolygon
@@ -204,7 +204,7 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
                               f"(the error estimate of {worst} is {estimate.of_kind(worst):.2g})"))
     timing = {"load_s": load_s, "position_s": t1 - t0, "construction_s": t2 - t1, "check_s": t3 - t2,
               "total_s": load_s + (t3 - t0)}
-    contacts = contacts_at(inner, pose, velocity, frame.origin)
+    contacts = {name: found.row(0, complex(*frame.origin)) for name, found in built.contacts.items()}
     return Solution(scene, mechanism, asked, plan, frame.pose_to_user(pose), velocity, acceleration, check,
                     tuple(notices), timing, Inside(frame, inner, pose), accuracy, centers, built.sliders, contacts)
 

@@ -24,6 +24,7 @@ from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.engine.velocity import (
     VelocityResult,
     add_motor_rate,
+    carried_parts,
     drive_geometry,
     lay_driven_slider,
     link_length,
@@ -316,12 +317,8 @@ def _drive_group(ctx: _Context, group: DriveGroup) -> None:
 def _carried(ctx: _Context, dyad: Dyad) -> None:
     """A carried RRR dyad: the carrier's normal term and the drive's relative acceleration laid from the
     carrier's known tip, then the line perpendicular to the carrier's span; the second link as in any RRR."""
-    b, i, j, carrier, drive = ctx.b, dyad.first, dyad.second, dyad.carrier, dyad.drive
-    assert carrier is not None and drive is not None
-    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
-    assert isinstance(dyad.second_joint, Revolute)
-    p1, p2, p3 = dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point
-    k1, k2 = other_side(dyad.first_joint, carrier), other_side(dyad.second_joint, j)
+    b = ctx.b
+    i, j, carrier, drive, (p1, p2, p3), (k1, k2) = carried_parts(dyad)
     at, pin, slide = drive_geometry(b, dyad)
     omega_i, omega_c = b.omega_of(i), b.omega_of(carrier)
     rel = relative_acceleration(drive, i, at, pin, slide, omega_i, omega_c, omega_c)

@@ -12,6 +12,7 @@ import numpy as np
 
 from kinepoly.engine.acceleration import RIGHT, Rules, construct_acceleration
 from kinepoly.engine.assembly import position_at_input
+from kinepoly.engine.contacts import ContactRows, contacts_over_rows, polygon_velocity
 from kinepoly.engine.plan import PositionPlan
 from kinepoly.engine.polygon import CrossLines
 from kinepoly.engine.position import Positions
@@ -54,6 +55,8 @@ class Construction:
     velocity: VelocityPolygon | None
     acceleration: AccelerationPolygon | None
     sliders: dict[str, SliderValues]
+    contacts: dict[str, ContactRows]
+    """Each higher pair's contact, on the batch of one row (``engine.contacts``)."""
 
 
 def _value(x: np.ndarray | None) -> float | None:
@@ -82,5 +85,7 @@ def construct_row(mechanism: Mechanism, plan: PositionPlan, wanted: Wanted, *, o
             motion = slider_motion(positions, mechanism.slider(name), velocity, acceleration)
             sliders[name] = SliderValues(float(motion.s[0]), _value(motion.s_dot), _value(motion.s_ddot),
                                          _vector(motion.coriolis))
+        moving = polygon_velocity(mechanism, velocity.polygon) if velocity is not None else None
+        contacts = contacts_over_rows(mechanism, positions.poses, moving, positions.contact_parameters)
     return Construction(positions, pose_row(positions), velocity_row(velocity) if velocity else None,
-                        acceleration_row(acceleration) if acceleration else None, sliders)
+                        acceleration_row(acceleration) if acceleration else None, sliders, contacts)

@@ -7,7 +7,7 @@ the first gear's side to the second's; gears roll, so the sliding velocity is ze
 velocity is the follower's contact point's velocity relative to the cam's, along the common tangent.
 
 Everything is computed over arrays of rows (a sweep's thousands); a solve's contacts are the same
-computation on a batch of one (``contacts_at``). The cam's pressure angle and the follower's own
+computation on a batch of one (``engine.construct``). The cam's pressure angle and the follower's own
 coordinate (its angle on a pivot, or its slider on the frame) are read here too, for the sweep.
 The steps record, for each cam, that its equivalent link is used and where its ends are.
 """
@@ -22,15 +22,13 @@ import numpy as np
 
 from kinepoly.engine.gears import mesh
 from kinepoly.engine.polygon import Polygon
-from kinepoly.engine.row import VelocityPolygon
 from kinepoly.engine.steps import Step
 from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism
-from kinepoly.model.pose import Pose
 from kinepoly.scene.spec import CamSpec, SliderSpec
 
-__all__ = ["Contact", "ContactRows", "FollowerCoordinate", "contact_links", "contacts_at", "contacts_over_rows",
+__all__ = ["Contact", "ContactRows", "FollowerCoordinate", "contact_links", "contacts_over_rows",
            "follower_coordinate", "polygon_velocity", "pressure_angles", "record_equivalent_links"]
 
 Vec = tuple[float, float]
@@ -72,12 +70,15 @@ def contact_links(mechanism: Mechanism) -> set[str]:
     return out
 
 
-Known = tuple[Points, Points, Reals]
-"""A link's known tip, where that point is, and the link's omega, at every row."""
+def polygon_velocity(mechanism: Mechanism, polygon: Polygon) -> LinkVelocity:
+    """A point's velocity as a point of a link, from a velocity polygon over rows: the link's first known
+    tip plus omega x r (zero on the frame; None for a link the polygon has no tip and omega of)."""
+    known: dict[str, tuple[Points, Points, Reals]] = {}
+    for link, members in polygon.members.items():
+        omega = polygon.rate_of(link)
+        if omega is not None and members:
+            known[link] = (polygon.tips[members[0].label], members[0].at, omega)
 
-
-def _rigid_velocity(mechanism: Mechanism, known: dict[str, Known]) -> LinkVelocity:
-    """A point's velocity as a point of a link: the link's known tip plus omega x r (zero on the frame)."""
     def velocity(link: str, at: Points) -> Points | None:
         if link == mechanism.ground:
             return np.zeros(len(at), np.complex128)
@@ -86,27 +87,6 @@ def _rigid_velocity(mechanism: Mechanism, known: dict[str, Known]) -> LinkVeloci
         tip, where, omega = known[link]
         return np.asarray(tip + omega * 1j * (at - where))
     return velocity
-
-
-def polygon_velocity(mechanism: Mechanism, polygon: Polygon) -> LinkVelocity:
-    """Velocities of points of links from a velocity polygon over rows."""
-    known: dict[str, Known] = {}
-    for link, members in polygon.members.items():
-        omega = polygon.rate_of(link)
-        if omega is not None and members:
-            known[link] = (polygon.tips[members[0].label], members[0].at, omega)
-    return _rigid_velocity(mechanism, known)
-
-
-def _row_velocity(mechanism: Mechanism, polygon: VelocityPolygon) -> LinkVelocity:
-    """The same from a solve's row values, as a batch of one."""
-    known: dict[str, Known] = {}
-    for link, members in polygon.members.items():
-        omega = polygon.omega.get(link)
-        if omega is not None and members:
-            (label, where) = members[0]
-            known[link] = (np.array([complex(*polygon.tips[label])]), np.array([complex(*where)]), np.array([omega]))
-    return _rigid_velocity(mechanism, known)
 
 
 def _world(mechanism: Mechanism, poses: dict[str, ArrayPose], link: str, point: str) -> Points:
@@ -160,20 +140,6 @@ def contacts_over_rows(mechanism: Mechanism, poses: dict[str, ArrayPose], veloci
                 sliding = np.asarray(((on_follower - on_cam) * np.conj(tangent)).real * tangent)
         out[cam.name] = ContactRows(point, normal, sliding)
     return out
-
-
-def contacts_at(mechanism: Mechanism, pose: Pose, velocity: VelocityPolygon | None,
-                offset: Vec = (0.0, 0.0)) -> dict[str, Contact]:
-    """Every pair's contact at a solve's ``pose`` (a batch of one); points moved by ``offset`` (the solve's
-    frame to the user's)."""
-    poses = {link: ArrayPose.of_rows([p]) for link, p in pose.links.items()}
-    from kinepoly.engine.cam_contact import parameter_at
-
-    parameters = {cam.name: np.array([parameter_at(cam, pose)]) for cam in mechanism.scene.cams
-                  if cam.is_spline and cam.cam in pose.links}
-    rows = contacts_over_rows(mechanism, poses, None if velocity is None else _row_velocity(mechanism, velocity),
-                              parameters)
-    return {name: found.row(0, complex(*offset)) for name, found in rows.items()}
 
 
 @dataclass(frozen=True)

@@ -59,13 +59,17 @@ def _record(polygon: Polygon, group: GearGroup, tip: str, known_tip: str, first:
                               ("rack", "yes" if rack else "no"))))
 
 
-def velocity_by_rolling(polygon: Polygon, group: GearGroup, sliding: dict[str, Points]) -> None:
+def _common_normal(polygon: Polygon, group: GearGroup) -> tuple[str, str, str, Line]:
+    """The pitch point's name, the known gear's tip label there, the new tip's label, and the line along the
+    common normal through the known tip (the relative term of rolling pitch curves lies on it)."""
     found = mark_pitch_point(polygon, group)
     point = pitch_label(group.gear)
-    known_tip = polygon.tip(group.known, point)
-    known_label = polygon.label(group.known, point)
-    tip = polygon.label(group.link, point)
-    second: Line = (known_tip, found.normal, None)
+    return (point, polygon.label(group.known, point), polygon.label(group.link, point),
+            (polygon.tip(group.known, point), found.normal, None))
+
+
+def velocity_by_rolling(polygon: Polygon, group: GearGroup, sliding: dict[str, Points]) -> None:
+    point, known_label, tip, second = _common_normal(polygon, group)
     if isinstance(group.joint, Revolute):
         centre = group.joint.point
         r = np.asarray(polygon.world(point) - polygon.world(centre))
@@ -88,12 +92,7 @@ def velocity_by_rolling(polygon: Polygon, group: GearGroup, sliding: dict[str, P
 def acceleration_by_rolling(ctx: object, group: GearGroup) -> None:
     """The acceleration polygon's part (``ctx`` is ``engine.acceleration``'s context)."""
     b: Polygon = ctx.b  # type: ignore[attr-defined]
-    found = mark_pitch_point(b, group)
-    point = pitch_label(group.gear)
-    known_tip = b.tip(group.known, point)
-    known_label = b.label(group.known, point)
-    tip = b.label(group.link, point)
-    second: Line = (known_tip, found.normal, None)
+    point, known_label, tip, second = _common_normal(b, group)
     if isinstance(group.joint, Revolute):
         centre = group.joint.point
         start = b.tip(group.carrier, centre)

@@ -319,6 +319,18 @@ def add_motor_rate(polygon: Polygon, drive: Drive, link: str, known: str, known_
                               ("sign", sign_text), ("rate", abs(value)), ("sense", sense(value)))))
 
 
+def carried_parts(dyad: Dyad) -> tuple[str, str, str, Drive, tuple[str, str, str], tuple[str, str]]:
+    """A carried RRR dyad's links (first, second, carrier), its drive, its three pins (the carrier's known
+    one, the inner one, the second link's known one) and the known links across the two outer pins."""
+    carrier, drive = dyad.carrier, dyad.drive
+    assert carrier is not None and drive is not None
+    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
+    assert isinstance(dyad.second_joint, Revolute)
+    pins = (dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point)
+    return (dyad.first, dyad.second, carrier, drive, pins,
+            (other_side(dyad.first_joint, carrier), other_side(dyad.second_joint, dyad.second)))
+
+
 def drive_geometry(polygon: Polygon, dyad: Dyad) -> tuple[Points, Points | None, Points | None]:
     """For a carried dyad: where its inner joint is, the motor's pin (or None), the slide's direction (or None)."""
     drive = dyad.drive
@@ -332,12 +344,7 @@ def drive_geometry(polygon: Polygon, dyad: Dyad) -> tuple[Points, Points | None,
 def _carried(polygon: Polygon, dyad: Dyad, sliding: dict[str, Points], sines: dict[str, Reals]) -> None:
     """A carried RRR dyad: the drive's relative velocity is laid from the carrier's known tip, then the
     line perpendicular to the carrier's span; the second link's line as in any RRR dyad."""
-    i, j, carrier, drive = dyad.first, dyad.second, dyad.carrier, dyad.drive
-    assert carrier is not None and drive is not None
-    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
-    assert isinstance(dyad.second_joint, Revolute)
-    p1, p2, p3 = dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point
-    k1, k2 = other_side(dyad.first_joint, carrier), other_side(dyad.second_joint, j)
+    i, j, carrier, drive, (p1, p2, p3), (k1, k2) = carried_parts(dyad)
     at, pin, slide = drive_geometry(polygon, dyad)
     rel = relative_velocity(drive, i, at, pin, slide)
     start = polygon.tip(k1, p1)

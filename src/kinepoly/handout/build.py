@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import replace
+from typing import Any
 
 from kinepoly.errors import HandoutError
 from kinepoly.handout.answers import answers_page
@@ -23,7 +24,7 @@ from kinepoly.render.labels import FEW
 from kinepoly.render.layout import larger_papers, paper_name, paper_size
 from kinepoly.render.primitives import Item, Sheet, Text
 from kinepoly.render.sheet import GAIN as _GAIN
-from kinepoly.render.sheet import MARGIN_MM, build_sheet, roomy
+from kinepoly.render.sheet import MARGIN_MM, build_sheet, readable_values, roomy
 from kinepoly.render.text import plain_runs, runs_box
 from kinepoly.solution import Solution
 
@@ -64,12 +65,12 @@ def _paper_name(paper: str | tuple[float, float]) -> str:
     return paper.strip().upper() if paper.strip().lower()[:1] == "a" else paper.strip()
 
 
-def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float],
-               asked: tuple[float, float]) -> tuple[Frame, Handout] | str:
+def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float], asked: tuple[float, float],
+               readable: dict[str, Any]) -> tuple[Frame, Handout] | str:
     """The frame and the content on a page of ``size`` at the scales of the paper ``asked``, or why they do not fit."""
     width, height = size
     inner = width - 2 * (MARGIN_MM + GAP_MM)
-    frame = band_frame(solution, (width, height), 0.0, asked)
+    frame = band_frame(solution, (width, height), 0.0, asked, readable)
     scales = scales_of(frame.layout)
     handout = handout_content(solution, say, scales)
     heights: dict[Page, float] = {}  # a page's text is set once per paper, however often the scales settle
@@ -84,7 +85,7 @@ def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float],
         if need > _MOST_BAND * (height - 2 * MARGIN_MM):
             return f"the handout's text needs {need:.0f} mm of the page's {height:.0f}"
         if frame.band < need or scales_of(frame.layout) != scales:
-            frame = band_frame(solution, (width, height), max(need, frame.band), asked)
+            frame = band_frame(solution, (width, height), max(need, frame.band), asked, readable)
             if scales_of(frame.layout) != scales:
                 scales = scales_of(frame.layout)
                 handout = handout_content(solution, say, scales)
@@ -104,11 +105,12 @@ def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
     polygons' scales reduced there, as the drawing says).
     """
     papers = [(asked, size), *larger_papers(size)]
+    readable = readable_values(solution, size)  # the scales are the paper asked's on every paper tried
     fallback: tuple[Frame, Handout, str] | None = None
     best: tuple[Frame, Handout, str] | None = None
     why = ""
     for name, paper in papers:
-        chosen = _frame_for(solution, say, paper, size)
+        chosen = _frame_for(solution, say, paper, size, readable)
         if isinstance(chosen, str):
             why = chosen
             if best is None:

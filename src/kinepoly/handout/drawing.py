@@ -14,6 +14,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 from kinepoly.handout.content import Drawing
 from kinepoly.present.catalogue import Catalogue
@@ -62,29 +63,30 @@ def _bottom(layout: Layout) -> float:
 
 
 def band_frame(solution: Solution, page: tuple[float, float], band: float,
-               scales_paper: tuple[float, float] | None = None) -> Frame:
+               scales_paper: tuple[float, float] | None = None, readable: dict[str, Any] | None = None) -> Frame:
     """The drawing for a page of size ``page`` with ``band`` mm of text at its foot (0: none).
 
     With a band the page keeps its size and the drawing's paper is made shorter until the band
     fits (the layout's notes may change its title block, so a few rounds settle it); without
     one the drawing keeps the whole paper and the page loses the title block's strip. The polygons'
-    scales are those decided for ``scales_paper`` (the paper asked for; ``page`` when None).
+    scales are those decided for ``scales_paper`` (the paper asked for; ``page`` when None); ``readable``
+    the solution's readable values at them (``render.sheet.readable_values``), made once per handout.
     """
     asked = scales_paper or page
     width, height = page
     if band <= 0.0:
-        layout = layout_sheet(solution, page, grow=False, scales_paper=asked)
+        layout = layout_sheet(solution, page, grow=False, scales_paper=asked, readable=readable)
         shift = MARGIN_MM - _bottom(layout)
         return Frame(layout, page, shift, width, height + shift, 0.0)
     paper_height = height
-    layout = layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked)
+    layout = layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked, readable=readable)
     for _ in range(4):
         shift = MARGIN_MM + band + GAP_MM - _bottom(layout)
         wanted = height - shift
         if abs(wanted - paper_height) < 1e-6:
             break
         paper_height = wanted
-        layout = layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked)
+        layout = layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked, readable=readable)
     shift = height - paper_height
     return Frame(layout, (width, paper_height), shift, width, height, band)
 

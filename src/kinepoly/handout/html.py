@@ -27,7 +27,7 @@ from kinepoly.handout.notation import html_of
 from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.layout import larger_papers, paper_size
 from kinepoly.render.primitives import LAYERS, Item
-from kinepoly.render.sheet import roomy
+from kinepoly.render.sheet import readable_values, roomy
 from kinepoly.render.style import TERM_COLORS
 from kinepoly.solution import Solution
 
@@ -283,11 +283,12 @@ def _section(solution: Solution, page: Page, number: int, kinds: list[str], say:
 def _frame(solution: Solution, size: tuple[float, float]) -> Frame:
     """The drawing on the paper asked, or the smallest larger A paper that gives each polygon its scale and the
     mechanism its size (``render.sheet.roomy``), as the PDF's drawing; the scales are the paper asked's."""
+    readable = readable_values(solution, size)
     for _, paper in [("", size), *larger_papers(size)]:
-        frame = band_frame(solution, paper, 0.0, size)
+        frame = band_frame(solution, paper, 0.0, size, readable)
         if roomy(solution, frame.layout):
             return frame
-    return band_frame(solution, size, 0.0, size)
+    return band_frame(solution, size, 0.0, size, readable)
 
 
 def handout_html(solution: Solution, say: Catalogue, paper: str | tuple[float, float] = "A4") -> tuple[Handout, str]:

@@ -36,7 +36,7 @@ from kinepoly.render.titleblock import (
 )
 from kinepoly.solution import Solution
 
-__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "roomy", "step_sheets"]
+__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "readable_values", "roomy", "step_sheets"]
 
 MARGIN_MM = 10.0
 _INNER_MM = 3.0
@@ -82,7 +82,7 @@ def _drawn_terms(figures: tuple[Figure, ...]) -> list[str]:
 
 
 def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, grow: bool = True,
-                 scales_paper: tuple[float, float] | None = None) -> Layout:
+                 scales_paper: tuple[float, float] | None = None, readable: dict[str, Any] | None = None) -> Layout:
     """Decide the page: its paper, the title block's height, the panels and their scales.
 
     Each polygon is drawn at the scale decided for the paper asked (``present.scales.decide_scales``;
@@ -92,11 +92,16 @@ def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *,
     so; a larger paper is tried for the labels only while it gives them more room (fewer
     crowded). When no paper is roomy, the first that keeps the scales, else the paper asked with
     the polygons' scales reduced (said too). ``grow=False`` keeps the paper as given (a handout
-    chooses its own).
+    chooses its own). ``readable`` the solution's readable values at those scales (``readable_values``), when
+    the caller has them already.
     """
     size = paper_size(paper) if isinstance(paper, str) else paper
     decided = decide_scales(solution, scales_paper or size)
-    data = _readable(solution, decided)
+    if readable is None:
+        from kinepoly.present.report import readable_json
+
+        readable = readable_json(solution, scales=decided)
+    data = readable
     first = _layout_on(solution, size, (), decided, data)
     if not grow:
         return first
@@ -119,20 +124,14 @@ def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *,
     return best or kept or first
 
 
-_READABLE: list[tuple[Solution, PolygonScales, dict[str, Any]]] = []
-
-
-def _readable(solution: Solution, decided: PolygonScales) -> dict[str, Any]:
-    """The solution's readable values at ``decided`` (``present.report.readable_json``), made once for the
-    layouts a drawing or a handout tries (the last few solutions, known by identity, not by value)."""
+def readable_values(solution: Solution, scales_paper: str | tuple[float, float]) -> dict[str, Any]:
+    """The solution's readable values (``present.report.readable_json``) at the scales decided for
+    ``scales_paper``, which the title block shows: made once by a caller that lays out many sheets at the
+    same scales (a handout) and passed to ``layout_sheet``."""
     from kinepoly.present.report import readable_json
 
-    for known, scales, data in _READABLE:
-        if known is solution and scales == decided:
-            return data
-    data = readable_json(solution, scales=decided)
-    _READABLE[:] = [(solution, decided, data), *_READABLE[:3]]
-    return data
+    size = paper_size(scales_paper) if isinstance(scales_paper, str) else scales_paper
+    return readable_json(solution, scales=decide_scales(solution, size))
 
 
 GAIN = 0.75
