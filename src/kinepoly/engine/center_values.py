@@ -59,22 +59,31 @@ class InstantCenter:
 
 @dataclass(frozen=True)
 class KennedyLine:
-    """The line through the centers I_ik and I_jk of triangle ijk (``third`` is k).
+    """The line through the centers I_ik and I_jk of triangle ijk (``third`` is k), or a higher pair's
+    common normal at its contact (``contact`` names the contact, ``C23``; ``third`` and ``centers`` empty).
 
-    ``points`` are the two centers as world homogeneous triples (w = 0 at infinity);
-    ``through`` and ``direction`` give the line in the plane, both None for the line at
-    infinity (both centers at infinity).
+    ``points`` are the two centers as world homogeneous triples (w = 0 at infinity), for a common
+    normal the contact and the normal's direction at infinity; ``through`` and ``direction`` give the
+    line in the plane, both None for the line at infinity (both centers at infinity).
     """
 
     third: str
-    centers: tuple[str, str]
+    centers: tuple[str, ...]
     points: tuple[Triple, Triple]
     through: Vec | None
     direction: Vec | None
+    contact: str = ""
+
+    @property
+    def is_common_normal(self) -> bool:
+        return bool(self.contact)
 
     @property
     def label(self) -> str:
-        return f"{center_label(self.centers[0])} {center_label(self.centers[1])}"
+        """``I12 I13``, or ``n(C23)`` for the common normal at the contact C23."""
+        if self.contact:
+            return f"n({self.contact})"
+        return " ".join(center_label(name) for name in self.centers)
 
     @property
     def is_at_infinity(self) -> bool:
@@ -85,6 +94,9 @@ class KennedyLine:
 class KennedyStep:
     """One derived center: the two Kennedy lines and where they cross.
 
+    ``triangles`` are the two triangles whose Kennedy lines cross, or for a higher pair's center the
+    one triangle whose line crosses the common normal (then ``lines[1]`` is that normal).
+
     ``sin_angle`` is the sine of the angle between the two lines in the plane (None when one is
     the line at infinity); ``conditioning`` the smallest sine of the step's three products (two
     joins, one crossing); ``relative_error`` the estimated error of the result. Its words come from
@@ -93,7 +105,7 @@ class KennedyStep:
 
     number: int
     center: str
-    triangles: tuple[str, str]
+    triangles: tuple[str, ...]
     lines: tuple[KennedyLine, KennedyLine]
     result: Triple
     sin_angle: float | None

@@ -1,7 +1,11 @@
 """Instant centers by the Aronhold-Kennedy theorem, found the way the circle diagram finds them.
 
 The centers of the joints come first: a pin is the center of its two links; a slider's center
-(block and guide) is the point at infinity perpendicular to the slide. Every other center I_ij
+(block and guide) is the point at infinity perpendicular to the slide; a gear pair's is its pitch
+point. A cam and its follower give a line at once, not a point: their center lies on the common
+normal at the contact (a line edge of the circle diagram), and one triangle's Kennedy line crossed
+with that normal finds it. A circle cam's equivalent link is not a node of the diagram: the centers
+are asked between the scene's own links (the equivalent link serves the polygons). Every other center I_ij
 is where the Kennedy line I_ik I_jk crosses the Kennedy line I_il I_jl, for an edge ij of the
 circle diagram that closes the two triangles ijk and ijl (``circle_diagram``). Only the centers
 on the path to the asked ones are derived.
@@ -40,6 +44,7 @@ __all__ = [
     "InstantCenters",
     "KennedyLine",
     "KennedyStep",
+    "diagram_links",
     "find_instant_centers",
     "plan_instant_centers",
 ]
@@ -52,30 +57,33 @@ def _asked_edge(source: str, key: str, links: tuple[str, ...]) -> Edge:
         raise SceneError(f"{source}: find.instant_centers: {key!r} is not a pair of links of the scene") from None
 
 
+def diagram_links(mechanism: Mechanism) -> tuple[str, ...]:
+    """The nodes of the circle diagram: the scene's links, without the equivalent links of circle cams."""
+    return tuple(link for link in mechanism.link_names if link not in mechanism.scene.equivalent_links)
+
+
 def _joints(mechanism: Mechanism) -> dict[Edge, Joint | GearSpec | CamSpec]:
     """Each primary center's joint: a pin is the center of every two links it joins (a compound
-    hinge of k links gives k (k - 1) / 2 of them), a slider the center of its block and guide."""
-    links = mechanism.link_names
+    hinge of k links gives k (k - 1) / 2 of them), a slider the center of its block and guide, a gear
+    pair its pitch point; a cam pair its common normal (a line edge). Joints of equivalent links are
+    left out."""
+    links = diagram_links(mechanism)
     out: dict[Edge, Joint | GearSpec | CamSpec] = {}
     for gear in mechanism.scene.gears:  # a rolling pair's center is its pitch point
         out.setdefault(edge(*gear.links, links), gear)
-    for cam in mechanism.scene.cams:  # a spline cam's: on its common normal and on the line of both frame centers
-        if cam.is_spline and all(_frame_joint(mechanism, link) is not None for link in (cam.cam, cam.follower)):
-            out.setdefault(edge(cam.cam, cam.follower, links), cam)
     for joint in mechanism.joints:
         a, b = joint_links(joint)
+        if a not in links or b not in links:
+            continue
         out.setdefault(edge(a, b, links), joint)
         if isinstance(joint, Revolute):
             for other in mechanism.links_of_point(joint.point):
                 for link in (a, b):
-                    if other not in (a, b):
+                    if other not in (a, b) and other in links:
                         out.setdefault(edge(link, other, links), Revolute(joint.point, (link, other)))
+    for cam in mechanism.scene.cams:  # a cam pair's center: somewhere on the common normal at the contact
+        out.setdefault(edge(cam.cam, cam.follower, links), cam)
     return out
-
-
-def _frame_joint(mechanism: Mechanism, link: str) -> Joint | None:
-    """The joint that holds ``link`` to the frame, if any."""
-    return next((j for j in mechanism.joints_of(link) if mechanism.ground in joint_links(j)), None)
 
 
 def _joint_links_needed(mechanism: Mechanism, joint: Joint | GearSpec | CamSpec,
@@ -100,7 +108,7 @@ def plan_instant_centers(mechanism: Mechanism) -> CenterPlan:
     """
     scene = mechanism.scene
     wanted = scene.find.instant_centers
-    links = mechanism.link_names
+    links = diagram_links(mechanism)
     if mechanism.ground is None:
         raise SceneError(
             f"{scene.source}: find.instant_centers: a [given] scene is one body with no frame link, so there "
@@ -108,13 +116,13 @@ def plan_instant_centers(mechanism: Mechanism) -> CenterPlan:
             "frame as a link with an [input] to find the centers of a mechanism"
         )
     if wanted == "all":
-        shown = [link for link in links if link not in scene.equivalent_links]
-        asked = tuple((pair_name(e), e) for e in combinations(shown, 2))
+        asked = tuple((pair_name(e), e) for e in combinations(links, 2))
     else:
         asked = tuple((key, _asked_edge(scene.source, key, links)) for key in wanted)
     joints = _joints(mechanism)
     targets = tuple(dict.fromkeys(e for _, e in asked))
-    kennedy = plan_kennedy(links, frozenset(joints), targets)
+    lines = frozenset(e for e, joint in joints.items() if isinstance(joint, CamSpec))
+    kennedy = plan_kennedy(links, frozenset(joints) - lines, targets, lines)
     if kennedy.unreachable:
         names = ", ".join(center_label(pair_name(e)) for e in kennedy.unreachable)
         raise SceneError(
@@ -127,6 +135,7 @@ def plan_instant_centers(mechanism: Mechanism) -> CenterPlan:
     solved_index = {link: n for n, link in enumerate(order)}
     used = {e for e in targets if e in joints}
     used.update(s for e in kennedy.order for s in kennedy.sides(e) if s in joints)
+    used.update(e for e in kennedy.order if e in lines)
     needed: set[str] = set()
     for e in sorted(used, key=lambda pair: (links.index(pair[0]), links.index(pair[1]))):
         needed |= _joint_links_needed(mechanism, joints[e], solved_index)

@@ -6,6 +6,11 @@ can be drawn when it closes two triangles ijk and ijl whose other edges are know
 where the line I_ik I_jk crosses the line I_il I_jl (the Aronhold-Kennedy theorem). Repeating
 this round by round finds every center the theorem can reach.
 
+A higher pair (a cam and its follower) is a *line edge*: its center is not known at once as a
+point but as a line, the common normal at the contact (the relative motion of the two links is a
+turn about a point of it). One triangle ijk whose other edges are known points is then enough:
+the Kennedy line I_ik I_jk crosses the common normal at I_ij.
+
 ``plan_kennedy`` keeps only the centers on the path to the asked ones: for each asked edge the
 pair of triangles that needs the fewest derived centers, and recursively theirs. No geometry
 here: the plan is made before any position is solved.
@@ -69,10 +74,12 @@ def center_label(name: str) -> str:
 class KennedyPlan:
     """What the circle diagram will derive.
 
-    ``order``: the derived edges on the path to ``targets``, in the order the diagram finds them
-    (round by round); ``options``: for each edge that the theorem can reach, the third links k
-    whose triangles ijk close it in the round it is found; ``unreachable``: asked edges it
-    cannot reach.
+    ``known``: the edges known at once as points (joints); ``lines``: the line edges (higher pairs,
+    known at once as their common normal); ``order``: the derived edges on the path to ``targets``,
+    in the order the diagram finds them (round by round); ``options``: for each edge that the
+    theorem can reach, the third links k whose triangles ijk close it in the round it is found;
+    ``chosen``: the two third links of a point found by two triangles, the one of a line edge's;
+    ``unreachable``: asked edges it cannot reach.
     """
 
     links: tuple[str, ...]
@@ -80,19 +87,23 @@ class KennedyPlan:
     targets: tuple[Edge, ...]
     order: tuple[Edge, ...]
     options: dict[Edge, tuple[str, ...]]
-    chosen: dict[Edge, tuple[str, str]]
+    chosen: dict[Edge, tuple[str, ...]]
     unreachable: tuple[Edge, ...]
+    lines: frozenset[Edge] = frozenset()
 
     def sides(self, e: Edge) -> tuple[Edge, ...]:
-        """The four other edges of the two triangles chosen for ``e`` (none for a joint)."""
+        """The other edges of the triangles chosen for ``e``: four for two triangles, two for a line edge's
+        one (none for a joint)."""
         if e not in self.chosen:
             return ()
         i, j = e
         return tuple(edge(a, k, self.links) for k in self.chosen[e] for a in (i, j))
 
 
-def _closure(links: tuple[str, ...], known: frozenset[Edge]) -> tuple[dict[Edge, int], dict[Edge, tuple[str, ...]]]:
-    """Round of every reachable edge (0 for joints) and the triangles that close it in that round."""
+def _closure(links: tuple[str, ...], known: frozenset[Edge],
+             lines: frozenset[Edge]) -> tuple[dict[Edge, int], dict[Edge, tuple[str, ...]]]:
+    """Round of every reachable edge (0 for joints) and the triangles that close it in that round (two
+    for a point, one for a line edge)."""
     round_of: dict[Edge, int] = {e: 0 for e in known}
     options: dict[Edge, tuple[str, ...]] = {}
     number = 0
@@ -104,7 +115,7 @@ def _closure(links: tuple[str, ...], known: frozenset[Edge]) -> tuple[dict[Edge,
                 continue
             ks = tuple(k for k in links if k not in (i, j)
                        and edge(i, k, links) in round_of and edge(j, k, links) in round_of)
-            if len(ks) >= 2:
+            if len(ks) >= (1 if (i, j) in lines else 2):
                 found[(i, j)] = ks
         if not found:
             return round_of, options
@@ -113,11 +124,14 @@ def _closure(links: tuple[str, ...], known: frozenset[Edge]) -> tuple[dict[Edge,
             options[e] = ks
 
 
-def plan_kennedy(links: tuple[str, ...], known: frozenset[Edge], targets: tuple[Edge, ...]) -> KennedyPlan:
-    """The derived edges on the path to ``targets``, each closed by the triangles needing least."""
-    round_of, options = _closure(links, known)
+def plan_kennedy(links: tuple[str, ...], known: frozenset[Edge], targets: tuple[Edge, ...],
+                 lines: frozenset[Edge] = frozenset()) -> KennedyPlan:
+    """The derived edges on the path to ``targets``, each closed by the triangles needing least: two
+    triangles for a point, one (crossed with its common normal) for a line edge of ``lines``."""
+    lines = lines - known
+    round_of, options = _closure(links, known, lines)
     needs: dict[Edge, frozenset[Edge]] = {}
-    chosen: dict[Edge, tuple[str, str]] = {}
+    chosen: dict[Edge, tuple[str, ...]] = {}
 
     def needed(e: Edge) -> frozenset[Edge]:
         if e in known:
@@ -125,11 +139,12 @@ def plan_kennedy(links: tuple[str, ...], known: frozenset[Edge], targets: tuple[
         if e not in needs:
             i, j = e
             best: frozenset[Edge] | None = None
-            for k, m in combinations(options[e], 2):
-                sides = (edge(i, k, links), edge(j, k, links), edge(i, m, links), edge(j, m, links))
+            thirds = [(k,) for k in options[e]] if e in lines else list(combinations(options[e], 2))
+            for ks in thirds:
+                sides = tuple(edge(a, k, links) for k in ks for a in (i, j))
                 union = frozenset().union(*(needed(s) for s in sides))
                 if best is None or len(union) < len(best):
-                    best, chosen[e] = union, (k, m)
+                    best, chosen[e] = union, ks
             assert best is not None
             needs[e] = best | {e}
         return needs[e]
@@ -139,19 +154,21 @@ def plan_kennedy(links: tuple[str, ...], known: frozenset[Edge], targets: tuple[
     every = list(combinations(links, 2))
     order = tuple(sorted(path, key=lambda e: (round_of[e], every.index(e))))
     unreachable = tuple(t for t in targets if t not in round_of)
-    return KennedyPlan(links, known, targets, order, options, {e: chosen[e] for e in order}, unreachable)
+    return KennedyPlan(links, known, targets, order, options, {e: chosen[e] for e in order}, unreachable, lines)
 
 
 @dataclass(frozen=True)
 class DiagramEdge:
-    """One edge of the circle diagram: a center known from a joint (solid) or derived (dashed).
+    """One edge of the circle diagram: a center known from a joint (solid), derived (dashed), or a
+    higher pair's line edge (``"line"``: known at once as its common normal, drawn dash-dot).
 
-    ``number`` is 0 for a joint's center and n for the n-th center derived; ``via`` says how:
-    ``"pin A0"``, ``"slider 14"`` or ``"triangles 124 and 234"``.
+    ``number`` is 0 for a joint's center (and a line edge whose point was not needed) and n for the
+    n-th center derived; ``via`` says how: ``"pin A0"``, ``"slider 14"``, ``"triangles 124 and 234"``,
+    ``"common normal of cam 23"`` or ``"common normal of cam 23 and triangle 123"``.
     """
 
     links: Edge
-    kind: Literal["joint", "derived"]
+    kind: Literal["joint", "derived", "line"]
     number: int
     via: str
 

@@ -19,6 +19,8 @@ import math
 from dataclasses import dataclass, replace
 from itertools import combinations
 
+import numpy as np
+
 from kinepoly.engine.center_values import CenterPlan, InstantCenter, KennedyLine, KennedyStep
 from kinepoly.engine.circle_diagram import (
     CircleDiagram,
@@ -38,7 +40,7 @@ from kinepoly.geom.homogeneous import LocalFrame, Place, Projective, Wedge, cano
 from kinepoly.geom.tolerances import LOUD_ERROR, NEAR_SINGULAR_SIN
 from kinepoly.geom.vec import Vec, add, cross, dot, norm, perp, rotate, sub
 from kinepoly.model.array_pose import ArrayPose
-from kinepoly.model.mechanism import Joint, Mechanism, Revolute, joint_links
+from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import CamSpec, GearSpec
@@ -76,8 +78,10 @@ class _Line:
 
 @dataclass(frozen=True)
 class _Candidate:
+    """Two Kennedy lines that cross at the center, or (a cam pair's center) one and the common normal."""
+
     first: _Line
-    second: _Line
+    second: _Line | _Normal
     meet: Wedge
 
 
@@ -91,11 +95,9 @@ def _frame(mechanism: Mechanism, pose: Pose, offset: Vec) -> LocalFrame:
 
 
 def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame,
-                  joint: Joint | GearSpec | CamSpec) -> tuple[Projective, Place] | None:
+                  joint: Joint | GearSpec) -> tuple[Projective, Place] | None:
     """A pin's point, the point at infinity perpendicular to a slide, or a gear pair's pitch point; None
     when its links were not solved."""
-    if isinstance(joint, CamSpec):
-        return _cam_center(mechanism, pose, frame, joint)
     if isinstance(joint, GearSpec):
         if not all(link in pose.links for link in joint.links):
             return None
@@ -120,29 +122,39 @@ def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame,
     return value, Place(None, canonical_direction(perp(slide)), value.error)
 
 
-def _cam_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame, cam: CamSpec) -> tuple[Projective, Place] | None:
-    """A spline cam's center: where its common normal crosses the line of the cam's and the follower's
-    centers with the frame (Kennedy's theorem on the triangle of the frame, the cam and the follower)."""
-    from kinepoly.engine.cam_contact import contact_on_profile
+@dataclass(frozen=True)
+class _Normal:
+    """A cam pair's line edge: the common normal at the contact, as the contact C and the normal's
+    direction (both in the pose's own coordinates) and as a projective line."""
 
-    if not all(link in pose.links for link in (cam.cam, cam.follower)):
-        return None
-    ends = []
-    for link in (cam.cam, cam.follower):
-        joint = next(j for j in mechanism.joints_of(link) if mechanism.ground in joint_links(j))
-        found = _joint_center(mechanism, pose, frame, joint)
-        if found is None:
-            return None
-        ends.append(found[0])
-    point, normal = contact_on_profile(cam, pose)
-    normal_line = wedge(frame.point((point.real, point.imag)), frame.point_at_infinity((normal.real, normal.imag)))
-    frame_line = wedge(ends[0], ends[1])
-    if normal_line.value is None or frame_line.value is None:
-        return None
-    meet = wedge(frame_line.value, normal_line.value)
-    if meet.value is None:
-        return None
-    return meet.value, replace(frame, offset=(0.0, 0.0)).place(meet.value)
+    contact: str
+    at: Vec
+    direction: Vec
+    point: Projective
+    toward: Projective
+    line: Projective
+
+
+def _common_normals(mechanism: Mechanism, pose: Pose, frame: LocalFrame) -> dict[str, _Normal]:
+    """Each cam's common normal at its contact, by the contacts' one computation on a batch of one row;
+    a cam whose links were not solved has none."""
+    from kinepoly.engine.cam_contact import parameter_at
+    from kinepoly.engine.contacts import contacts_over_rows
+
+    poses = {link: ArrayPose.of_rows([pose.links[link]]) for link in pose.links}
+    parameters = {cam.name: np.array([parameter_at(cam, pose)]) for cam in mechanism.scene.cams
+                  if cam.is_spline and cam.cam in pose.links and cam.follower in pose.links}
+    found = contacts_over_rows(mechanism, poses, None, parameters)
+    out = {}
+    for cam in mechanism.scene.cams:
+        if cam.name not in found:
+            continue
+        at, n = complex(found[cam.name].point[0]), complex(found[cam.name].normal[0])
+        point, toward = frame.point((at.real, at.imag)), frame.point_at_infinity((n.real, n.imag))
+        line = wedge(point, toward).value
+        assert line is not None  # a finite point and a point at infinity are never one point
+        out[cam.name] = _Normal(f"C{cam.name}", (at.real, at.imag), (n.real, n.imag), point, toward, line)
+    return out
 
 
 def _joint_name(joint: Joint | GearSpec | CamSpec) -> str:
@@ -158,13 +170,19 @@ class _Finder:
 
     def __init__(self, mechanism: Mechanism, pose: Pose, plan: CenterPlan, offset: Vec) -> None:
         self.mechanism, self.pose, self.plan = mechanism, pose, plan
-        self.links = mechanism.link_names
+        self.links = plan.kennedy.links
         self.frame = _frame(mechanism, pose, offset)
         self.known: dict[Edge, _Known] = {}
+        self.normals: dict[Edge, _Normal] = {}
         self.steps: list[KennedyStep] = []
         self.notices: list[Notice] = []
         self.via: dict[Edge, str] = {}
+        normals = _common_normals(mechanism, pose, self.frame) if mechanism.scene.cams else {}
         for e, joint in plan.joints.items():
+            if isinstance(joint, CamSpec):
+                if joint.name in normals:
+                    self.normals[e] = normals[joint.name]
+                continue
             found = _joint_center(mechanism, pose, self.frame, joint)
             if found is not None:
                 value, inside = found
@@ -195,23 +213,33 @@ class _Finder:
         return lines, trouble
 
     def derive(self, e: Edge) -> tuple[_Candidate | None, list[str]]:
+        """The best-conditioned crossing that finds ``e``: of two Kennedy lines, or for a cam pair's center
+        of one Kennedy line with the common normal at the contact."""
         lines, trouble = self.lines_for(e)
         usable = [line for line in lines if line.join.value is not None]
+        normal = self.normals.get(e)
+        pairs: list[tuple[_Line, _Line | _Normal]] = (
+            [(line, normal) for line in usable] if normal is not None else list(combinations(usable, 2)))
         best: _Candidate | None = None
-        for first, second in combinations(usable, 2):
-            assert first.join.value is not None and second.join.value is not None
-            meet = wedge(first.join.value, second.join.value)
+        for first, second in pairs:
+            assert first.join.value is not None
+            meet = wedge(first.join.value, _line_value(second))
             if meet.value is None:
-                trouble.append(f"the Kennedy lines {self.line_label(first)} and {self.line_label(second)} are one "
-                               "line (all four centers lie on it), so they meet in no single point")
+                trouble.append(f"the Kennedy line {self.line_label(first)} is the common normal at "
+                               f"{second.contact} itself, so they meet in no single point" if isinstance(second, _Normal)
+                               else f"the Kennedy lines {self.line_label(first)} and {self.line_label(second)} are "
+                               "one line (all four centers lie on it), so they meet in no single point")
                 continue
             if best is None or meet.value.error < (best.meet.value.error if best.meet.value else math.inf):
                 best = _Candidate(first, second, meet)
-        if len(lines) < 2:
-            trouble.append("fewer than two triangles of known centers close it yet")
+        if len(lines) < (1 if normal is not None else 2):
+            trouble.append("fewer than two triangles of known centers close it yet" if normal is None
+                           else "fewer triangles of known centers than the one its common normal needs close it yet")
         return best, trouble
 
-    def line_label(self, line: _Line) -> str:
+    def line_label(self, line: _Line | _Normal) -> str:
+        if isinstance(line, _Normal):
+            return f"n({line.contact})"
         return f"{self.label(line.sides[0])} {self.label(line.sides[1])}"
 
     def record(self, e: Edge, candidate: _Candidate) -> None:
@@ -222,19 +250,30 @@ class _Finder:
         inside = replace(self.frame, offset=(0.0, 0.0)).place(candidate.meet.value)
         self.known[e] = _Known(candidate.meet.value, inside, center)
         i, j = e
-        triangles = (triangle_name(self.links, i, j, candidate.first.third),
-                     triangle_name(self.links, i, j, candidate.second.third))
-        self.via[e] = f"triangles {triangles[0]} and {triangles[1]}"
-        lines = (self.kennedy_line(candidate.first), self.kennedy_line(candidate.second))
+        second = candidate.second
+        triangles = tuple(triangle_name(self.links, i, j, line.third) for line in (candidate.first, second)
+                          if isinstance(line, _Line))
+        if isinstance(second, _Normal):
+            cam = self.plan.joints[e]
+            assert isinstance(cam, CamSpec)
+            self.via[e] = f"common normal of cam {cam.name} and triangle {triangles[0]}"
+        else:
+            self.via[e] = f"triangles {triangles[0]} and {triangles[1]}"
+        lines = (self.kennedy_line(candidate.first), self.kennedy_line(second))
         sin_angle = _planar_sin(lines[0], lines[1])
-        conditioning = min(candidate.first.join.sin, candidate.second.join.sin, candidate.meet.sin)
-        equation = f"{center.label} = ({lines[0].label}) x ({lines[1].label})"
+        conditioning = min(candidate.first.join.sin, _join_sin(second), candidate.meet.sin)
+        equation = f"{center.label} = ({lines[0].label}) x " + (
+            lines[1].label if lines[1].is_common_normal else f"({lines[1].label})")
         self.steps.append(KennedyStep(number, center.name, triangles, lines, place.homogeneous, sin_angle,
                                       conditioning, place.relative_error, equation))
         if conditioning < NEAR_SINGULAR_SIN or place.relative_error > LOUD_ERROR:
             self.notices.append(Notice("center-ill-conditioned", self.ill_text(center, candidate, lines, sin_angle)))
 
-    def kennedy_line(self, line: _Line) -> KennedyLine:
+    def kennedy_line(self, line: _Line | _Normal) -> KennedyLine:
+        if isinstance(line, _Normal):
+            at = add(self.frame.offset, line.at)
+            return KennedyLine("", (), ((at[0], at[1], 1.0), (line.direction[0], line.direction[1], 0.0)),
+                               at, line.direction, line.contact)
         assert line.join.value is not None
         a, b = (self.known[s].center for s in line.sides)
         placed = self.frame.line(line.join.value)
@@ -255,7 +294,7 @@ class _Finder:
         what = "direction" if center.is_at_infinity else "position"
         tail = f"its {what} has a relative error of about {center.place.relative_error:.1g}"
         worst = min((candidate.first.join.sin, f"the centers {self.line_label(candidate.first)} almost coincide"),
-                    (candidate.second.join.sin, f"the centers {self.line_label(candidate.second)} almost coincide"),
+                    (_join_sin(candidate.second), f"the centers {self.line_label(candidate.second)} almost coincide"),
                     (candidate.meet.sin, f"the Kennedy lines {lines[0].label} and {lines[1].label} almost coincide"))
         if worst[0] < NEAR_SINGULAR_SIN:
             return f"instant center {center.label} {self.where()}: {worst[1]} (conditioning sine {worst[0]:.2g}); " + tail
@@ -302,14 +341,31 @@ class _Finder:
         return False
 
     def diagram(self) -> CircleDiagram:
-        edges = [DiagramEdge(e, "joint", 0, _joint_name(joint)) for e, joint in self.plan.joints.items()]
-        edges += [DiagramEdge(_by_name(self.links, s.center), "derived", s.number,
-                              self.via[_by_name(self.links, s.center)]) for s in self.steps]
+        """The joints' edges (a cam pair's as its line edge, numbered when its point was derived), then the
+        derived points' edges in the order found."""
+        numbers = {_by_name(self.links, s.center): s.number for s in self.steps}
+        edges = [DiagramEdge(e, "line", numbers.get(e, 0), self.via.get(e, _joint_name(joint)))
+                 if isinstance(joint, CamSpec) else DiagramEdge(e, "joint", 0, _joint_name(joint))
+                 for e, joint in self.plan.joints.items()]
+        edges += [DiagramEdge(e, "derived", number, self.via[e]) for e, number in numbers.items()
+                  if e not in self.plan.kennedy.lines]
         return CircleDiagram(self.links, circle_positions(self.links), tuple(edges))
 
 
 def _by_name(links: tuple[str, ...], name: str) -> Edge:
     return split_pair(name, links)
+
+
+def _line_value(line: _Line | _Normal) -> Projective:
+    if isinstance(line, _Normal):
+        return line.line
+    assert line.join.value is not None
+    return line.join.value
+
+
+def _join_sin(line: _Line | _Normal) -> float:
+    """The conditioning of the line's join: a common normal is made from a point and a direction, always apart."""
+    return 1.0 if isinstance(line, _Normal) else line.join.sin
 
 
 def _planar_sin(first: KennedyLine, second: KennedyLine) -> float | None:

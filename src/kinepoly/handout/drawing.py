@@ -173,7 +173,8 @@ def _centers_filter(solution: Solution, drawing: Drawing) -> tuple[Callable[[Ite
         m = _DIAGRAM_ROLE.match(role)
         if m and m.group(1) in edges:
             edge = edges[m.group(1)]
-            return edge.kind == "joint" or edge.number <= upto
+            # a cam pair's line edge is known from the start as a line; its number once its point is found
+            return edge.kind == "joint" or edge.number <= upto or (edge.kind == "line" and "number" not in role)
         return True
 
     return keep, ({line.label for line in current.lines} if current else set()), (current.center if current else "")

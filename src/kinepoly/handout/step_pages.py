@@ -156,6 +156,8 @@ def _kennedy_page(context: Context, say: Catalogue, step: KennedyStep, number: i
     heading = say.say("page.step", number=str(number), total=str(total), polygon=say.say("polygon.centers"))
     equation = typographic(step.equation)
     rows = tuple((center_label(c), _how_found(solution, centers, c, say)) for c in used)
+    rows += tuple((line.label, say.say("kennedy.normal", contact=line.contact, pair=step.center))
+                  for line in step.lines if line.is_common_normal)
     table = Table("", (say.say("kennedy.center"), say.say("kennedy.found")), rows)
     columns = (Column((Paragraph(heading, "heading"), Paragraph(equation, "equation"), table)),
                Column((Paragraph(text), Paragraph(result, "result")), fill=True))

@@ -39,6 +39,8 @@ def centers_json(centers: InstantCenters) -> dict[str, dict[str, list[float]]]:
 
 def _line_json(line: KennedyLine) -> dict[str, Any]:
     out: dict[str, Any] = {"label": line.label, "centers": list(line.centers)}
+    if line.is_common_normal:
+        out["contact"] = line.contact
     if line.through is None or line.direction is None:
         out["at_infinity"] = True
     else:
@@ -57,7 +59,8 @@ def _step_json(centers: InstantCenters, step: KennedyStep, context: Context) -> 
         "text": kennedy_sentence(step, english(), context),
         "result": center.label,
         "center": _where(center),
-        "known": [{"term": center_label(name), "known": centers.centers[name].found} for name in dict.fromkeys(used)],
+        "known": [{"term": center_label(name), "known": centers.centers[name].found} for name in dict.fromkeys(used)]
+        + [{"term": line.label, "known": "common normal at the contact"} for line in step.lines if line.is_common_normal],
         "lines": [_line_json(line) for line in step.lines],
         "vectors": [],
     }
@@ -82,7 +85,7 @@ def _place_text(center: InstantCenter, noise: Noise) -> str:
 
 def _found_text(centers: InstantCenters, center: InstantCenter) -> str:
     for edge in centers.diagram.edges:
-        if edge.name == center.name and edge.kind == "derived":
+        if edge.name == center.name and edge.number > 0:
             return f"{center.found}: {edge.via}"
     return center.found
 
@@ -110,8 +113,10 @@ def centers_steps_text(centers: InstantCenters, first_number: int, context: Cont
     for n, step in enumerate(centers.steps, first_number):
         out.append(f"{n:>2}. [instant centers, kennedy] {step.equation}")
         out.append(f"    {kennedy_sentence(step, english(), context)}")
-        out.append("    known: " + "; ".join(f"{center_label(name)} ({centers.centers[name].found})"
-                                            for name in dict.fromkeys(c for ln in step.lines for c in ln.centers)))
+        out.append("    known: " + "; ".join([f"{center_label(name)} ({centers.centers[name].found})"
+                                             for name in dict.fromkeys(c for ln in step.lines for c in ln.centers)]
+                                            + [f"{ln.label} (common normal at the contact {ln.contact})"
+                                               for ln in step.lines if ln.is_common_normal]))
     if centers.omegas:
         out += ["", "angular velocities from the instant centers (a check of the polygon):"]
         out += [f"    {o.equation}: {center_omega_sentence(o, english(), context)}" for o in centers.omegas]

@@ -647,9 +647,14 @@ def kennedy_words(step: KennedyStep, say: Catalogue, context: Context) -> tuple[
     center = centers.centers[step.center]
     label = center_label(step.center)
     first, second = step.lines
-    text = say.say("step.kennedy", center=label, links=", ".join(center.links),
-                   first_triangle=_links(step.triangles[0]), second_triangle=_links(step.triangles[1]),
-                   first_line=first.label, second_line=second.label)
+    if second.is_common_normal:  # a cam pair's center: one Kennedy line crossed with the common normal
+        text = say.say("step.kennedy_normal", center=label, cam=center.links[0], follower=center.links[1],
+                       first_triangle=_links(step.triangles[0]), first_line=first.label, contact=second.contact,
+                       normal=second.label)
+    else:
+        text = say.say("step.kennedy", center=label, links=", ".join(center.links),
+                       first_triangle=_links(step.triangles[0]), second_triangle=_links(step.triangles[1]),
+                       first_line=first.label, second_line=second.label)
     used = list(dict.fromkeys(c for line in step.lines for c in line.centers))
     if any(centers.centers[c].is_at_infinity for c in used) or center.is_at_infinity:
         text += " " + say.say("step.kennedy_infinity")

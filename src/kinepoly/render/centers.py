@@ -4,8 +4,11 @@ The sheet always has this layer; it stays empty unless the scene asks for instan
 Centers are labelled points (I13); the Kennedy lines of each derived center are drawn thin and
 dotted through the two centers that make them; a center at infinity is an arrow toward it at the
 panel's edge (``I16 ∞``), and so is a center too far away to draw at the mechanism's scale,
-labelled with its coordinates. The circle diagram shows the links on a circle, the joints'
-centers as solid edges and the derived ones dashed, numbered in the order they were found.
+labelled with its coordinates. A cam pair's common normal, the line its center was found on, is
+drawn as a Kennedy line from the contact through the center. The circle diagram shows the links on
+a circle, the joints' centers as solid edges and the derived ones dashed, numbered in the order they
+were found; a cam pair's line edge (known at once as its common normal) dash-dot, numbered when its
+point was found.
 """
 
 from __future__ import annotations
@@ -29,6 +32,8 @@ __all__ = ["LAYER", "centers_content", "centers_items", "centers_of", "near_cent
 LAYER = "instant-centers"
 CENTER_COLOR = "#7b2cbf"
 KENNEDY = Stroke("#9d7cc9", 0.15, (0.6, 0.8))
+LINE_EDGE = Stroke(CENTER_COLOR, 0.3, (2.4, 0.7, 0.4, 0.7))
+"""A line edge of the circle diagram (a cam pair's center, known at once as a line): dash-dot."""
 DIAGRAM_SCALE_MM = 22.0
 """The circle diagram's radius on paper."""
 _NEAR = 0.6
@@ -106,14 +111,15 @@ def _mechanism_part(centers: InstantCenters, panel: Panel) -> tuple[list[Item], 
         for line in step.lines:
             if line.through is None or line.direction is None:
                 continue
-            ends = [panel.paper((t[0] / t[2], t[1] / t[2])) for t in (*line.points, step.result) if abs(t[2]) > 1e-12]
+            anchors = line.points[:1] if line.is_common_normal else line.points  # a normal: from its contact
+            ends = [panel.paper((t[0] / t[2], t[1] / t[2])) for t in (*anchors, step.result) if abs(t[2]) > 1e-12]
             d = line.direction
             a = panel.paper(line.through)
             u = (d[0] / norm(d), d[1] / norm(d))
             along = [(p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1] for p in ends] or [0.0]
             far = 4.0 * max(rect[2] - rect[0], rect[3] - rect[1])
-            lo = min(along) - 5.0 if all(abs(t[2]) > 1e-12 for t in line.points) else -far
-            hi = max(along) + 5.0 if all(abs(t[2]) > 1e-12 for t in (*line.points, step.result)) else far
+            lo = min(along) - 5.0 if all(abs(t[2]) > 1e-12 for t in anchors) else -far
+            hi = max(along) + 5.0 if all(abs(t[2]) > 1e-12 for t in (*anchors, step.result)) else far
             piece = LineString([(a[0] + lo * u[0], a[1] + lo * u[1]), (a[0] + hi * u[0], a[1] + hi * u[1])])
             clipped = piece.intersection(area)
             if clipped.geom_type == "LineString" and clipped.length > 0.5:
@@ -153,9 +159,9 @@ def _diagram_part(centers: InstantCenters, panel: Panel, order: tuple[str, ...])
     at = {link: panel.paper(p) for link, p in diagram.on_circle.items()}
     for e in diagram.edges:
         a, b = at[e.links[0]], at[e.links[1]]
-        stroke = Stroke("#333333", 0.3) if e.kind == "joint" else Stroke(CENTER_COLOR, 0.3, (1.2, 0.8))
+        stroke = {"joint": Stroke("#333333", 0.3), "line": LINE_EDGE}.get(e.kind, Stroke(CENTER_COLOR, 0.3, (1.2, 0.8)))
         items.append(Path((a, b), stroke, role=f"diagram edge {e.name}"))
-        if e.kind == "derived":
+        if e.number > 0:
             mid = ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2)
             requests.append(Request(LAYER, panel.drawing_rect, plain_runs(str(e.number), SMALL_MM), mid,
                                     color=CENTER_COLOR, role=f"diagram number {e.name}", priority=6, gap=0.3,

@@ -276,7 +276,8 @@ def _columns(out: _Builder, asked: Asked, velocity: VelocityResult | None, accel
             out.add(f"s_dot_{name}", "slider-rate", motion.s_dot)
         if motion.s_ddot is not None and motion.coriolis is not None:
             out.add(f"s_ddot_{name}", "slider-acceleration", motion.s_ddot)
-            out.pair(f"coriolis_{name}", "coriolis", motion.coriolis)
+            if mech.slider(name).guide != mech.ground:  # a guide on the frame cannot turn: no Coriolis term
+                out.pair(f"coriolis_{name}", "coriolis", motion.coriolis)
 
 
 def _centrode(out: _Builder, link: str, velocity: VelocityResult, seed_row: int,
