@@ -30,38 +30,7 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 CAMS = ("cam-roller-rocker", "eccentric-cam-flat", "metu-cam", "spline-cam-flat-rocker", "spline-cam-knife",
         "spline-cam-roller-rocker")
 
-TRIAD = """
-title = "A disc cam under a roller on a coupler held by two rockers (a triad with the equivalent link)"
-
-[links]
-1 = { points = { O = [0, 0], Q = [90, 0], R = [-60, 10] } }
-2 = { points = { O = [0, 0] } }                                  # cam
-3 = { points = { W = [0, 0], A = [60, 0], B = [-50, 10] } }      # coupler, roller pin W
-4 = { points = { Q = [0, 0], A = [60, 0] } }
-5 = { points = { R = [0, 0], B = [62, 0] } }
-
-[[cams]]
-cam = "2"
-follower = "3"
-profile = { circle = { center = [15, 0], radius = 40 } }
-roller = { center = "W", radius = 10 }
-
-[input]
-link = "2"
-angle = 30
-omega = 10
-alpha = 0
-
-[guess]
-W = [13, 57.5]
-A = [73, 57.5]
-B = [-37, 67.5]
-
-[find]
-velocity = ["W"]
-omega = ["3"]
-instant_centers = "all"
-"""
+TRIAD = (Path(__file__).resolve().parent / "cam-on-coupler.toml").read_text()
 
 
 def _text(name: str, angle: float | None = None, omega: float | None = None) -> str:

@@ -13,7 +13,9 @@ position, the same lower-pair linkage:
   warning at the solve).
 
 The equivalent link and its joints are added to the scene (``Scene.equivalent_links``) so that the
-plan's dyads, the polygons, the analytic check and Kennedy's theorem use it like any other link.
+plan's dyads, the polygons and the analytic check use it like any other link. Kennedy's theorem does
+not: it asks centers between the scene's own links and takes the pair's common normal as a line edge
+(``engine.centers``).
 """
 
 from __future__ import annotations
