@@ -15,6 +15,7 @@ centers, and a disc cam whose roller rides on a coupler held by two rockers (a t
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
@@ -171,3 +172,22 @@ def test_the_steps_name_the_common_normal_in_every_language() -> None:
                         ("ro", "normala comună n(C23) prin C23")):
         text = kennedy_sentence(step, load_catalogue(lang), Context(solution, {}))
         assert words in text and "I12 I13" in text, (lang, text)
+
+
+def test_the_sheet_draws_the_common_normal_as_a_kennedy_line_and_the_line_edge_dash_dot() -> None:
+    from kinepoly.render.centers import LINE_EDGE
+    from kinepoly.render.primitives import Path as Stroked
+    from kinepoly.render.sheet import build_sheet
+
+    solution = kinepoly.solve(loads_scene(_text("metu-cam")))
+    items = build_sheet(solution).layer("instant-centers").items
+    [normal] = [i for i in items if isinstance(i, Stroked) and i.role == "kennedy n(C23)"]
+    [edge] = [i for i in items if isinstance(i, Stroked) and i.role == "diagram edge 23"]
+    assert edge.stroke == LINE_EDGE and not any(i.role.startswith("diagram edge") and "eq" in i.role for i in items)
+    # the normal runs from the contact through I23 (both on paper, on the drawn segment)
+    (x0, y0), (x1, y1) = normal.points
+    length = math.hypot(x1 - x0, y1 - y0)
+    centers = [i for i in items if i.role == "center I23" and hasattr(i, "center")]
+    assert length > 5.0 and centers
+    cx, cy = centers[0].center  # type: ignore[attr-defined]
+    assert abs((x1 - x0) * (cy - y0) - (y1 - y0) * (cx - x0)) / length <= 1e-6

@@ -8,6 +8,12 @@ error is taken. A pair is unusable when the two centers of a line coincide or th
 one line; when no pair is usable the position is degenerate (SingularityError naming them).
 Where the planned path is blocked so, one more center is derived if it opens other triangles.
 
+A cam pair is a line edge: the common normal at its contact (from ``engine.contacts``, the one
+computation of the contact, on a batch of one row) is known at once as a line through the contact
+C and its direction at infinity. Its center I_ij is where the Kennedy line I_ik I_jk of one
+triangle crosses that normal, the best-conditioned triangle again; a Kennedy line that is the
+normal itself is unusable. Once found, I_ij is a center like any other.
+
 A step is reported with a ``center-ill-conditioned`` warning when one of its products has a sine
 below NEAR_SINGULAR_SIN (two centers almost one point, two lines almost one line) or the center's
 estimated relative error exceeds LOUD_ERROR (a crossing so far away that its distance lost digits).
