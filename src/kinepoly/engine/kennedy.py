@@ -136,8 +136,6 @@ class _Normal:
     contact: str
     at: Vec
     direction: Vec
-    point: Projective
-    toward: Projective
     line: Projective
 
 
@@ -156,10 +154,9 @@ def _common_normals(mechanism: Mechanism, pose: Pose, frame: LocalFrame) -> dict
         if cam.name not in found:
             continue
         at, n = complex(found[cam.name].point[0]), complex(found[cam.name].normal[0])
-        point, toward = frame.point((at.real, at.imag)), frame.point_at_infinity((n.real, n.imag))
-        line = wedge(point, toward).value
+        line = wedge(frame.point((at.real, at.imag)), frame.point_at_infinity((n.real, n.imag))).value
         assert line is not None  # a finite point and a point at infinity are never one point
-        out[cam.name] = _Normal(f"C{cam.name}", (at.real, at.imag), (n.real, n.imag), point, toward, line)
+        out[cam.name] = _Normal(f"C{cam.name}", (at.real, at.imag), (n.real, n.imag), line)
     return out
 
 
