@@ -84,8 +84,9 @@ def _leg(mechanism: Mechanism, ternary: str, link: str, inner: Revolute | Slider
 
 
 def triad_of(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
-    """The triad a group is, or None (a group of another shape keeps its linear solve)."""
-    if len(group.links) != 4 or len(group.joints) != 6:
+    """The triad a group is, or None (a group of another shape keeps its linear solve, as does one with a
+    floating follower on a spline cam)."""
+    if len(group.links) != 4 or len(group.joints) != 6 or group.cams:
         return None
     inside = set(group.links)
     for ternary in group.links:
