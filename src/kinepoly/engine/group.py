@@ -180,9 +180,12 @@ def _store(polygon: Polygon, group: NewtonGroup, u: Reals, extra: dict[tuple[str
 def _record(polygon: Polygon, group: NewtonGroup, found: list[str]) -> None:
     if polygon.record:
         tips = ", ".join(f.lower() for f in found)
-        polygon.step(Step(polygon=polygon.kind, kind="linear-solve", equation=f"joint equations of group {group.name}",
+        equivalent = ", ".join(f"{cam.name} {centre_label(cam)}{cam.point} {centre_label(cam)} {cam.point}"
+                               for cam in group.cams)  # pair, link, K, W
+        polygon.step(Step(polygon=polygon.kind, kind="linear-solve", equation=f"joint equations of group {group.name}"
+                          + "".join(f" with the equivalent link {centre_label(c)}{c.point}" for c in group.cams),
                           result=tips, params=(("group", group.name), ("links", ", ".join(group.links)),
-                                               ("tips", tips))))
+                                               ("tips", tips), *((("equivalent", equivalent),) if group.cams else ()))))
 
 
 def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict[str, Points]) -> None:
