@@ -24,7 +24,7 @@ import numpy as np
 
 from kinepoly.engine.branches import follow_branch
 from kinepoly.engine.cam_contact import Candidates, Ints
-from kinepoly.engine.cam_place import follow_contact, guessed_contact, seeded_contact
+from kinepoly.engine.cam_place import floating_unreachable, follow_contact, guessed_contact, seeded_contact
 from kinepoly.engine.closures import Choice, Closure
 from kinepoly.engine.newton import group_size, newton_row, start_poses
 from kinepoly.engine.plan import CamGroup, NewtonGroup, PositionPlan
@@ -149,7 +149,8 @@ class NearestGuess:
         if found is None:
             raise AssemblyError(
                 f"group {group.name} does not close at {describe_input(mechanism)}: Newton's method stopped with a "
-                f"joint residual of {residual:.3g}; the group cannot be assembled there, or [guess] is far from it")
+                f"joint residual of {residual:.3g}; the group cannot be assembled there, or [guess] is far from it"
+                f"{floating_unreachable(group)}")
         poses = {**placed.poses, **{link: ArrayPose.of_rows([pose]) for link, pose in found.items()}}
         return replace(placed, poses=poses)
 
@@ -277,7 +278,7 @@ class Continuity:
         if not closed[ok].all():
             failures = (*failures, Failure(group.name, "", ok & ~closed, lambda _: (
                 f"Newton's method does not close group {group.name} from the rows before it "
-                "(the group cannot be assembled there)")))
+                f"(the group cannot be assembled there){floating_unreachable(group)}")))
         return replace(placed, poses=poses, ok=ok & closed, failures=failures)
 
 

@@ -19,13 +19,16 @@ import numpy as np
 from kinepoly.engine.cam_contact import (
     Candidates,
     Ints,
+    cam_spline,
     centre_label,
     contact_candidates,
     contact_label,
     contact_rows,
+    offset_of,
 )
-from kinepoly.engine.plan import CamGroup
+from kinepoly.engine.plan import CamGroup, NewtonGroup
 from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.geom.spline import nearest_parameter
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
@@ -34,7 +37,8 @@ from kinepoly.scene.spec import CamSpec
 if TYPE_CHECKING:
     from kinepoly.engine.position import Placement, Policy
 
-__all__ = ["follow_contact", "guessed_contact", "place_cam", "seeded_contact"]
+__all__ = ["floating_unreachable", "follow_contact", "guessed_contact", "place_cam", "place_floating_contacts",
+           "seeded_contact"]
 
 Vec = tuple[float, float]
 
@@ -113,9 +117,8 @@ def _unreachable(group: CamGroup) -> str:
             "cannot reach it; move the follower's joint or its point toward the cam")
 
 
-def _concave(group: CamGroup, curvature: Reals, unit: str) -> Callable[[int], str]:
+def _concave(cam: CamSpec, curvature: Reals, unit: str) -> Callable[[int], str]:
     """Why a row's contact cannot be touched: the concave radius there."""
-    cam = group.cam
 
     def why(row: int) -> str:
         radius = f"{1.0 / abs(float(curvature[row])):.6g} {unit}"
@@ -128,10 +131,9 @@ def _concave(group: CamGroup, curvature: Reals, unit: str) -> Callable[[int], st
     return why
 
 
-def _undercut(group: CamGroup, curvature: np.ndarray) -> Bools:
+def _undercut(cam: CamSpec, curvature: np.ndarray) -> Bools:
     """Rows where a roller is larger than the profile's concave radius at the contact, or a flat face
     touches a concave stretch (it would cut into the cam on both sides of the contact)."""
-    cam = group.cam
     concave = -curvature if not cam.inside else curvature
     if cam.kind == "flat":
         return np.asarray(concave > 0.0)
@@ -154,14 +156,48 @@ def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: 
         ok = ok & ~missing
     choice, notices = policy.contact(mechanism, group, candidates, replace(placed, ok=ok))
     u = candidates.parameter(choice)
-    rows = contact_rows(cam, placed.poses[group.known], u)
-    undercut = ok & _undercut(group, rows.curvature)
+    placed = replace(placed, poses={**placed.poses, group.link: candidates.pose(choice)}, ok=ok, failures=failures,
+                     notices=(*placed.notices, *notices))
+    return _recorded(mechanism, group.name, cam, u, placed, policy)
+
+
+def _recorded(mechanism: Mechanism, group: str, cam: CamSpec, u: Reals, placed: Placement,
+              policy: Policy) -> Placement:
+    """The kept contact at parameters ``u`` recorded (Q, K and u), its undercut rows raised or marked."""
+    from kinepoly.engine.position import Failure
+
+    rows = contact_rows(cam, placed.poses[cam.cam], u)
+    ok, failures = placed.ok, placed.failures
+    undercut = ok & _undercut(cam, rows.curvature)
     if undercut.any():
-        why = _concave(group, rows.curvature, mechanism.scene.units.length)
+        why = _concave(cam, rows.curvature, mechanism.scene.units.length)
         policy.unreachable(_where(mechanism, cam) + why(int(np.flatnonzero(undercut)[0])))
-        failures = (*failures, Failure(group.name, cam.point or "", undercut, why))
+        failures = (*failures, Failure(group, cam.point or "", undercut, why))
         ok = ok & ~undercut
     marks = {**placed.marks, centre_label(cam): rows.centre, contact_label(cam): rows.point}
-    return replace(placed, poses={**placed.poses, group.link: candidates.pose(choice)}, ok=ok, failures=failures,
-                   notices=(*placed.notices, *notices), marks=marks,
+    return replace(placed, ok=ok, failures=failures, marks=marks,
                    contact_parameters={**placed.contact_parameters, cam.name: u})
+
+
+def floating_unreachable(group: NewtonGroup) -> str:
+    """Why a group with a floating follower on a spline cam does not close (empty without such a follower)."""
+    return "".join(
+        f"; or follower {cam.follower} cannot touch cam {cam.cam}: with the group's joints held, "
+        f"{'the roller' + chr(39) + 's centre' if cam.kind == 'roller' else 'the knife edge'} {cam.point} cannot "
+        f"reach the profile{' offset by the roller' if cam.kind == 'roller' else ''}; move the follower's joints "
+        "or its point toward the cam" for cam in group.cams)
+
+
+def place_floating_contacts(mechanism: Mechanism, group: NewtonGroup, placed: Placement,
+                            policy: Policy) -> Placement:
+    """The contacts of the spline cams whose follower floats in ``group`` (closed by Newton with the contact's
+    parameter as an unknown): each row's parameter is W's foot on the offset curve, recorded as for a held
+    follower."""
+    for cam in group.cams:
+        w = placed.poses[cam.follower].world(mechanism.local(cam.follower, cam.point or ""))
+        at = placed.poses[cam.cam].to_local(w)
+        spline, rho = cam_spline(cam), offset_of(cam)
+        u = np.array([nearest_parameter(spline, complex(z), rho) if ok else 0.0
+                      for z, ok in zip(at, placed.ok, strict=True)])
+        placed = _recorded(mechanism, group.name, cam, u, placed, policy)
+    return placed

@@ -4,7 +4,11 @@ Such a group (a triad, say) has no two-line construction of a dyad: its tips com
 linear solve of the joint equations, and the step says so. Unknowns per link k: the velocity
 (acceleration) of its frame origin and omega_k (alpha_k). A pin at P of links i and j:
 v_i(P) = v_j(P). A slider: omega_b = omega_g, and the block's point moves relative to the
-guide only along the slide (for accelerations after taking off the Coriolis term).
+guide only along the slide (for accelerations after taking off the Coriolis term). A spline cam whose
+follower floats in the group: at this instant the pair is the equivalent link K W (K the profile's centre
+of curvature, a point of the cam; ``engine.cam_polygons``), whose length does not change to second order:
+(v_W - v_K) . e = 0, e the unit vector from K to W, and (a_W - a_K) . e = -|v_W - v_K|^2 / |K W| (its
+normal term; the link's own omega and alpha drop out of these two rows).
 All rows are solved by one stacked ``numpy.linalg.solve``; a row whose equations (made
 dimensionless) have a condition number above ``SINGULAR_CONDITION`` is singular.
 """
@@ -15,6 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from kinepoly.engine.cam_contact import centre_label
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import JointSolve, Polygon
 from kinepoly.engine.position import describe_input
@@ -88,6 +93,14 @@ def _system(polygon: Polygon, group: NewtonGroup, extra: dict[tuple[str, str], P
         known = known + extra.get(("slide", joint.name), polygon.zero)
         rows.append(normal.real[:, None] * row_x + normal.imag[:, None] * row_y)
         rhs.append(-(normal.real * known.real + normal.imag * known.imag))
+    for cam in group.cams:  # the equivalent link K W: no stretch along e
+        row_x, row_y = np.zeros((n, size)), np.zeros((n, size))
+        w, k = cam.point or "", centre_label(cam)
+        e = polygon.world(w) - polygon.world(k)
+        e = e / np.abs(e)
+        known = term(cam.follower, w, 1.0, row_x, row_y) - polygon.tip(cam.cam, k)
+        rows.append(e.real[:, None] * row_x + e.imag[:, None] * row_y)
+        rhs.append(extra.get(("contact", cam.name), polygon.zero).real - (e.real * known.real + e.imag * known.imag))
     order = 1 if polygon.kind == "velocity" else 2
     for drive in group.drives:  # one more equation each: the input's rate
         if isinstance(drive.joint, Revolute):  # omega_moving - omega_base = omega of the motor
@@ -145,27 +158,34 @@ def _solve(polygon: Polygon, group: NewtonGroup, matrix: Reals, rhs: Reals) -> R
     return np.asarray(np.linalg.solve(matrix, rhs[:, :, None])[:, :, 0])
 
 
+def _group_points(group: NewtonGroup) -> list[tuple[str, str]]:
+    """(link, point) of the group's joints and of its floating followers' contact points W."""
+    return [*((link, joint.point) for joint in group.joints for link in _joint_links(joint)),
+            *((cam.follower, cam.point or "") for cam in group.cams)]
+
+
 def _store(polygon: Polygon, group: NewtonGroup, u: Reals, extra: dict[tuple[str, str], Points]) -> list[str]:
     for k, link in enumerate(group.links):
         polygon.set_rate(link, u[:, 3 * k + 2])
     found = []
-    for joint in group.joints:
-        for link in _joint_links(joint):
-            if link in group.links and polygon.label(link, joint.point) not in polygon.tips:
-                k = 3 * group.links.index(link)
-                r = polygon.world(joint.point) - _origin(polygon, link)
-                tip = u[:, k] + 1j * u[:, k + 1] + u[:, k + 2] * (1j * r) + extra.get((link, joint.point),
-                                                                                        polygon.zero)
-                found.append(polygon.add_tip(link, joint.point, np.asarray(tip)))
+    for link, point in _group_points(group):
+        if link in group.links and polygon.label(link, point) not in polygon.tips:
+            k = 3 * group.links.index(link)
+            r = polygon.world(point) - _origin(polygon, link)
+            tip = u[:, k] + 1j * u[:, k + 1] + u[:, k + 2] * (1j * r) + extra.get((link, point), polygon.zero)
+            found.append(polygon.add_tip(link, point, np.asarray(tip)))
     return found
 
 
 def _record(polygon: Polygon, group: NewtonGroup, found: list[str]) -> None:
     if polygon.record:
         tips = ", ".join(f.lower() for f in found)
-        polygon.step(Step(polygon=polygon.kind, kind="linear-solve", equation=f"joint equations of group {group.name}",
+        equivalent = ", ".join(f"{cam.name} {centre_label(cam)}{cam.point} {centre_label(cam)} {cam.point}"
+                               for cam in group.cams)  # pair, link, K, W
+        polygon.step(Step(polygon=polygon.kind, kind="linear-solve", equation=f"joint equations of group {group.name}"
+                          + "".join(f" with the equivalent link {centre_label(c)}{c.point}" for c in group.cams),
                           result=tips, params=(("group", group.name), ("links", ", ".join(group.links)),
-                                               ("tips", tips))))
+                                               ("tips", tips), *((("equivalent", equivalent),) if group.cams else ()))))
 
 
 def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict[str, Points]) -> None:
@@ -180,12 +200,17 @@ def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict
 def acceleration_by_linear_solve(ctx: _Context, group: NewtonGroup) -> None:
     polygon = ctx.b
     extra: dict[tuple[str, str], Points] = {}
+    for link, point in _group_points(group):
+        if link in group.links:
+            r = polygon.world(point) - _origin(polygon, link)
+            w = polygon.omega_of(link)
+            extra[(link, point)] = np.asarray((ctx.rules.normal * w * w) * r)
+    for cam in group.cams:  # the equivalent link's normal term along e: -|v_W - v_K|^2 / |K W|
+        w_point, k = cam.point or "", centre_label(cam)
+        v_rel = ctx.v_tip(cam.follower, w_point) - ctx.v_tip(cam.cam, k)
+        length = np.abs(polygon.world(w_point) - polygon.world(k))
+        extra[("contact", cam.name)] = np.asarray(ctx.rules.normal * np.abs(v_rel) ** 2 / length + 0j)
     for joint in group.joints:
-        for link in _joint_links(joint):
-            if link in group.links:
-                r = polygon.world(joint.point) - _origin(polygon, link)
-                w = polygon.omega_of(link)
-                extra[(link, joint.point)] = np.asarray((ctx.rules.normal * w * w) * r)
         if isinstance(joint, SliderSpec):
             v_rel = ctx.v_tip(joint.block, joint.point) - ctx.v_tip(joint.guide, joint.point)
             w = polygon.omega_of(joint.guide)

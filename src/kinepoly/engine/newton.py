@@ -2,7 +2,9 @@
 
 Unknowns are the poses (x, y, theta) of the group's links; equations are the joints that touch
 the group (a pin: two equations; a slider: the block turns with its guide, and its point lies on
-the guide's line; an input driving a joint of the group: its angle or stroke). The Jacobian is in closed form; the step is a least-squares solve, halved
+the guide's line; an input driving a joint of the group: its angle or stroke; a spline cam whose follower floats in
+the group: its knife edge or roller centre W on the profile's offset curve X(u), the parameter u one more
+unknown). The Jacobian is in closed form; the step is a least-squares solve, halved
 until the residual falls, and the iteration goes on to the rounding level (until no step lowers
 the residual). A row that cannot close makes the residual stall at its least-squares floor:
 after three steps in a row that do not halve it, far from closing, the row is given up.
@@ -18,12 +20,14 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from kinepoly.engine.cam_contact import cam_spline, offset_of
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.geom.arrays import Reals
+from kinepoly.geom.spline import nearest_parameter
 from kinepoly.geom.vec import phase
 from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
-from kinepoly.scene.spec import SliderSpec
+from kinepoly.scene.spec import CamSpec, SliderSpec
 
 __all__ = ["CLOSED_REL", "group_size", "newton_row", "start_poses"]
 
@@ -44,7 +48,7 @@ class _RowSystem:
                  values: Mapping[int, float]) -> None:
         self.known = known
         self.index = {link: 3 * k for k, link in enumerate(group.links)}
-        self.size = 3 * len(group.links)
+        self.size = 3 * len(group.links) + len(group.cams)
         self.scale = size
         self.pins: list[tuple[str, tuple[float, float], str, tuple[float, float]]] = []
         self.slides: list[tuple[SliderSpec, tuple[float, float]]] = []
@@ -56,7 +60,8 @@ class _RowSystem:
                 self.slides.append((joint, mechanism.local(joint.block, joint.point)))
         self._block_point = {slider.name: local for slider, local in self.slides}
         self.drives = [(drive, values[drive.index]) for drive in group.drives]
-        self.count = 2 * (len(self.pins) + len(self.slides)) + len(self.drives)
+        self.cams = [(cam, mechanism.local(cam.follower, cam.point or "")) for cam in group.cams]
+        self.count = 2 * (len(self.pins) + len(self.slides) + len(self.cams)) + len(self.drives)
 
     def _point(self, q: Reals, link: str, local: tuple[float, float]) -> tuple[float, float, float, float, float]:
         """World point of ``local`` on ``link``, its lever r = R local, and the link's theta."""
@@ -106,7 +111,46 @@ class _RowSystem:
         for drive, value in self.drives:
             self._drive_row(q, drive, value, row, out, jac)
             row += 1
+        for c, (cam, local) in enumerate(self.cams):
+            self._contact_rows(q, cam, local, self.size - len(self.cams) + c, row, out, jac)
+            row += 2
         return out, jac
+
+    def _contact_rows(self, q: Reals, cam: CamSpec, local: tuple[float, float], column: int, row: int,
+                      out: Reals, jac: Reals) -> None:
+        """W - (r_cam + A_cam X(u)) = 0, with dX/du = r'(u) (1 - rho kappa) (the offset curve runs along r)."""
+        u = float(q[column])
+        r, first, second = (complex(z[0]) for z in cam_spline(cam).derivatives(np.array([u])))
+        speed = abs(first)
+        rho = offset_of(cam)
+        x_cam = r + rho * 1j * first / speed
+        slope = first * (1.0 - rho * (first.conjugate() * second).imag / speed**3)
+        wx, wy, rx, ry, _ = self._point(q, cam.follower, local)
+        cx, cy, _, _, theta_c = self._point(q, cam.cam, (x_cam.real, x_cam.imag))
+        out[row], out[row + 1] = wx - cx, wy - cy
+        k = self.index.get(cam.follower)
+        if k is not None:
+            jac[row, k] += 1.0
+            jac[row + 1, k + 1] += 1.0
+            jac[row, k + 2] -= ry
+            jac[row + 1, k + 2] += rx
+        along = complex(math.cos(theta_c), math.sin(theta_c)) * slope
+        jac[row, column] -= along.real
+        jac[row + 1, column] -= along.imag
+
+    def start_parameters(self, q: Reals) -> Reals:
+        """Each contact's parameter to start from: the point of the offset curve nearest W at the start poses."""
+        out = []
+        for cam, local in self.cams:
+            wx, wy, _, _, _ = self._point(q, cam.follower, local)
+            pose = self._pose(q, cam.cam)
+            at = (complex(wx, wy) - complex(pose.x, pose.y)) * complex(math.cos(pose.theta), -math.sin(pose.theta))
+            out.append(nearest_parameter(cam_spline(cam), at, offset_of(cam)))
+        return np.array(out)
+
+    def _pose(self, q: Reals, link: str) -> LinkPose:
+        k = self.index.get(link)
+        return self.known[link] if k is None else LinkPose(float(q[k]), float(q[k + 1]), float(q[k + 2]))
 
     def _drive_row(self, q: Reals, drive: Drive, value: float, row: int, out: Reals, jac: Reals) -> None:
         """A motor: (theta_moving - theta_base - value) times the size; a cylinder: e . (s - t) - value."""
@@ -162,7 +206,7 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
     """Close the group at one row from ``start``: the poses (None where it does not close) and the
     final joint residual. ``values``: the inputs' values at the row, by input index (for driven joints)."""
     system = _RowSystem(mechanism, group, known, size, values or {})
-    q = start
+    q = np.concatenate((start, system.start_parameters(start))) if group.cams else start
     r, jac = system.evaluate(q)
     norm_r = float(np.linalg.norm(r))
     stalled = 0

@@ -211,18 +211,21 @@ def two_slide_roles(dyad: Dyad, mechanism: Mechanism) -> TwoSlideRoles:
 @dataclass(frozen=True)
 class NewtonGroup:
     """Links that form no dyad: solved together by damped Newton from the guess. ``drives``: the inputs
-    that drive joints of the group (each one more equation)."""
+    that drive joints of the group (each one more equation); ``cams``: the spline cams whose follower floats
+    in the group on a cam known before it (the contact's parameter one more unknown, ``engine.newton``)."""
 
     links: tuple[str, ...]
     joints: tuple[Joint, ...]
     drives: tuple[Drive, ...] = ()
+    cams: tuple[CamSpec, ...] = ()
 
     @property
     def name(self) -> str:
         return "-".join(self.links) + " (Newton)"
 
     def known_links(self) -> tuple[str, ...]:
-        return tuple(sorted({x for j in self.joints for x in joint_links(j) if x not in self.links}))
+        return tuple(sorted({x for j in self.joints for x in joint_links(j) if x not in self.links}
+                            | {cam.cam for cam in self.cams}))
 
 
 Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
@@ -372,18 +375,24 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
         groups.append(group)
         known.update(group.links)
     rest = tuple(n for n in mechanism.link_names if n not in known)
+    floating: list[CamSpec] = []
     for cam in mechanism.scene.cams:
-        if cam.is_spline and (cam.cam in rest or cam.follower in rest):
+        if not cam.is_spline or (cam.cam not in rest and cam.follower not in rest):
+            continue
+        if cam.cam in rest or cam.kind == "flat":
             raise SceneError(
-                f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the follower {cam.follower} is not held by "
-                f"one joint (a pin or a slider whose block it is) to a link known before it, with the cam "
-                f"{cam.cam} known first; this version solves a points profile's contact only so (floating "
-                "followers, and a follower that drives its cam, are not built); join the follower to the frame "
-                "or to a link placed before it by one pin or slider")
+                f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: " + (
+                    f"the cam {cam.cam} is not known before its follower {cam.follower} (the follower drives "
+                    "the cam); this version solves a points profile only on a cam placed first: drive the cam "
+                    "or join it to the frame" if cam.cam in rest else
+                    f"the flat-faced follower {cam.follower} floats (it is not held by one joint to a link known "
+                    "before it); this version solves a floating follower on a points profile with a knife edge or "
+                    "a roller only: use one of those, or hold the face's link by one pin or slider to a known link"))
+        floating.append(cam)
     if rest:
         joints = tuple(j for j in mechanism.joints if any(x in rest for x in joint_links(j)))
         drives = tuple(d for d in mechanism.drives if not d.on_frame and (d.moving in rest or d.base in rest))
-        groups.append(NewtonGroup(rest, joints, drives))
+        groups.append(NewtonGroup(rest, joints, drives, tuple(floating)))
     return driven, groups
 
 

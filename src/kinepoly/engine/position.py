@@ -194,6 +194,10 @@ def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placem
     for index, group in enumerate(groups):
         if isinstance(group, NewtonGroup):
             placed = policy.newton(mechanism, group, placed)
+            if group.cams:
+                from kinepoly.engine.cam_place import place_floating_contacts
+
+                placed = place_floating_contacts(mechanism, group, placed, policy)
             continue
         if isinstance(group, GearGroup):
             pose, rolled = place_rolling(mechanism, group.gear, group.link, group.joint, group.carrier,

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
+from kinepoly.engine.cam_contact import centre_label
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import Line, LineCrossing, Polygon
 from kinepoly.engine.steps import Direction, DrawnVector, Step
@@ -59,6 +60,9 @@ class Leg:
     known: str
     pin: str | None
     slider: SliderSpec | None
+    equivalent: str = ""
+    """A spline cam pair's name where the leg is its equivalent link K W (``link`` names it, K on the cam is
+    ``pin``, W on the ternary ``point``): a link at this instant only, whose omega is kept with the pair."""
 
 
 @dataclass(frozen=True)
@@ -84,25 +88,54 @@ def _leg(mechanism: Mechanism, ternary: str, link: str, inner: Revolute | Slider
 
 
 def triad_of(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
-    """The triad a group is, or None (a group of another shape keeps its linear solve)."""
+    """The triad a group is, or None (a group of another shape keeps its linear solve). A floating follower
+    on a spline cam with two legs of its own is a triad whose third leg is the pair's equivalent link K W."""
+    if group.cams:
+        return _floating_triad(mechanism, group)
     if len(group.links) != 4 or len(group.joints) != 6:
         return None
-    inside = set(group.links)
     for ternary in group.links:
-        inner = [j for j in group.joints if ternary in joint_links(j) and set(joint_links(j)) <= inside]
-        legs_links = [next(x for x in joint_links(j) if x != ternary) for j in inner]
-        if len(inner) != 3 or len(set(legs_links)) != 3:
+        legs = _legs(mechanism, group, ternary, 3)
+        if legs is None:
             continue
-        legs = []
-        for link, joint in zip(legs_links, inner, strict=True):
-            outer = [j for j in group.joints if link in joint_links(j) and not set(joint_links(j)) <= inside]
-            leg = _leg(mechanism, ternary, link, joint, outer[0]) if len(outer) == 1 else None
-            if leg is None:
-                return None
-            legs.append(leg)
-        assur = next(n for n in ("S", f"S{ternary}", f"S_{ternary}", "S*") if not mechanism.links_of_point(n))
-        return Triad(ternary, (legs[0], legs[1], legs[2]), assur)
+        return Triad(ternary, (legs[0], legs[1], legs[2]), _assur_name(mechanism, ternary)) if legs else None
     return None
+
+
+def _assur_name(mechanism: Mechanism, ternary: str) -> str:
+    return next(n for n in ("S", f"S{ternary}", f"S_{ternary}", "S*") if not mechanism.links_of_point(n))
+
+
+def _legs(mechanism: Mechanism, group: NewtonGroup, ternary: str, count: int) -> list[Leg] | None:
+    """The legs of ``ternary`` in the group (``count`` of them); None where it does not have that many, an
+    empty list where one of them is no leg."""
+    inside = set(group.links)
+    inner = [j for j in group.joints if ternary in joint_links(j) and set(joint_links(j)) <= inside]
+    legs_links = [next(x for x in joint_links(j) if x != ternary) for j in inner]
+    if len(inner) != count or len(set(legs_links)) != count:
+        return None
+    legs = []
+    for link, joint in zip(legs_links, inner, strict=True):
+        outer = [j for j in group.joints if link in joint_links(j) and not set(joint_links(j)) <= inside]
+        leg = _leg(mechanism, ternary, link, joint, outer[0]) if len(outer) == 1 else None
+        if leg is None:
+            return []
+        legs.append(leg)
+    return legs
+
+
+def _floating_triad(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
+    """The follower of the group's one spline cam as the ternary: its two legs, and the pair's equivalent
+    link K W (pinned to the cam at K, to the follower at W) as the third."""
+    if len(group.cams) != 1 or len(group.links) != 3 or len(group.joints) != 4:
+        return None
+    cam = group.cams[0]
+    legs = _legs(mechanism, group, cam.follower, 2)
+    if not legs:
+        return None
+    k = centre_label(cam)
+    legs.append(Leg("pin", f"{k}{cam.point}", cam.point or "", cam.cam, k, None, cam.name))
+    return Triad(cam.follower, (legs[0], legs[1], legs[2]), _assur_name(mechanism, cam.follower))
 
 
 # -- the construction, shared by both polygons ----------------------------------------------------
@@ -227,11 +260,16 @@ def _velocity_leg(polygon: Polygon, triad: Triad, leg: Leg) -> _LegLine:
     return _LegLine(at, start, direction, ())
 
 
-def velocity_by_assur_point(polygon: Polygon, triad: Triad, sliding: dict[str, Points]) -> None:
-    """The triad's velocity polygon through its Assur point."""
+def velocity_by_assur_point(polygon: Polygon, triad: Triad, sliding: dict[str, Points],
+                            equivalent: dict[str, Points] | None = None) -> None:
+    """The triad's velocity polygon through its Assur point (``equivalent``: where an equivalent link's
+    omega is kept, by its pair)."""
     legs = [_velocity_leg(polygon, triad, leg) for leg in triad.legs]
     built, s_world, order = _construct(polygon, triad, legs, lambda r: polygon.zero)
     _finish(polygon, triad, legs, built, s_world, order)
+    for leg, along in zip(triad.legs, built.along, strict=True):
+        if leg.equivalent and equivalent is not None:
+            equivalent[leg.equivalent] = np.asarray(along + 0j)
     for leg, tip in zip(triad.legs, built.tips, strict=True):
         if leg.slider is not None:
             on_leg, on_t = (polygon.tip(leg.link, leg.point), tip) if leg.kind == "slot" else (
@@ -254,7 +292,7 @@ def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
         _record(polygon, triad, legs, built, order, labels)
     read_rate(polygon, t, triad.assur, labels[order[2]], built.rate)
     for leg, along in zip(triad.legs, built.along, strict=True):
-        if leg.kind == "pin":
+        if leg.kind == "pin" and not leg.equivalent:
             assert leg.pin is not None
             read_rate(polygon, leg.link, leg.pin, leg.point, along)
 
@@ -349,7 +387,9 @@ def _acceleration_leg(ctx: _Context, triad: Triad, leg: Leg) -> _LegLine:
     at = b.world(leg.point)
     if leg.kind == "pin":
         assert leg.pin is not None
-        (through, direction, _), normal, _ = ctx.normal_line(leg.known, leg.pin, leg.point, leg.link)
+        omega = np.asarray(ctx.v.equivalent[leg.equivalent].real) if leg.equivalent else None
+        (through, direction, _), normal, _ = ctx.normal_line(leg.known, leg.pin, leg.point, leg.link,
+                                                             rigid=not leg.equivalent, omega=omega)
         return _LegLine(at, through, np.asarray(direction), (normal,) if normal is not None else ())
     assert leg.slider is not None
     start = b.tip(leg.known, leg.point)

@@ -423,7 +423,7 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
         elif isinstance(group, CamGroup):
             velocity_by_cam(polygon, group, sliding, equivalent)
         elif (triad := triad_of(polygon.mechanism, group)) is not None:
-            velocity_by_assur_point(polygon, triad, sliding)
+            velocity_by_assur_point(polygon, triad, sliding, equivalent)
         else:
             velocity_by_linear_solve(polygon, group, sliding)
     for link, point in wanted:

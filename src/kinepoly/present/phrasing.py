@@ -604,6 +604,10 @@ class _Phrase:
             raise ValueError(f"linear-solve step {step.equation!r}: no parameter 'links' and no Newton group for it")
         key = "step.linear_solve_velocity" if self.polygon == "velocity" else "step.linear_solve_acceleration"
         text = self.say.say(key, links=", ".join(links), tips=shown, count=str(len(links)))
+        if "equivalent" in self.p:  # a floating follower's spline cam pair, as one of the group's equations
+            for pair, link, centre, point in (part.split(" ") for part in str(self.p["equivalent"]).split(", ")):
+                text += " " + self.say.say("step.linear_solve_equivalent", pair=pair, link=link, centre=centre,
+                                           point=point)
         items = []
         for label in labels:
             fields = self.tip_fields(label, tips.get(label, (0.0, 0.0)))
