@@ -289,6 +289,7 @@ def test_cli_prints_csv_without_output_files(capsys: pytest.CaptureFixture[str])
     (["--steps", "1"], 2, "--positions"),
     (["--steps", "10", "--from", "0"], 2, "--from and --to"),
     (["--steps", "10", "--from", "nan", "--to", "3"], 2, "--from"),
+    (["--steps", "10", "--from", "30", "--to", "30"], 2, "is empty"),
     (["--steps", "ten"], 2, "--steps"),
     (["--positions", "0"], 2, "--positions"),
     (["--steps", "10", "--centrode", "1"], 2, "--centrode"),

@@ -267,6 +267,9 @@ def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPos
     if start is None or stop is None:
         start, stop, periodic, notices = _default_range(mechanism, plan, seed, mechanism_size(mechanism, seed))
     else:
+        if start == stop:
+            raise SceneError(f"--from and --to: the range from {start:.6g} to {stop:.6g} is empty; give two different "
+                             "inputs (`kinepoly solve` gives a single position)")
         periodic = _is_full_turn(start, stop, full)
     if periodic:
         shown = np.linspace(start, stop, steps, endpoint=False)
