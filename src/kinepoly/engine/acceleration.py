@@ -91,13 +91,13 @@ class _Context:
         the turning rate of known_point -> point when it is not ``moving``'s, as an equivalent link's)."""
         b = self.b
         start = b.tip(known_link, known_point)
-        r = b.world(point) - b.world(known_point)
+        r, turned = b.positions.chord(known_point, point)
         w = b.omega_of(moving) if omega is None else omega
         normal = (w * w) * r
         end = np.asarray(start - normal if self.rules.normal < 0.0 else start + normal)
         size = link_length(b.mechanism, moving, known_point, point) if rigid else None
         vector = DrawnVector(f"a^n_{point}/{known_point}", b.vec(start), b.vec(end), "normal") if b.record else None
-        return (end, np.asarray(1j * r), size), vector, f"a^t_{point}/{known_point} perpendicular to {known_point}{point}"
+        return (end, turned, size), vector, f"a^t_{point}/{known_point} perpendicular to {known_point}{point}"
 
     def slide_line(self, slider: SliderSpec, other: str, moving: str, point: str) -> tuple[Line, list[DrawnVector]]:
         """a_point@other (+ the Coriolis term where the guide turns), then the line along the slide."""

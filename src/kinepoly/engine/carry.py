@@ -38,10 +38,7 @@ def _sign(drive: Drive, link: str) -> float:
 def relative_turn(drive: Drive, link: str, values: Reals) -> Points:
     """The rotation of ``link`` relative to the drive's other link, at every row (a unit complex)."""
     if isinstance(drive.joint, Revolute):
-        angle = _sign(drive, link) * values
-        out = np.empty(len(values), np.complex128)
-        out.real, out.imag = np.cos(angle), np.sin(angle)
-        return out
+        return np.asarray(np.exp(1j * (_sign(drive, link) * values)))
     return np.full(len(values), turn(_sign(drive, link) * drive.joint.angle_rad))
 
 

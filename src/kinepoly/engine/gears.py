@@ -188,8 +188,7 @@ def place_rolling(mechanism: Mechanism, gear: GearSpec, link: str, joint: Revolu
         delta = np.asarray(sigma / curve.radius)
         aim = np.asarray(np.angle(the_mesh.m[side]) - gear.phase[side])
         theta = aim - delta
-        rotation = np.empty(len(theta), np.complex128)
-        rotation.real, rotation.imag = np.cos(theta), np.sin(theta)
+        rotation = np.asarray(np.exp(1j * theta))
         pose = ArrayPose(np.asarray(centre - rotation * complex(*mechanism.local(link, curve.center))), rotation)
         return pose, Rolled(delta, aim)
     assert isinstance(joint, SliderSpec)

@@ -76,6 +76,7 @@ class Member(NamedTuple):
     (a named tuple, frozen and cheap to make: a polygon makes one per tip and link)."""
 
     label: str
+    point: str
     at: Points
     fixed: bool
 
@@ -159,7 +160,7 @@ class Polygon:
         for link in links:
             entries = self.members.setdefault(link, [])
             if not known or all(m.label != label for m in entries):
-                entries.append(Member(label, at, has_point(link, point)))
+                entries.append(Member(label, point, at, has_point(link, point)))
 
     def add_tip(self, link: str, point: str, value: Points) -> str:
         """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
@@ -192,19 +193,19 @@ class Polygon:
         return value
 
     def _relative(self, link: str, point: str, label: str, member: Member) -> Points:
-        r = self.world(point) - member.at
+        r, turned = self.positions.chord(member.point, point)
         start = self.tips[member.label]
         rate = self.rate_of(link)
         assert rate is not None
         if self.kind == "velocity":
-            end = np.asarray(start + rate * (1j * r))
+            end = np.asarray(start + rate * turned)
             if self.record:
                 self._record_relative_velocity(link, label, member.label, r, start, end, rate)
             return end
         w = self.omega_of(link)
         normal = (w * w) * r
         middle = np.asarray(start - normal if self.normal_sign < 0.0 else start + normal)
-        end = np.asarray(middle + rate * (1j * r))
+        end = np.asarray(middle + rate * turned)
         if self.record:
             self._record_relative_acceleration(link, label, member.label, r, start, middle, end, w, rate)
         return end

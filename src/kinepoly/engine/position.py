@@ -78,6 +78,7 @@ class Positions:
     contact_parameters: dict[str, Reals] = field(default_factory=dict)
     """Each spline cam's contact parameter on its profile at every row."""
     _points: dict[str, Points] = field(default_factory=dict)
+    _turned: dict[tuple[str, str], tuple[Points, Points]] = field(default_factory=dict)
 
     @property
     def n(self) -> int:
@@ -90,6 +91,16 @@ class Positions:
             owner = next(link for link in self.mechanism.links_of_point(name) if link in self.poses)
             found = self.poses[owner].world(self.mechanism.local(owner, name))
             self._points[name] = found
+        return found
+
+    def chord(self, start: str, end: str) -> tuple[Points, Points]:
+        """The vector from point ``start`` to point ``end`` at every row, and that vector turned a quarter
+        counter-clockwise: the direction of the relative velocity of ``end`` about ``start`` on their link.
+        Made once, for the velocity and acceleration polygons alike (do not change them in place)."""
+        found = self._turned.get((start, end))
+        if found is None:
+            r = np.asarray(self.point(end) - self.point(start))
+            found = self._turned[start, end] = (r, np.asarray(1j * r))
         return found
 
     def world(self, link: str, point: str) -> Points:
@@ -150,9 +161,7 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
     if isinstance(inp, LinkInput):
         pivot = mechanism.input_pivot(inp).point
         x, y = mechanism.local(ground, pivot)
-        rotation = np.empty(n, np.complex128)
-        rotation.real = np.cos(inputs)
-        rotation.imag = np.sin(inputs)
+        rotation = np.exp(1j * inputs)  # e^(i theta): one complex exponential is cheaper than cos and sin apart
         poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), np.full(n, complex(x, y)), rotation)
     else:
         slider = mechanism.slider(inp.slider)

@@ -14,6 +14,7 @@ Over rows: a sweep reads every row, a solve row 0 (``Transmission.angle_deg``).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -52,29 +53,29 @@ class Transmission:
         return math.degrees(float(self.angle[0]))
 
 
-def _describe(positions: Positions, dyad: Dyad) -> tuple[Points, Points, str, str, str, str]:
-    """The dyad's two velocity directions, its point and joint, and the words of the angle."""
+def _describe(positions: Positions, dyad: Dyad) -> tuple[Callable[[], tuple[Points, Points]], str, str, str, str]:
+    """The dyad's two velocity directions (made when asked: a sweep has the sines already), its point and
+    joint, and the words of the angle."""
     point = positions.point
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point
-        first = 1j * (point(p2) - point(p1))
         second = dyad.second_joint
         if isinstance(second, Revolute):
             p3 = second.point
-            return (first, 1j * (point(p2) - point(p3)), p2, p2, f"{p1}{p2} and {p3}{p2}",
-                    f"the links {p1}{p2} and {p3}{p2} are in line")
-        return (first, slide_direction(positions, second), p2, p2, f"{p1}{p2} and the normal to slider {second.name}",
-                f"the link {p1}{p2} is square to slider {second.name}'s line")
+            return (lambda: (1j * (point(p2) - point(p1)), 1j * (point(p2) - point(p3))), p2, p2,
+                    f"{p1}{p2} and {p3}{p2}", f"the links {p1}{p2} and {p3}{p2} are in line")
+        return (lambda: (1j * (point(p2) - point(p1)), slide_direction(positions, second)), p2, p2,
+                f"{p1}{p2} and the normal to slider {second.name}", f"the link {p1}{p2} is square to slider {second.name}'s line")
     if dyad.kind == "RPR":
         r = slide_roles(dyad)
         q, p, name = r.guide_pin, r.block_pin, r.slider.name
-        return (1j * (point(p) - point(q)), slide_direction(positions, r.slider), p, p,
+        return (lambda: (1j * (point(p) - point(q)), slide_direction(positions, r.slider)), p, p,
                 f"the normal to slider {name} and the path of {p} about {q}", f"slider {name}'s line is square to {q}{p}")
     t = two_slide_roles(dyad, positions.mechanism)
     a, b = t.first_slider, t.second_slider
     assert isinstance(a, SliderSpec)
-    return (slide_direction(positions, a), slide_direction(positions, b), t.point, a.point,
+    return (lambda: (slide_direction(positions, a), slide_direction(positions, b)), t.point, a.point,
             f"sliders {a.name} and {b.name}", f"the lines of sliders {a.name} and {b.name} are parallel")
 
 
@@ -87,11 +88,12 @@ def transmission_angles(positions: Positions, plan: PositionPlan,
     out = []
     for group in plan.groups:
         if isinstance(group, Dyad):
-            first, second, point, joint, between, at_zero = _describe(positions, group)
+            directions, point, joint, between, at_zero = _describe(positions, group)
             sine = None if line_sines is None else line_sines.get(group.name)
             if sine is not None:
                 angle = np.arcsin(np.minimum(np.abs(sine), 1.0))
             else:  # a direction of no length (two points of a link in one place) is taken as 90 degrees
+                first, second = directions()
                 turn = np.arctan2(np.abs(cross(first, second)), np.abs(dot(first, second)))
                 angle = np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
             out.append(Transmission(group.name, point, joint, between, at_zero, angle))

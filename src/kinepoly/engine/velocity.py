@@ -160,7 +160,7 @@ def _revolute_line(polygon: Polygon, known_link: str, known_point: str, point: s
     when given, so that the direction's length is that link's)."""
     start = polygon.tip(known_link, known_point)
     size = None if link is None else link_length(polygon.mechanism, link, known_point, point)
-    return start, np.asarray(1j * (polygon.world(point) - polygon.world(known_point))), size
+    return start, polygon.positions.chord(known_point, point)[1], size
 
 
 def _perpendicular(polygon: Polygon, term: str, known_link: str, known_point: str, point: str) -> Direction:

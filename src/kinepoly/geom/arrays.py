@@ -114,12 +114,12 @@ def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) 
     """
     d_vec = c2 - c1
     d = length(d_vec)
-    e = d_vec * (1.0 / d)
-    a = (d * d + (r1 - r2) * (r1 + r2)) / (2.0 * d)
+    inverse = 1.0 / d
+    a = (d * d + (r1 - r2) * (r1 + r2)) * (0.5 * inverse)
     slack = (r1 - a) * (r1 + a)
     h = np.sqrt(np.maximum(slack, 0.0))
-    base = c1 + a * e
-    offset = (1j * e) * h
+    base = c1 + d_vec * (a * inverse)  # the foot on c1c2; real factors before the one complex product
+    offset = (1j * d_vec) * (h * inverse)
     return np.asarray(base + offset), np.asarray(base - offset), slack, d, h
 
 

@@ -88,7 +88,6 @@ class Mechanism:
     """The links (points in their own frames), the joints, the ground and the input of a scene."""
 
     scene: Scene
-    revolutes: tuple[Revolute, ...]
 
     @property
     def ground(self) -> str | None:
@@ -114,6 +113,12 @@ class Mechanism:
             for p in link.points:
                 out.setdefault(p.name, []).append(link.name)
         return {point: tuple(links) for point, links in out.items()}
+
+    @cached_property
+    def revolutes(self) -> tuple[Revolute, ...]:
+        """The pins implied by shared point names. A point of k links is a compound hinge: k - 1 pins,
+        each joining the first of those links (in scene order) to one of the others."""
+        return tuple(Revolute(point, (links[0], other)) for point, links in self._links_of.items() for other in links[1:])
 
     @cached_property
     def _joints_of(self) -> dict[str, tuple[Joint, ...]]:
@@ -249,22 +254,12 @@ class Mechanism:
         raise SceneError(f"{self.scene.source}: input: the input does not turn a link")
 
 
-def _revolutes(scene: Scene) -> tuple[Revolute, ...]:
-    """The pins implied by shared point names. A point of k links is a compound hinge: k - 1 pins,
-    each joining the first of those links (in scene order) to one of the others."""
-    owners: dict[str, list[str]] = {}
-    for link in scene.links:
-        for name in link.point_names:
-            owners.setdefault(name, []).append(link.name)
-    return tuple(Revolute(point, (links[0], other)) for point, links in owners.items() for other in links[1:])
-
-
 def build_mechanism(scene: Scene) -> Mechanism:
     """Build the mechanism and check its mobility by Gruebler's count.
 
     Raises MobilityError when the count is not one (a ``[given]`` scene is one free body).
     """
-    mechanism = Mechanism(scene=scene, revolutes=_revolutes(scene))
+    mechanism = Mechanism(scene)
     if scene.ground is None:
         if len(scene.links) != 1 or mechanism.joints:
             raise MobilityError(f"{scene.source}: given: a [given] scene is one free body; found "
@@ -317,18 +312,22 @@ def _compound_text(mechanism: Mechanism) -> str:
 
 
 def _check_connected(mechanism: Mechanism) -> None:
-    seen = {mechanism.ground}
-    frontier = [mechanism.ground]
-    while frontier:
-        link = frontier.pop()
-        others = [x for joint in mechanism.joints_of(link or "") for x in joint_links(joint)]
-        others += [x for gear in mechanism.scene.gears if link in gear.links for x in gear.links]
-        others += [x for cam in mechanism.scene.cams if cam.is_spline and link in (cam.cam, cam.follower)
-                   for x in (cam.cam, cam.follower)]
-        for other in others:
-            if other not in seen:
-                seen.add(other)
-                frontier.append(other)
+    scene = mechanism.scene
+    parent = {name: name for name in mechanism.link_names}
+
+    def root(link: str) -> str:
+        while parent.setdefault(link, link) != link:
+            link = parent[link]
+        return link
+
+    pairs = [joint_links(joint) for joint in mechanism.joints] + [gear.links for gear in scene.gears]
+    pairs += [(cam.cam, cam.follower) for cam in scene.cams if cam.is_spline]
+    for links in pairs:
+        first = root(links[0])
+        for other in links[1:]:
+            parent[root(other)] = first
+    ground = root(mechanism.ground or "")
+    seen = {name for name in mechanism.link_names if root(name) == ground}
     loose = [name for name in mechanism.link_names if name not in seen]
     if loose:
         raise MobilityError(f"{mechanism.scene.source}: links: link(s) {', '.join(loose)} are not joined "

@@ -104,9 +104,10 @@ def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) ->
         low = float(min(shown[0], shown[-1]))
         seed = low + (seed - low) % full
     step = abs(float(shown[1] - shown[0])) if len(shown) > 1 else 1.0
-    close = np.flatnonzero(np.abs(shown - seed) <= 1e-9 * step)
-    if close.size:
-        return shown, np.ones(len(shown), np.bool_), int(close[0])
+    nearest = min(max(round((seed - float(shown[0])) / float(shown[1] - shown[0])) if len(shown) > 1 else 0, 0),
+                  len(shown) - 1)  # the rows are evenly spaced: the one nearest the seed by arithmetic
+    if abs(float(shown[nearest]) - seed) <= 1e-9 * step:
+        return shown, np.ones(len(shown), np.bool_), nearest
     ascending = shown[-1] >= shown[0]
     low, high = (shown[0], shown[-1]) if ascending else (shown[-1], shown[0])
     if periodic or low < seed < high:

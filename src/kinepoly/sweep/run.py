@@ -92,8 +92,8 @@ class SweepResult:
     notices: tuple[Notice, ...]
     periodic: bool
     seed_value: float
-    skeleton: tuple[tuple[str, tuple[complex, ...]], ...] = ()
-    """Each solved link's points at the scene's own input (frame coordinates), for drawings."""
+    seed_row: int = 0
+    """The row computed at the scene's own input (among all rows computed, shown or not)."""
     timing: dict[str, float] = field(default_factory=dict)
     positions: Positions | None = field(default=None, repr=False, compare=False)
     """The link poses at every row computed (shown or not), read by ``kinepoly.sweep.rows``."""
@@ -107,6 +107,14 @@ class SweepResult:
         from kinepoly.sweep.plots import plot_png
 
         return plot_png(self)
+
+    @cached_property
+    def skeleton(self) -> tuple[tuple[str, tuple[complex, ...]], ...]:
+        """Each solved link's points at the scene's own input (frame coordinates), for drawings."""
+        if self.positions is None:
+            return ()
+        return tuple((link, tuple(complex(*pose.world(p.local)) for p in self.scene.link(link).points))
+                     for link, pose in self.positions.row(self.seed_row).items())
 
     def column(self, name: str) -> Column:
         for col in (self.input, *self.columns):
@@ -160,9 +168,11 @@ def _crossing_flags(flags: _Flags, ok: Bools, crossings: list[LineCrossing | Joi
                            "velocity and acceleration are not determined")
             flags.raise_to(near, _NEAR, _condition_text(where, crossing.condition))
             continue
-        sine = np.abs(crossing.sin_angle)
-        if bool(ok.all()) and float(sine.min()) >= NEAR_SINGULAR_SIN and np.isfinite(crossing.along.sum()):
+        lowest, highest = float(crossing.sin_angle.min()), float(crossing.sin_angle.max())
+        if (lowest >= NEAR_SINGULAR_SIN or highest <= -NEAR_SINGULAR_SIN) and bool(ok.all()) \
+                and np.isfinite(crossing.along.sum()):  # the lines cross well at every row (of one sense)
             continue
+        sine = np.abs(crossing.sin_angle)
         where = f"group {crossing.group} at {crossing.what}"
         singular = ok & ~(sine > PARALLEL_SIN)
         flags.raise_to(singular, _SINGULAR, f"singular: the direction lines of {where} are parallel, so its "
@@ -426,11 +436,9 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     every = bool(shown.all())
     input_column = Column(name, "input", grid.values if every else grid.values[shown],
                           np.ones(int(shown.sum()), np.bool_))
-    skeleton = tuple((link, tuple(complex(*pose.world(p.local)) for p in scene.link(link).points))
-                     for link, pose in positions.row(grid.seed_row).items())
     return SweepResult(scene, input_column, out.columns(flags.level, shown),
                        flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
-                       tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), skeleton,
+                       tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), grid.seed_row,
                        positions=positions, shown=shown, followers=followers)
 
 
