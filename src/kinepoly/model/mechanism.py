@@ -205,16 +205,6 @@ class Mechanism:
         """A Coriolis term exists for this slider: its guide may turn."""
         return not self.turns_with_ground(slider.guide)
 
-    @property
-    def input_slider(self) -> SliderSpec | None:
-        inp = self.scene.input
-        return self.slider(inp.slider) if isinstance(inp, SliderInput) else None
-
-    @property
-    def input_link(self) -> str | None:
-        inp = self.scene.input
-        return inp.link if isinstance(inp, LinkInput) else None
-
     @cached_property
     def drives(self) -> tuple[Drive, ...]:
         """Every input of the scene as the joint it drives, the first input first."""

@@ -18,6 +18,7 @@ leaves those cells empty (never NaN).
 
 from __future__ import annotations
 
+import cmath
 import math
 import time
 from collections.abc import Callable
@@ -159,6 +160,7 @@ class _Flags:
 
 def _crossing_flags(flags: _Flags, ok: Bools, crossings: list[LineCrossing | JointSolve]) -> None:
     """Singular and near-singular rows, as ``PolygonBuilder.cross_lines`` (and ``construct.group``) tell them."""
+    every = bool(ok.all())
     for crossing in crossings:
         if isinstance(crossing, JointSolve):
             where = f"group {crossing.group}"
@@ -169,7 +171,7 @@ def _crossing_flags(flags: _Flags, ok: Bools, crossings: list[LineCrossing | Joi
             flags.raise_to(near, _NEAR, _condition_text(where, crossing.condition))
             continue
         lowest, highest = float(crossing.sin_angle.min()), float(crossing.sin_angle.max())
-        if (lowest >= NEAR_SINGULAR_SIN or highest <= -NEAR_SINGULAR_SIN) and bool(ok.all()) \
+        if (lowest >= NEAR_SINGULAR_SIN or highest <= -NEAR_SINGULAR_SIN) and every \
                 and np.isfinite(crossing.along.sum()):  # the lines cross well at every row (of one sense)
             continue
         sine = np.abs(crossing.sin_angle)
@@ -205,13 +207,16 @@ class _Builder:
     mechanism: Mechanism
     positions: Positions
     raw: list[tuple[str, Kind, Reals, Bools | None]] = field(default_factory=list)
+    sources: list[tuple[Kind, Reals | Points]] = field(default_factory=list)
+    """What each column (or pair of columns) was read from, once: the arrays whose sums tell overflow."""
 
     def add(self, name: str, kind: Kind, values: Reals, extra: Bools | None = None) -> None:
         self.raw.append((name, kind, values, extra))
+        self.sources.append((kind, values))
 
     def pair(self, name: str, kind: Kind, values: Points, extra: Bools | None = None) -> None:
-        self.add(f"{name}_x", kind, values.real, extra)
-        self.add(f"{name}_y", kind, values.imag, extra)
+        self.raw += [(f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)]
+        self.sources.append((kind, values))
 
     def columns(self, level: npt.NDArray[np.int8], shown: Bools) -> tuple[Column, ...]:
         every = bool(shown.all())
@@ -238,8 +243,8 @@ def _overflow_flags(flags: _Flags, ok: Bools, out: _Builder) -> None:
     Every value of a higher order is computed from those of the lower ones, so a non-finite value
     anywhere shows in the highest order's columns: when their sums are finite, nothing is to mark.
     """
-    top = max((_ORDER[kind] for _, kind, _, _ in out.raw), default=0)
-    if all(math.isfinite(float(np.add.reduce(values))) for _, kind, values, _ in out.raw if _ORDER[kind] == top):
+    top = max((_ORDER[kind] for kind, _ in out.sources), default=0)
+    if all(cmath.isfinite(complex(np.add.reduce(values))) for kind, values in out.sources if _ORDER[kind] == top):
         return
     for name, kind, values, extra in out.raw:
         rows = ok & ~np.isfinite(values) & (True if extra is None else extra)
