@@ -265,8 +265,6 @@ omega = 1
 
 
 @pytest.mark.parametrize(("replace", "message"), [
-    ({'knife = "W"': "flat = { through = [-40, 0], angle = 90 }"},
-     r"floating\.toml:8: cams\.23: the flat-faced follower 3 floats .* with a knife edge or a roller only"),
     ({"angle = 30": "angle = 30\nrelative_to = \"1\"", 'link = "2"': 'link = "4"'},
      r"floating\.toml:8: cams\.23: the cam 2 is not known before its follower 3 \(the follower drives the cam\)"),
 ])

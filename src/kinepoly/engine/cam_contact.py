@@ -52,6 +52,7 @@ __all__ = [
     "contact_label",
     "contact_on_profile",
     "contact_rows",
+    "face_parameter",
     "offset_of",
     "parameter_at",
     "parameter_near",
@@ -254,6 +255,35 @@ def contact_rows(cam: CamSpec, cam_pose: ArrayPose, u: Reals) -> ProfileContactR
     outward = -frame.normal if not cam.inside else frame.normal
     return ProfileContactRows(u, np.asarray(point), np.asarray(centre), np.asarray(cam_pose.rotation * outward),
                        frame.curvature, frame.is_straight)
+
+
+def face_parameter(cam: CamSpec, along: complex, through: complex) -> float:
+    """Where a flat face touches the profile: the parameter whose tangent runs along the face (unit direction
+    ``along``, the same sense: the cam on the face's left) nearest the face's line through ``through``, both
+    in the cam's frame. The best of a dense sampling, settled by Newton's method on Im(conj(along) r'(u)) = 0."""
+    spline = cam_spline(cam)
+    count = _FACE_SAMPLES_PER_PIECE * spline.pieces
+    grid = spline.period * np.arange(count) / count
+    frame = spline.frame(grid)
+    sine = (frame.tangent * along.conjugate()).imag
+    gap = ((frame.point - through) * along.conjugate()).imag
+    size = float(np.abs(frame.point - frame.point.mean()).max())
+    score = np.where((frame.tangent * along.conjugate()).real > 0.0, np.abs(sine) * size + np.abs(gap), np.inf)
+    u = float(grid[int(np.argmin(score))])
+    for _ in range(_FACE_STEPS):
+        _, first, second = (complex(z[0]) for z in spline.derivatives(np.array([u])))
+        slope = (second * along.conjugate()).imag
+        if slope == 0.0:
+            break
+        step = (first * along.conjugate()).imag / slope
+        u -= step
+        if abs(step) <= 1e-15 * spline.period:
+            break
+    return u % spline.period
+
+
+_FACE_SAMPLES_PER_PIECE = 16
+_FACE_STEPS = 30
 
 
 def parameter_near(cam: CamSpec, local: complex) -> float:

@@ -24,10 +24,11 @@ from kinepoly.engine.cam_contact import (
     contact_candidates,
     contact_label,
     contact_rows,
+    face_parameter,
     offset_of,
 )
 from kinepoly.engine.plan import CamGroup, NewtonGroup
-from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.geom.arrays import Bools, Reals, turn
 from kinepoly.geom.spline import nearest_parameter
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
@@ -181,11 +182,16 @@ def _recorded(mechanism: Mechanism, group: str, cam: CamSpec, u: Reals, placed: 
 
 def floating_unreachable(group: NewtonGroup) -> str:
     """Why a group with a floating follower on a spline cam does not close (empty without such a follower)."""
-    return "".join(
-        f"; or follower {cam.follower} cannot touch cam {cam.cam}: with the group's joints held, "
-        f"{'the roller' + chr(39) + 's centre' if cam.kind == 'roller' else 'the knife edge'} {cam.point} cannot "
-        f"reach the profile{' offset by the roller' if cam.kind == 'roller' else ''}; move the follower's joints "
-        "or its point toward the cam" for cam in group.cams)
+    def why(cam: CamSpec) -> str:
+        if cam.kind == "flat":
+            return (f"; or follower {cam.follower} cannot touch cam {cam.cam}: with the group's joints held, its flat "
+                    "face cannot be laid along a tangent of the profile; move the follower's joints or its face "
+                    "toward the cam")
+        what = "the roller's centre" if cam.kind == "roller" else "the knife edge"
+        offset = " offset by the roller" if cam.kind == "roller" else ""
+        return (f"; or follower {cam.follower} cannot touch cam {cam.cam}: with the group's joints held, {what} "
+                f"{cam.point} cannot reach the profile{offset}; move the follower's joints or its point toward the cam")
+    return "".join(why(cam) for cam in group.cams)
 
 
 def place_floating_contacts(mechanism: Mechanism, group: NewtonGroup, placed: Placement,
@@ -194,10 +200,17 @@ def place_floating_contacts(mechanism: Mechanism, group: NewtonGroup, placed: Pl
     parameter as an unknown): each row's parameter is W's foot on the offset curve, recorded as for a held
     follower."""
     for cam in group.cams:
-        w = placed.poses[cam.follower].world(mechanism.local(cam.follower, cam.point or ""))
-        at = placed.poses[cam.cam].to_local(w)
-        spline, rho = cam_spline(cam), offset_of(cam)
-        u = np.array([nearest_parameter(spline, complex(z), rho) if ok else 0.0
-                      for z, ok in zip(at, placed.ok, strict=True)])
+        follower, cam_pose = placed.poses[cam.follower], placed.poses[cam.cam]
+        if cam.kind == "flat":
+            assert cam.flat is not None
+            at = cam_pose.to_local(follower.world(cam.flat[0]))
+            along = follower.rotation * turn(cam.flat[1]) * cam_pose.rotation.conjugate()
+            u = np.array([face_parameter(cam, complex(e), complex(z)) if ok else 0.0
+                          for z, e, ok in zip(at, along, placed.ok, strict=True)])
+        else:
+            at = cam_pose.to_local(follower.world(mechanism.local(cam.follower, cam.point or "")))
+            spline, rho = cam_spline(cam), offset_of(cam)
+            u = np.array([nearest_parameter(spline, complex(z), rho) if ok else 0.0
+                          for z, ok in zip(at, placed.ok, strict=True)])
         placed = _recorded(mechanism, group.name, cam, u, placed, policy)
     return placed

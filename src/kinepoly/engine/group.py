@@ -8,7 +8,10 @@ guide only along the slide (for accelerations after taking off the Coriolis term
 follower floats in the group: at this instant the pair is the equivalent link K W (K the profile's centre
 of curvature, a point of the cam; ``engine.cam_polygons``), whose length does not change to second order:
 (v_W - v_K) . e = 0, e the unit vector from K to W, and (a_W - a_K) . e = -|v_W - v_K|^2 / |K W| (its
-normal term; the link's own omega and alpha drop out of these two rows).
+normal term; the link's own omega and alpha drop out of these two rows). A flat face: a block pinned to the
+cam at K slides along the face, so the follower's point under K moves relative to K only along the face:
+(v_K@f - v_K) . m = 0, m the face's normal, and (a_K@f - a_K) . m = -a^c . m (a^c = 2 omega_f x the block's
+velocity over the face).
 All rows are solved by one stacked ``numpy.linalg.solve``; a row whose equations (made
 dimensionless) have a condition number above ``SINGULAR_CONDITION`` is singular.
 """
@@ -27,7 +30,7 @@ from kinepoly.engine.steps import Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, turn
 from kinepoly.model.mechanism import Revolute
-from kinepoly.scene.spec import SliderSpec
+from kinepoly.scene.spec import CamSpec, SliderSpec
 
 if TYPE_CHECKING:
     from kinepoly.engine.acceleration import _Context
@@ -93,11 +96,14 @@ def _system(polygon: Polygon, group: NewtonGroup, extra: dict[tuple[str, str], P
         known = known + extra.get(("slide", joint.name), polygon.zero)
         rows.append(normal.real[:, None] * row_x + normal.imag[:, None] * row_y)
         rhs.append(-(normal.real * known.real + normal.imag * known.imag))
-    for cam in group.cams:  # the equivalent link K W: no stretch along e
+    for cam in group.cams:  # the equivalent link K W: no stretch along e; a flat face's block: no motion along m
         row_x, row_y = np.zeros((n, size)), np.zeros((n, size))
-        w, k = cam.point or "", centre_label(cam)
-        e = polygon.world(w) - polygon.world(k)
-        e = e / np.abs(e)
+        w, k = _follower_point(cam), centre_label(cam)
+        if cam.flat is not None and cam.kind == "flat":
+            e = 1j * (polygon.positions.poses[cam.follower].rotation * turn(cam.flat[1]))
+        else:
+            e = polygon.world(w) - polygon.world(k)
+            e = e / np.abs(e)
         known = term(cam.follower, w, 1.0, row_x, row_y) - polygon.tip(cam.cam, k)
         rows.append(e.real[:, None] * row_x + e.imag[:, None] * row_y)
         rhs.append(extra.get(("contact", cam.name), polygon.zero).real - (e.real * known.real + e.imag * known.imag))
@@ -158,10 +164,15 @@ def _solve(polygon: Polygon, group: NewtonGroup, matrix: Reals, rhs: Reals) -> R
     return np.asarray(np.linalg.solve(matrix, rhs[:, :, None])[:, :, 0])
 
 
+def _follower_point(cam: CamSpec) -> str:
+    """The follower's point the pair's equation is written for: W, or under K for a flat face."""
+    return centre_label(cam) if cam.kind == "flat" else cam.point or ""
+
+
 def _group_points(group: NewtonGroup) -> list[tuple[str, str]]:
-    """(link, point) of the group's joints and of its floating followers' contact points W."""
+    """(link, point) of the group's joints and of its floating followers' contact points (W, or K under a face)."""
     return [*((link, joint.point) for joint in group.joints for link in _joint_links(joint)),
-            *((cam.follower, cam.point or "") for cam in group.cams)]
+            *((cam.follower, _follower_point(cam)) for cam in group.cams)]
 
 
 def _store(polygon: Polygon, group: NewtonGroup, u: Reals, extra: dict[tuple[str, str], Points]) -> list[str]:
@@ -180,12 +191,18 @@ def _store(polygon: Polygon, group: NewtonGroup, u: Reals, extra: dict[tuple[str
 def _record(polygon: Polygon, group: NewtonGroup, found: list[str]) -> None:
     if polygon.record:
         tips = ", ".join(f.lower() for f in found)
+        links = [c for c in group.cams if c.kind != "flat"]
+        faces = [c for c in group.cams if c.kind == "flat"]
         equivalent = ", ".join(f"{cam.name} {centre_label(cam)}{cam.point} {centre_label(cam)} {cam.point}"
-                               for cam in group.cams)  # pair, link, K, W
+                               for cam in links)  # pair, link, K, W
+        face = ", ".join(f"{cam.name} {centre_label(cam)} {cam.follower}" for cam in faces)  # pair, K, follower
         polygon.step(Step(polygon=polygon.kind, kind="linear-solve", equation=f"joint equations of group {group.name}"
-                          + "".join(f" with the equivalent link {centre_label(c)}{c.point}" for c in group.cams),
+                          + "".join(f" with the equivalent link {centre_label(c)}{c.point}" for c in links)
+                          + "".join(f" with the block pinned at {centre_label(c)} on the face of {c.follower}"
+                                    for c in faces),
                           result=tips, params=(("group", group.name), ("links", ", ".join(group.links)),
-                                               ("tips", tips), *((("equivalent", equivalent),) if group.cams else ()))))
+                                               ("tips", tips), *((("equivalent", equivalent),) if links else ()),
+                                               *((("face", face),) if faces else ()))))
 
 
 def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict[str, Points]) -> None:
@@ -206,8 +223,13 @@ def acceleration_by_linear_solve(ctx: _Context, group: NewtonGroup) -> None:
             w = polygon.omega_of(link)
             extra[(link, point)] = np.asarray((ctx.rules.normal * w * w) * r)
     for cam in group.cams:  # the equivalent link's normal term along e: -|v_W - v_K|^2 / |K W|
-        w_point, k = cam.point or "", centre_label(cam)
+        w_point, k = _follower_point(cam), centre_label(cam)
         v_rel = ctx.v_tip(cam.follower, w_point) - ctx.v_tip(cam.cam, k)
+        if cam.flat is not None and cam.kind == "flat":  # -a^c . m, the block's velocity over the face -v_rel
+            m = 1j * (polygon.positions.poses[cam.follower].rotation * turn(cam.flat[1]))
+            coriolis = ctx.rules.coriolis * 2.0 * polygon.omega_of(cam.follower) * (1j * -v_rel)
+            extra[("contact", cam.name)] = np.asarray(-(coriolis.real * m.real + coriolis.imag * m.imag) + 0j)
+            continue
         length = np.abs(polygon.world(w_point) - polygon.world(k))
         extra[("contact", cam.name)] = np.asarray(ctx.rules.normal * np.abs(v_rel) ** 2 / length + 0j)
     for joint in group.joints:

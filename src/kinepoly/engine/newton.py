@@ -20,7 +20,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from kinepoly.engine.cam_contact import cam_spline, offset_of
+from kinepoly.engine.cam_contact import cam_spline, face_parameter, offset_of
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.geom.arrays import Reals
 from kinepoly.geom.spline import nearest_parameter
@@ -60,7 +60,8 @@ class _RowSystem:
                 self.slides.append((joint, mechanism.local(joint.block, joint.point)))
         self._block_point = {slider.name: local for slider, local in self.slides}
         self.drives = [(drive, values[drive.index]) for drive in group.drives]
-        self.cams = [(cam, mechanism.local(cam.follower, cam.point or "")) for cam in group.cams]
+        self.cams = [(cam, cam.flat[0] if cam.flat is not None and cam.kind == "flat" else
+                      mechanism.local(cam.follower, cam.point or "")) for cam in group.cams]
         self.count = 2 * (len(self.pins) + len(self.slides) + len(self.cams)) + len(self.drives)
 
     def _point(self, q: Reals, link: str, local: tuple[float, float]) -> tuple[float, float, float, float, float]:
@@ -112,7 +113,8 @@ class _RowSystem:
             self._drive_row(q, drive, value, row, out, jac)
             row += 1
         for c, (cam, local) in enumerate(self.cams):
-            self._contact_rows(q, cam, local, self.size - len(self.cams) + c, row, out, jac)
+            rows = self._face_rows if cam.kind == "flat" else self._contact_rows
+            rows(q, cam, local, self.size - len(self.cams) + c, row, out, jac)
             row += 2
         return out, jac
 
@@ -138,14 +140,49 @@ class _RowSystem:
         jac[row, column] -= along.real
         jac[row + 1, column] -= along.imag
 
+    def _face_rows(self, q: Reals, cam: CamSpec, local: tuple[float, float], column: int, row: int,
+                   out: Reals, jac: Reals) -> None:
+        """A flat face (through T, direction e; the cam on its left) on the profile point P(u): P on the face's
+        line, cross(e, P - T) = 0, and the tangent along it, size cross(e, r'(u)) / |r'(u)| = 0."""
+        assert cam.flat is not None
+        u = float(q[column])
+        r, first, second = (complex(z[0]) for z in cam_spline(cam).derivatives(np.array([u])))
+        cx, cy, _, _, theta_c = self._point(q, cam.cam, (r.real, r.imag))
+        tx, ty, _, _, theta_f = self._point(q, cam.follower, local)
+        turn_c = complex(math.cos(theta_c), math.sin(theta_c))
+        tangent, bend = turn_c * first, turn_c * second
+        e = complex(math.cos(theta_f + cam.flat[1]), math.sin(theta_f + cam.flat[1]))
+        gap = complex(cx - tx, cy - ty)
+        speed = abs(tangent)
+        sine = (e.conjugate() * tangent).imag / speed
+        out[row] = (e.conjugate() * gap).imag
+        out[row + 1] = self.scale * sine
+        k = self.index.get(cam.follower)
+        if k is not None:
+            origin = self._pose(q, cam.follower)
+            jac[row, k] += e.imag
+            jac[row, k + 1] -= e.real
+            jac[row, k + 2] -= (e.conjugate() * (complex(cx, cy) - complex(origin.x, origin.y))).real
+            jac[row + 1, k + 2] -= self.scale * (e.conjugate() * tangent).real / speed
+        jac[row, column] += (e.conjugate() * tangent).imag
+        jac[row + 1, column] += self.scale * ((e.conjugate() * bend).imag / speed
+                                              - sine * (tangent.conjugate() * bend).real / speed**2)
+
     def start_parameters(self, q: Reals) -> Reals:
-        """Each contact's parameter to start from: the point of the offset curve nearest W at the start poses."""
+        """Each contact's parameter to start from at the start poses: the point of the offset curve nearest W, or
+        for a flat face the point whose tangent runs along the face."""
         out = []
         for cam, local in self.cams:
-            wx, wy, _, _, _ = self._point(q, cam.follower, local)
+            wx, wy, _, _, theta_f = self._point(q, cam.follower, local)
             pose = self._pose(q, cam.cam)
-            at = (complex(wx, wy) - complex(pose.x, pose.y)) * complex(math.cos(pose.theta), -math.sin(pose.theta))
-            out.append(nearest_parameter(cam_spline(cam), at, offset_of(cam)))
+            to_cam = complex(math.cos(pose.theta), -math.sin(pose.theta))
+            at = (complex(wx, wy) - complex(pose.x, pose.y)) * to_cam
+            if cam.kind == "flat":
+                assert cam.flat is not None
+                along = complex(math.cos(theta_f + cam.flat[1]), math.sin(theta_f + cam.flat[1])) * to_cam
+                out.append(face_parameter(cam, along, at))
+            else:
+                out.append(nearest_parameter(cam_spline(cam), at, offset_of(cam)))
         return np.array(out)
 
     def _pose(self, q: Reals, link: str) -> LinkPose:

@@ -379,15 +379,11 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
     for cam in mechanism.scene.cams:
         if not cam.is_spline or (cam.cam not in rest and cam.follower not in rest):
             continue
-        if cam.cam in rest or cam.kind == "flat":
+        if cam.cam in rest:
             raise SceneError(
-                f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: " + (
-                    f"the cam {cam.cam} is not known before its follower {cam.follower} (the follower drives "
-                    "the cam); this version solves a points profile only on a cam placed first: drive the cam "
-                    "or join it to the frame" if cam.cam in rest else
-                    f"the flat-faced follower {cam.follower} floats (it is not held by one joint to a link known "
-                    "before it); this version solves a floating follower on a points profile with a knife edge or "
-                    "a roller only: use one of those, or hold the face's link by one pin or slider to a known link"))
+                f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the cam {cam.cam} is not known before its "
+                f"follower {cam.follower} (the follower drives the cam); this version solves a points profile only "
+                "on a cam placed first: drive the cam or join it to the frame")
         floating.append(cam)
     if rest:
         joints = tuple(j for j in mechanism.joints if any(x in rest for x in joint_links(j)))

@@ -38,7 +38,7 @@ from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import Line, LineCrossing, Polygon
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
-from kinepoly.geom.arrays import Points, Reals, cross_lines
+from kinepoly.geom.arrays import Points, Reals, cross_lines, turn
 from kinepoly.geom.tolerances import PARALLEL_SIN
 from kinepoly.model.mechanism import Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import SliderSpec
@@ -54,7 +54,7 @@ class Leg:
     """One leg of a triad (see the module): its kind, its own link, the point Q, the known link it joins,
     the outer pin K (a pin or slot leg) and the slider (a slide or slot leg)."""
 
-    kind: Literal["pin", "slide", "slot"]
+    kind: Literal["pin", "slide", "slot", "face"]
     link: str
     point: str
     known: str
@@ -62,7 +62,9 @@ class Leg:
     slider: SliderSpec | None
     equivalent: str = ""
     """A spline cam pair's name where the leg is its equivalent link K W (``link`` names it, K on the cam is
-    ``pin``, W on the ternary ``point``): a link at this instant only, whose omega is kept with the pair."""
+    ``pin``, W on the ternary ``point``): a link at this instant only, whose omega is kept with the pair; or,
+    for a flat face (kind ``face``), the block pinned to the cam at K (``point``) sliding along the ternary's
+    face, whose velocity over the face is kept with the pair."""
 
 
 @dataclass(frozen=True)
@@ -134,7 +136,10 @@ def _floating_triad(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
     if not legs:
         return None
     k = centre_label(cam)
-    legs.append(Leg("pin", f"{k}{cam.point}", cam.point or "", cam.cam, k, None, cam.name))
+    if cam.kind == "flat":
+        legs.append(Leg("face", k, k, cam.cam, None, None, cam.name))
+    else:
+        legs.append(Leg("pin", f"{k}{cam.point}", cam.point or "", cam.cam, k, None, cam.name))
     return Triad(cam.follower, (legs[0], legs[1], legs[2]), _assur_name(mechanism, cam.follower))
 
 
@@ -238,6 +243,13 @@ def _construct(polygon: Polygon, triad: Triad, legs: list[_LegLine],
     return chosen, s_world, orders[int(best[0])]
 
 
+def _face_direction(polygon: Polygon, triad: Triad, leg: Leg) -> Points:
+    """The unit direction of the ternary's flat face at every row (a face leg's own line runs along it)."""
+    cam = next(c for c in polygon.mechanism.scene.cams if c.name == leg.equivalent)
+    assert cam.flat is not None
+    return np.asarray(polygon.positions.poses[triad.ternary].rotation * turn(cam.flat[1]))
+
+
 def _name(triad: Triad) -> str:
     return f"{triad.ternary}-" + "-".join(leg.link for leg in triad.legs) + " (triad)"
 
@@ -253,6 +265,9 @@ def _velocity_leg(polygon: Polygon, triad: Triad, leg: Leg) -> _LegLine:
         assert leg.pin is not None
         start = polygon.tip(leg.known, leg.pin)
         direction = np.asarray(1j * (at - polygon.world(leg.pin)))
+    elif leg.kind == "face":
+        start = polygon.tip(leg.known, leg.point)
+        direction = _face_direction(polygon, triad, leg)
     else:
         assert leg.slider is not None
         start = polygon.tip(leg.known, leg.point)
@@ -267,9 +282,10 @@ def velocity_by_assur_point(polygon: Polygon, triad: Triad, sliding: dict[str, P
     legs = [_velocity_leg(polygon, triad, leg) for leg in triad.legs]
     built, s_world, order = _construct(polygon, triad, legs, lambda r: polygon.zero)
     _finish(polygon, triad, legs, built, s_world, order)
-    for leg, along in zip(triad.legs, built.along, strict=True):
-        if leg.equivalent and equivalent is not None:
-            equivalent[leg.equivalent] = np.asarray(along + 0j)
+    for leg, along, tip in zip(triad.legs, built.along, built.tips, strict=True):
+        if leg.equivalent and equivalent is not None:  # K W's omega; a face's block: its velocity over the face
+            equivalent[leg.equivalent] = np.asarray(polygon.tip(leg.known, leg.point) - tip if leg.kind == "face"
+                                                    else along + 0j)
     for leg, tip in zip(triad.legs, built.tips, strict=True):
         if leg.slider is not None:
             on_leg, on_t = (polygon.tip(leg.link, leg.point), tip) if leg.kind == "slot" else (
@@ -310,6 +326,8 @@ def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
         after = legs[k].vectors[-1].label if legs[k].vectors else ""
         if leg.kind == "pin":
             return Direction(term, "perpendicular", f"{leg.pin}{leg.point}", through, after=after)
+        if leg.kind == "face":
+            return Direction(term, "face", t, through, after=after)
         assert leg.slider is not None
         return Direction(term, "parallel", leg.slider.name, through, after=after)
 
@@ -330,7 +348,7 @@ def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
     polygon.step(Step(polygon=polygon.kind, kind="known", equation=f"{s} = line of leg {la.link} x line of "
                       f"leg {lb.link}", result=s, topic="assur-point",
                       params=(("point", s), ("ternary", t), ("first", la.link), ("second", lb.link),
-                              *_leg_line("first", la), *_leg_line("second", lb), ("third", triad.legs[m].link))))
+                              *_leg_line("first", la, t), *_leg_line("second", lb, t), ("third", triad.legs[m].link))))
     vectors = tuple(v for k in (a, b) for v in legs[k].vectors)
     polygon.step(Step(
         polygon=polygon.kind, kind="intersection",
@@ -367,12 +385,15 @@ def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
                         leg_direction(k, leg_term(k)))))
 
 
-def _leg_line(which: str, leg: Leg) -> tuple[tuple[str, str], ...]:
+def _leg_line(which: str, leg: Leg, ternary: str) -> tuple[tuple[str, str], ...]:
     """A leg's line as data: a rod's own segment (``first_segment``, from ``first_pin`` to ``first_point``),
-    or the normal to a slide through a point (``first_slider``, ``first_point``)."""
+    the normal to a slide through a point (``first_slider``, ``first_point``), or the normal to the ternary's
+    face through K (``first_face``, ``first_point``: the common normal of a flat-faced pair)."""
     if leg.kind == "pin":
         return ((f"{which}_segment", f"{leg.pin}{leg.point}"), (f"{which}_pin", str(leg.pin)),
                 (f"{which}_point", leg.point))
+    if leg.kind == "face":
+        return ((f"{which}_face", ternary), (f"{which}_point", leg.point))
     assert leg.slider is not None
     return ((f"{which}_slider", leg.slider.name), (f"{which}_point", leg.point))
 
@@ -391,8 +412,14 @@ def _acceleration_leg(ctx: _Context, triad: Triad, leg: Leg) -> _LegLine:
         (through, direction, _), normal, _ = ctx.normal_line(leg.known, leg.pin, leg.point, leg.link,
                                                              rigid=not leg.equivalent, omega=omega)
         return _LegLine(at, through, np.asarray(direction), (normal,) if normal is not None else ())
-    assert leg.slider is not None
     start = b.tip(leg.known, leg.point)
+    if leg.kind == "face":  # the point of T under K: a_K - 2 omega_T x v (the block's velocity over the face)
+        coriolis = np.asarray(ctx.rules.coriolis * 2.0 * b.omega_of(triad.ternary) * (1j * ctx.v.equivalent[leg.equivalent]))
+        end = np.asarray(start - coriolis)
+        laid = [DrawnVector(f"a^c_{b.label(triad.ternary, leg.point)}/{b.label(leg.known, leg.point)}",
+                            b.vec(start), b.vec(end), "coriolis")] if b.record else []
+        return _LegLine(at, end, _face_direction(b, triad, leg), tuple(laid))
+    assert leg.slider is not None
     if leg.kind == "slide":  # the block's point over the guide's: + 2 omega_guide x v_rel
         end, laid = ctx.lay_coriolis(leg.slider, start, leg.link, leg.known, leg.point)
     else:  # the point of T under K: a_K - 2 omega_T x v_rel (v_rel of the block over T)

@@ -495,6 +495,8 @@ class _Phrase:
         p = self.p
         if f"{which}_segment" in p:
             return self.say.say("triad.leg_rod", segment=str(p[f"{which}_segment"]))
+        if f"{which}_face" in p:
+            return self.say.say("triad.leg_face", link=str(p[f"{which}_face"]), point=str(p[f"{which}_point"]))
         return self.say.say("triad.leg_slide", slider=str(p[f"{which}_slider"]), point=str(p[f"{which}_point"]))
 
     def _assur_point(self) -> tuple[str, str]:
@@ -608,6 +610,9 @@ class _Phrase:
             for pair, link, centre, point in (part.split(" ") for part in str(self.p["equivalent"]).split(", ")):
                 text += " " + self.say.say("step.linear_solve_equivalent", pair=pair, link=link, centre=centre,
                                            point=point)
+        if "face" in self.p:  # a floating flat face: the block pinned at K sliding along it
+            for pair, centre, follower in (part.split(" ") for part in str(self.p["face"]).split(", ")):
+                text += " " + self.say.say("step.linear_solve_face", pair=pair, centre=centre, follower=follower)
         items = []
         for label in labels:
             fields = self.tip_fields(label, tips.get(label, (0.0, 0.0)))
