@@ -25,6 +25,7 @@ from kinepoly.sweep import sweep
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 TRIAD = EXAMPLES / "spline-cam-floating-triad.toml"
 SLEEVE = EXAMPLES / "spline-cam-floating-sleeve.toml"
+FLAT = EXAMPLES / "spline-cam-floating-flat.toml"
 PROFILE = re.compile(r"profile = \{ points = \[.*?\] \}", re.DOTALL)
 CIRCLE = "profile = { circle = { center = [15, 0], radius = 40 } }"
 E, R = 15.0, 40.0
@@ -69,7 +70,7 @@ def test_the_examples_follow_the_exact_circle_over_a_turn_at_the_splines_order(p
             assert math.log2(a[k] / b[k]) == pytest.approx(order, abs=0.35)
 
 
-@pytest.mark.parametrize("path", [TRIAD, SLEEVE])
+@pytest.mark.parametrize("path", [TRIAD, SLEEVE, FLAT])
 def test_velocity_and_acceleration_are_the_positions_finite_differences(path: Path) -> None:
     steps = 3600
     result = sweep(kinepoly.load_scene(path), steps=steps, start=0.0, stop=360.0)
@@ -132,16 +133,21 @@ def test_every_row_of_a_turn_checks_and_keeps_the_contacts_normal_velocities_equ
 
 
 def test_a_follower_that_cannot_reach_the_profile_exits_3_with_the_reason(tmp_path: Path) -> None:
-    from kinepoly.cli import main
-
     # the rockers hung 150 mm higher: W stays above y = 115, the offset profile below y = 65
     far = {"B0 = [-90, 45], C0 = [-5, 50]": "B0 = [-90, 195], C0 = [-5, 200]",
            "B = [-27, 69.5]\nC = [53, 69.5]": "B = [-27, 219.5]\nC = [53, 219.5]"}
-    with pytest.raises(AssemblyError, match=r"does not close at theta12 = 30 deg.*; or follower 3 cannot touch cam "
-                       r"2: with the group's joints held, the roller's centre W cannot reach the profile offset by "
-                       r"the roller"):
-        kinepoly.solve(_scene(TRIAD, None, far))
-    text = TRIAD.read_text()
+    refused_with_exit_3(TRIAD, far, r"does not close at theta12 = 30 deg.*; or follower 3 cannot touch cam 2: with "
+                        r"the group's joints held, the roller's centre W cannot reach the profile offset by the roller",
+                        tmp_path)
+
+
+def refused_with_exit_3(path: Path, far: dict[str, str], message: str, tmp_path: Path) -> None:
+    """The scene at ``path`` changed by ``far`` raises ``AssemblyError`` matching ``message``; its solve exits 3."""
+    from kinepoly.cli import main
+
+    with pytest.raises(AssemblyError, match=message):
+        kinepoly.solve(_scene(path, None, far))
+    text = path.read_text()
     for old, new in far.items():
         text = text.replace(old, new)
     scene = tmp_path / "far.toml"
@@ -164,9 +170,22 @@ def test_random_pivots_and_rollers_follow_the_exact_circle_and_keep_the_contact(
             "radius = 10": f"radius = {radius!r}",
             "W = [13, 57.5]\nB = [-27, 69.5]\nC = [53, 69.5]":
                 f"W = [13, {57.5 + lift!r}]\nB = [-27, {b.imag!r}]\nC = [53, {c.imag!r}]"}
+    rockers = (("B", "4", b0, abs(b - b0)), ("C", "5", c0, abs(c - c0)))
+    original = "W = [13, 57.5]\nB = [-27, 69.5]\nC = [53, 69.5]"
+    guess = "[guess]\n" + original + "\n\n[find]"
+    moved = {old: new for old, new in text.items() if old != original}
+    follows_the_circle_and_keeps_the_contact(TRIAD, text, moved, rockers, guess, angle)
+
+
+def follows_the_circle_and_keeps_the_contact(path: Path, text: dict[str, str], moved: dict[str, str],
+                                            rockers: tuple[tuple[str, str, complex, float], ...], guess: str,
+                                            angle: float) -> None:
+    """Swept with ``text`` from 30 degrees on by ``angle``: the same rows assemble as with the exact circle and W
+    follows it to the spline's accuracy; where the last row closes, its solve (``moved``, guessed from the sweep)
+    agrees with the analytic check and keeps the contact's normal velocities equal."""
     steps = max(2, math.ceil(angle / 5.0))
-    spline = sweep(_scene(TRIAD, None, text), steps=steps, start=30.0, stop=30.0 + angle)
-    exact = sweep(_scene(TRIAD, CIRCLE, text), steps=steps, start=30.0, stop=30.0 + angle)
+    spline = sweep(_scene(path, None, text), steps=steps, start=30.0, stop=30.0 + angle)
+    exact = sweep(_scene(path, CIRCLE, text), steps=steps, start=30.0, stop=30.0 + angle)
     assert ((spline.status == 0) == (exact.status == 0)).all()
     ok = spline.status == 0
     for column in ("r_W_x", "r_W_y"):
@@ -174,12 +193,8 @@ def test_random_pivots_and_rollers_follow_the_exact_circle_and_keep_the_contact(
         assert np.max(gap, initial=0.0) < 5e-3
     if not ok[-1]:
         return
-    rockers = (("B", "4", b0, abs(b - b0)), ("C", "5", c0, abs(c - c0)))
-    original = "W = [13, 57.5]\nB = [-27, 69.5]\nC = [53, 69.5]"
-    del text[original]
-    guess = "[guess]\n" + original + "\n\n[find]"
-    last = {**text, "angle = 30": f"angle = {30.0 + angle!r}", guess: _guess_at(rockers, spline, steps)}
-    data = kinepoly.to_json(kinepoly.solve(_scene(TRIAD, None, last)))
+    last = {**moved, "angle = 30": f"angle = {30.0 + angle!r}", guess: _guess_at(rockers, spline, steps)}
+    data = kinepoly.to_json(kinepoly.solve(_scene(path, None, last)))
     assert data["check"]["max_rel_error"] < 1e-10
     assert _normal_residual(data, 20.0) < 1e-11
 

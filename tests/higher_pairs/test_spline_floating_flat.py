@@ -4,7 +4,7 @@ The coupler of a four-bar rests its flat face on the cam; the follower reaches t
 rockers. The references are derived apart from the spline's path through the engine, as for the floating
 roller (``test_spline_floating``): the same mechanism with the circle the profile's points were sampled
 from, solved exactly (a circle cam's flat face is a permanent slider at the circle's centre); finite
-differences of the positions over the input; the analytic check (``check/``, its own face constraint);
+differences of the positions over the input (``test_spline_floating``); the analytic check (``check/``, its own face constraint);
 and the contact's velocity condition.
 """
 
@@ -20,18 +20,18 @@ from hypothesis import strategies as st
 from tests.higher_pairs.test_spline_floating import (
     CIRCLE,
     COLUMNS,
-    EXAMPLES,
+    FLAT,
     _guess_at,
     _normal_residual,
     _points,
     _scene,
+    follows_the_circle_and_keeps_the_contact,
+    refused_with_exit_3,
 )
 
 import kinepoly
-from kinepoly.errors import AssemblyError
 from kinepoly.sweep import sweep
 
-FLAT = EXAMPLES / "spline-cam-floating-flat.toml"
 ROCKERS = (("B", "4", -97 + 45j, 71.49), ("C", "5", -42 + 47j, 71.11))
 """The guessed points on the rockers: (point, rocker, pivot, length)."""
 GUESS = "[guess]\nW = [13, 47.5]\nB = [-27, 59.5]\nC = [28, 59.5]\n\n[find]"
@@ -53,20 +53,6 @@ def test_the_face_follows_the_exact_circle_over_a_turn_at_the_splines_order() ->
     for k, order in enumerate((4, 3, 2)):
         for a, b in ((coarse, middle), (middle, fine)):
             assert math.log2(a[k] / b[k]) == pytest.approx(order, abs=0.4)
-
-
-def test_velocity_and_acceleration_are_the_positions_finite_differences() -> None:
-    steps = 3600
-    result = sweep(kinepoly.load_scene(FLAT), steps=steps, start=0.0, stop=360.0)
-    assert (result.status == 0).all()
-    dt = math.radians(360.0 / steps) / 20.0  # the cam turns at 20 rad/s, steadily
-    for name in ("W_x", "W_y"):
-        r, v, a = (result.column(f"{q}_{name}").values for q in ("r", "v", "a"))
-        assert np.max(np.abs((np.roll(r, -1) - np.roll(r, 1)) / (2 * dt) - v)) < 2e-3 * np.max(np.abs(v))
-        assert np.max(np.abs((np.roll(v, -1) - np.roll(v, 1)) / (2 * dt) - a)) < 2e-3 * np.max(np.abs(a))
-    theta, omega = result.column("theta_3").values, result.column("omega_3").values
-    central = np.radians(np.roll(theta, -1) - np.roll(theta, 1)) / (2 * dt)
-    assert np.max(np.abs(central - omega)) < 2e-3 * np.max(np.abs(omega))
 
 
 def test_every_row_of_a_turn_checks_keeps_the_contact_and_equals_the_sweep() -> None:
@@ -129,20 +115,11 @@ def test_the_steps_say_the_block_at_k_is_the_third_leg_with_its_coriolis_term() 
 
 
 def test_a_face_that_cannot_reach_the_profile_exits_3_with_the_reason(tmp_path: Path) -> None:
-    from kinepoly.cli import main
-
     # the rockers hung 100 mm higher: the face stays above y = 60, the profile's top below 55
     far = {"B0 = [-97, 45], C0 = [-42, 47]": "B0 = [-97, 145], C0 = [-42, 147]",
            GUESS: GUESS.replace("47.5", "147.5").replace("59.5", "159.5")}
-    with pytest.raises(AssemblyError, match=r"; or follower 3 cannot touch cam 2: with the group's joints held, "
-                                            r"its flat face cannot be laid along a tangent of the profile"):
-        kinepoly.solve(_scene(FLAT, None, far))
-    text = FLAT.read_text()
-    for old, new in far.items():
-        text = text.replace(old, new)
-    scene = tmp_path / "far.toml"
-    scene.write_text(text)
-    assert main(["solve", str(scene)]) == 3
+    refused_with_exit_3(FLAT, far, r"; or follower 3 cannot touch cam 2: with the group's joints held, its flat face "
+                                   r"cannot be laid along a tangent of the profile", tmp_path)
 
 
 @settings(max_examples=10, deadline=None)
@@ -157,17 +134,5 @@ def test_random_pivots_follow_the_exact_circle_and_keep_the_contact(dx: float, d
     b, c = complex(-27, 59.5), complex(28, 59.5)
     text = {"B0 = [-97, 45], C0 = [-42, 47]": f"B0 = [{b0.real!r}, {b0.imag!r}], C0 = [{c0.real!r}, {c0.imag!r}]",
             "B = [71.49, 0]": f"B = [{abs(b - b0)!r}, 0]", "C = [71.11, 0]": f"C = [{abs(c - c0)!r}, 0]"}
-    steps = max(2, math.ceil(angle / 5.0))
-    spline = sweep(_scene(FLAT, None, text), steps=steps, start=30.0, stop=30.0 + angle)
-    exact = sweep(_scene(FLAT, CIRCLE, text), steps=steps, start=30.0, stop=30.0 + angle)
-    assert (spline.status == 0).all() and (exact.status == 0).all()
-    ok = spline.status == 0
-    for column in ("r_W_x", "r_W_y"):
-        assert np.max(np.abs(spline.column(column).values[ok] - exact.column(column).values[ok]), initial=0.0) < 5e-3
-    if not ok[-1]:
-        return
     rockers = (("B", "4", b0, abs(b - b0)), ("C", "5", c0, abs(c - c0)))
-    last = {**text, "angle = 30": f"angle = {30.0 + angle!r}", GUESS: _guess_at(rockers, spline, steps)}
-    data = kinepoly.to_json(kinepoly.solve(_scene(FLAT, None, last)))
-    assert data["check"]["max_rel_error"] < 1e-10
-    assert _normal_residual(data, 20.0) < 1e-11
+    follows_the_circle_and_keeps_the_contact(FLAT, text, text, rockers, GUESS, angle)
