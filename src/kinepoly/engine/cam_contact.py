@@ -26,6 +26,7 @@ for the polygons (``engine.cam_polygons``).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -52,6 +53,7 @@ __all__ = [
     "contact_label",
     "contact_on_profile",
     "contact_rows",
+    "face_direction",
     "face_parameter",
     "offset_of",
     "parameter_at",
@@ -255,6 +257,12 @@ def contact_rows(cam: CamSpec, cam_pose: ArrayPose, u: Reals) -> ProfileContactR
     outward = -frame.normal if not cam.inside else frame.normal
     return ProfileContactRows(u, np.asarray(point), np.asarray(centre), np.asarray(cam_pose.rotation * outward),
                        frame.curvature, frame.is_straight)
+
+
+def face_direction(poses: Mapping[str, ArrayPose], cam: CamSpec) -> Points:
+    """A flat face's unit direction in the frame at every row (it turns with the follower)."""
+    assert cam.flat is not None
+    return np.asarray(poses[cam.follower].rotation * turn(cam.flat[1]))
 
 
 def face_parameter(cam: CamSpec, along: complex, through: complex) -> float:

@@ -24,11 +24,12 @@ from kinepoly.engine.cam_contact import (
     contact_candidates,
     contact_label,
     contact_rows,
+    face_direction,
     face_parameter,
     offset_of,
 )
 from kinepoly.engine.plan import CamGroup, NewtonGroup
-from kinepoly.geom.arrays import Bools, Reals, turn
+from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.geom.spline import nearest_parameter
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
@@ -197,14 +198,14 @@ def floating_unreachable(group: NewtonGroup) -> str:
 def place_floating_contacts(mechanism: Mechanism, group: NewtonGroup, placed: Placement,
                             policy: Policy) -> Placement:
     """The contacts of the spline cams whose follower floats in ``group`` (closed by Newton with the contact's
-    parameter as an unknown): each row's parameter is W's foot on the offset curve, recorded as for a held
-    follower."""
+    parameter as an unknown): each row's parameter is W's foot on the offset curve (a flat face: where the
+    profile's tangent runs along the face), recorded as for a held follower."""
     for cam in group.cams:
         follower, cam_pose = placed.poses[cam.follower], placed.poses[cam.cam]
         if cam.kind == "flat":
             assert cam.flat is not None
             at = cam_pose.to_local(follower.world(cam.flat[0]))
-            along = follower.rotation * turn(cam.flat[1]) * cam_pose.rotation.conjugate()
+            along = face_direction(placed.poses, cam) * cam_pose.rotation.conjugate()
             u = np.array([face_parameter(cam, complex(e), complex(z)) if ok else 0.0
                           for z, e, ok in zip(at, along, placed.ok, strict=True)])
         else:

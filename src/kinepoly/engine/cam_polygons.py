@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from kinepoly.engine.cam_contact import centre_label
+from kinepoly.engine.cam_contact import centre_label, face_direction
 from kinepoly.engine.plan import CamGroup
 from kinepoly.engine.polygon import Line, Polygon
 from kinepoly.engine.steps import Direction, DrawnVector
@@ -40,7 +40,7 @@ from kinepoly.engine.velocity import (
     _slide_rel,
     read_rate,
 )
-from kinepoly.geom.arrays import Points, turn
+from kinepoly.geom.arrays import Points
 from kinepoly.model.mechanism import Joint, Revolute
 from kinepoly.scene.spec import SliderSpec
 
@@ -50,12 +50,6 @@ __all__ = ["acceleration_by_cam", "velocity_by_cam"]
 def _ends(group: CamGroup) -> tuple[str, str]:
     """K (the cam's point at the centre of curvature) and W (the follower's point)."""
     return centre_label(group.cam), group.cam.point or ""
-
-
-def _face_direction(polygon: Polygon, group: CamGroup) -> Points:
-    """The flat face's unit direction in the frame at every row (it turns with the follower)."""
-    assert group.cam.flat is not None
-    return np.asarray(polygon.positions.poses[group.link].rotation * turn(group.cam.flat[1]))
 
 
 def _own_line(polygon: Polygon, group: CamGroup, point: str, size_link: str | None,
@@ -82,7 +76,7 @@ def _flat_velocity(polygon: Polygon, group: CamGroup, sliding: dict[str, Points]
     the line through k along the face and on the follower's own line (about its pivot, or along its slide)."""
     k = centre_label(group.cam)
     on_cam = polygon.tip(group.known, k)
-    along_face: Line = (on_cam, _face_direction(polygon, group), 1.0)
+    along_face: Line = (on_cam, face_direction(polygon.positions.poses, group.cam), 1.0)
     label2 = f"parallel to the face of {group.link} through {polygon.label(group.known, k).lower()}"
     joint = group.joint
     line1, label1, far, direction1 = _own_line(polygon, group, k, None, polygon.label(group.link, k))
@@ -137,7 +131,7 @@ def _flat_acceleration(ctx: object, group: CamGroup) -> None:
     relative = ctx.v.equivalent[group.cam.name]  # type: ignore[attr-defined]
     coriolis = np.asarray(ctx.rules.coriolis * 2.0 * b.omega_of(group.link) * (1j * relative))  # type: ignore[attr-defined]
     start = np.asarray(on_cam - coriolis)
-    along_face: Line = (start, _face_direction(b, group), 1.0)
+    along_face: Line = (start, face_direction(b.positions.poses, group.cam), 1.0)
     joint = group.joint
     line1: Line
     laid: list[DrawnVector] = []

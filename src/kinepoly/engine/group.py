@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from kinepoly.engine.cam_contact import centre_label
+from kinepoly.engine.cam_contact import centre_label, face_direction
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import JointSolve, Polygon
 from kinepoly.engine.position import describe_input
@@ -99,8 +99,8 @@ def _system(polygon: Polygon, group: NewtonGroup, extra: dict[tuple[str, str], P
     for cam in group.cams:  # the equivalent link K W: no stretch along e; a flat face's block: no motion along m
         row_x, row_y = np.zeros((n, size)), np.zeros((n, size))
         w, k = _follower_point(cam), centre_label(cam)
-        if cam.flat is not None and cam.kind == "flat":
-            e = 1j * (polygon.positions.poses[cam.follower].rotation * turn(cam.flat[1]))
+        if cam.kind == "flat":
+            e = 1j * face_direction(polygon.positions.poses, cam)
         else:
             e = polygon.world(w) - polygon.world(k)
             e = e / np.abs(e)
@@ -225,8 +225,8 @@ def acceleration_by_linear_solve(ctx: _Context, group: NewtonGroup) -> None:
     for cam in group.cams:  # the equivalent link's normal term along e: -|v_W - v_K|^2 / |K W|
         w_point, k = _follower_point(cam), centre_label(cam)
         v_rel = ctx.v_tip(cam.follower, w_point) - ctx.v_tip(cam.cam, k)
-        if cam.flat is not None and cam.kind == "flat":  # -a^c . m, the block's velocity over the face -v_rel
-            m = 1j * (polygon.positions.poses[cam.follower].rotation * turn(cam.flat[1]))
+        if cam.kind == "flat":  # -a^c . m, the block's velocity over the face -v_rel
+            m = 1j * face_direction(polygon.positions.poses, cam)
             coriolis = ctx.rules.coriolis * 2.0 * polygon.omega_of(cam.follower) * (1j * -v_rel)
             extra[("contact", cam.name)] = np.asarray(-(coriolis.real * m.real + coriolis.imag * m.imag) + 0j)
             continue

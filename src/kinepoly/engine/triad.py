@@ -33,12 +33,12 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
-from kinepoly.engine.cam_contact import centre_label
+from kinepoly.engine.cam_contact import centre_label, face_direction
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import Line, LineCrossing, Polygon
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
-from kinepoly.geom.arrays import Points, Reals, cross_lines, turn
+from kinepoly.geom.arrays import Points, Reals, cross_lines
 from kinepoly.geom.tolerances import PARALLEL_SIN
 from kinepoly.model.mechanism import Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import SliderSpec
@@ -243,11 +243,10 @@ def _construct(polygon: Polygon, triad: Triad, legs: list[_LegLine],
     return chosen, s_world, orders[int(best[0])]
 
 
-def _face_direction(polygon: Polygon, triad: Triad, leg: Leg) -> Points:
+def _face_direction(polygon: Polygon, leg: Leg) -> Points:
     """The unit direction of the ternary's flat face at every row (a face leg's own line runs along it)."""
-    cam = next(c for c in polygon.mechanism.scene.cams if c.name == leg.equivalent)
-    assert cam.flat is not None
-    return np.asarray(polygon.positions.poses[triad.ternary].rotation * turn(cam.flat[1]))
+    return face_direction(polygon.positions.poses, next(c for c in polygon.mechanism.scene.cams
+                                                        if c.name == leg.equivalent))
 
 
 def _name(triad: Triad) -> str:
@@ -267,7 +266,7 @@ def _velocity_leg(polygon: Polygon, triad: Triad, leg: Leg) -> _LegLine:
         direction = np.asarray(1j * (at - polygon.world(leg.pin)))
     elif leg.kind == "face":
         start = polygon.tip(leg.known, leg.point)
-        direction = _face_direction(polygon, triad, leg)
+        direction = _face_direction(polygon, leg)
     else:
         assert leg.slider is not None
         start = polygon.tip(leg.known, leg.point)
@@ -418,7 +417,7 @@ def _acceleration_leg(ctx: _Context, triad: Triad, leg: Leg) -> _LegLine:
         end = np.asarray(start - coriolis)
         laid = [DrawnVector(f"a^c_{b.label(triad.ternary, leg.point)}/{b.label(leg.known, leg.point)}",
                             b.vec(start), b.vec(end), "coriolis")] if b.record else []
-        return _LegLine(at, end, _face_direction(b, triad, leg), tuple(laid))
+        return _LegLine(at, end, _face_direction(b, leg), tuple(laid))
     assert leg.slider is not None
     if leg.kind == "slide":  # the block's point over the guide's: + 2 omega_guide x v_rel
         end, laid = ctx.lay_coriolis(leg.slider, start, leg.link, leg.known, leg.point)
