@@ -128,8 +128,8 @@ def test_random_pivots_follow_the_exact_circle_and_keep_the_contact(dx: float, d
     """The example with its rockers' pivots moved (within the box where the exact circle's mechanism closes over
     the whole turn), swept from 30 degrees to a random cam angle: every row assembles, W follows the exact
     circle to the spline's accuracy, and the last row's solve agrees with the analytic check and keeps the
-    contact's normal velocities equal. (Beyond that box the rockers meet turning points and dead points; near
-    a rocker's turning point the spline's group can stall where the circle's does not: see the docs.)"""
+    contact's normal velocities equal. (Beyond that box the floating four-bar meets dead points within the
+    turn, where the exact circle's group may jump to its other assembly: see the docs.)"""
     b0, c0 = complex(-97 + dx, 45 + dy), complex(-42 - dy, 47 + dx)
     b, c = complex(-27, 59.5), complex(28, 59.5)
     text = {"B0 = [-97, 45], C0 = [-42, 47]": f"B0 = [{b0.real!r}, {b0.imag!r}], C0 = [{c0.real!r}, {c0.imag!r}]",
