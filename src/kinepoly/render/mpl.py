@@ -32,8 +32,8 @@ def _rgba(color: str, opacity: float = 1.0) -> tuple[float, float, float, float]
 def _line_style(stroke: Stroke) -> dict[str, Any]:
     style: dict[str, Any] = {"color": stroke.color, "linewidth": stroke.width * _PT_PER_MM,
                              "solid_capstyle": "butt", "dash_capstyle": "butt", "solid_joinstyle": "miter"}
-    if stroke.dash:
-        style["linestyle"] = (0, tuple(d / stroke.width for d in stroke.dash))
+    if stroke.dash:  # in points, as the line width: with ``lines.scale_dashes`` off (``_RC``) they are not scaled by it
+        style["linestyle"] = (0, tuple(d * _PT_PER_MM for d in stroke.dash))
     return style
 
 
@@ -69,6 +69,13 @@ def _draw(ax: Axes, item: Path | Circle | Arrow | Text, zorder: float) -> None:
 
 def figure_of(sheet: Sheet) -> Figure:
     """A matplotlib Figure of the sheet, page-sized, 1 data unit = 1 mm."""
+    import matplotlib
+
+    with matplotlib.rc_context(_RC):  # the lines take their dashes as made (``lines.scale_dashes`` off)
+        return _figure(sheet)
+
+
+def _figure(sheet: Sheet) -> Figure:
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(sheet.width / 25.4, sheet.height / 25.4))
