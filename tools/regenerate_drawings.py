@@ -1,6 +1,7 @@
 """Regenerate ``drawings/`` from ``examples/``: ``python3 tools/regenerate_drawings.py`` (from the repo root).
 
-Writes ``drawings/<example>.svg``, ``.dxf`` and ``.png`` for every ``examples/*.toml``.
+Writes ``drawings/<example>.svg``, ``.dxf`` and ``.png`` for every ``examples/*.toml`` where the one there is
+missing or differs (compared as ``--check`` compares: a DXF whose header alone moved is left as it is).
 ``--check`` writes nothing: it draws into a temporary folder and exits 1 naming every stale
 or missing file (SVG and DXF compared canonically, PNG within a grey-level tolerance).
 """
@@ -40,9 +41,26 @@ def draw_example(scene_path: Path, out_dir: Path) -> list[Path]:
     return written
 
 
-def stale(examples: Path, drawings: Path) -> list[str]:
-    """What in ``drawings`` differs from a fresh drawing of ``examples`` (empty: all current)."""
+def _difference(fmt: str, committed: Path, fresh: Path) -> str:
+    """Why ``committed`` is not the ``fresh`` drawing (empty when it is, compared canonically)."""
     from tools.compare_drawings import PNG_RMS_TOLERANCE, canonical_dxf, canonical_svg, png_rms
+
+    if not committed.exists():
+        return "missing"
+    if fmt == "svg" and canonical_svg(committed.read_text()) != canonical_svg(fresh.read_text()):
+        return "stale (the SVG differs)"
+    if fmt == "dxf" and canonical_dxf(committed) != canonical_dxf(fresh):
+        return "stale (the DXF differs)"
+    if fmt == "png" and (rms := png_rms(committed, fresh)) > PNG_RMS_TOLERANCE:
+        return f"stale (grey-level RMS difference {rms:.2f} > {PNG_RMS_TOLERANCE})"
+    return ""
+
+
+def stale(examples: Path, drawings: Path, replace: bool = False) -> list[str]:
+    """What in ``drawings`` differs from a fresh drawing of ``examples`` (empty: all current); with ``replace``
+    the differing files are replaced by the fresh ones, and only they (a DXF whose entities are the same but
+    whose header moved is left as it is)."""
+    import shutil
 
     problems = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -51,15 +69,11 @@ def stale(examples: Path, drawings: Path) -> list[str]:
             draw_example(scene, fresh)
             for fmt in DRAWN_FORMATS:
                 name = f"{scene.stem}.{fmt}"
-                committed = drawings / name
-                if not committed.exists():
-                    problems.append(f"{committed}: missing")
-                elif fmt == "svg" and canonical_svg(committed.read_text()) != canonical_svg((fresh / name).read_text()):
-                    problems.append(f"{committed}: stale (the SVG differs)")
-                elif fmt == "dxf" and canonical_dxf(committed) != canonical_dxf(fresh / name):
-                    problems.append(f"{committed}: stale (the DXF differs)")
-                elif fmt == "png" and (rms := png_rms(committed, fresh / name)) > PNG_RMS_TOLERANCE:
-                    problems.append(f"{committed}: stale (grey-level RMS difference {rms:.2f} > {PNG_RMS_TOLERANCE})")
+                why = _difference(fmt, drawings / name, fresh / name)
+                if why:
+                    problems.append(f"{drawings / name}: {why}")
+                    if replace:
+                        shutil.copyfile(fresh / name, drawings / name)
         known = {f"{s.stem}.{fmt}" for s in examples.glob("*.toml") for fmt in DRAWN_FORMATS}
         problems += [f"{p}: no example draws it" for p in sorted(drawings.glob("*.*")) if p.name not in known
                      and p.suffix.lstrip(".") in DRAWN_FORMATS]
@@ -85,9 +99,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("drawings are current" if not problems else "run: python3 tools/regenerate_drawings.py")
         return 1 if problems else 0
     drawings.mkdir(parents=True, exist_ok=True)
-    for scene in scenes:
-        for path in draw_example(scene, drawings):
-            print(f"wrote {path}")
+    replaced = [problem for problem in stale(examples, drawings, replace=True) if "no example draws it" not in problem]
+    for problem in replaced:
+        print(f"wrote {problem.partition(':')[0]} (was {problem.partition(': ')[2]})")
+    print(f"{len(replaced)} file(s) written; the others are current")
     return 0
 
 

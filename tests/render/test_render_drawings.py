@@ -38,3 +38,23 @@ def test_the_comparison_sees_a_changed_drawing(tmp_path: Path) -> None:
     assert canonical_dxf(tmp_path / "four-bar.dxf") != canonical_dxf(moved / "four-bar.dxf")
     assert png_rms(tmp_path / "four-bar.png", moved / "four-bar.png") > PNG_RMS_TOLERANCE
     assert png_rms(tmp_path / "four-bar.png", tmp_path / "four-bar.png") == pytest.approx(0.0)
+
+
+def test_regenerating_writes_only_the_drawings_that_differ(tmp_path: Path) -> None:
+    """The regenerator replaces a missing or stale file and leaves a current one untouched, byte for byte."""
+    from tools.regenerate_drawings import main
+
+    examples, drawings = tmp_path / "examples", tmp_path / "drawings"
+    examples.mkdir()
+    drawings.mkdir()
+    (examples / "four-bar.toml").write_text((EXAMPLES / "four-bar.toml").read_text())
+    for fmt in DRAWN_FORMATS:
+        (drawings / f"four-bar.{fmt}").write_bytes((DRAWINGS / f"four-bar.{fmt}").read_bytes())
+    current = (drawings / "four-bar.dxf").read_bytes() + b"999\nmoved header\n"  # a DXF comment: same entities
+    (drawings / "four-bar.dxf").write_bytes(current)
+    (drawings / "four-bar.png").unlink()
+    assert main(["--examples", str(examples), "--drawings", str(drawings)]) == 0
+    assert (drawings / "four-bar.png").is_file()
+    assert (drawings / "four-bar.dxf").read_bytes() == current
+    assert (drawings / "four-bar.svg").read_bytes() == (DRAWINGS / "four-bar.svg").read_bytes()
+    assert stale(examples, drawings) == []
