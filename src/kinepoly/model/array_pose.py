@@ -42,9 +42,8 @@ class ArrayPose:
         """theta in radians (or degrees), in (-pi, pi] like ``Solution.angle``."""
         angle = np.angle(self.rotation, deg=degrees)
         half = 180.0 if degrees else math.pi
-        low = angle == -half
-        if low.any():
-            angle[low] = half
+        if len(angle) and angle.min() == -half:  # one reduction where none is at -half, the usual case
+            angle[angle == -half] = half
         return np.asarray(angle)
 
     @staticmethod

@@ -243,8 +243,8 @@ def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
     if full is None:
         return None
     _check_steps(steps)
-    values, mask, seed_row = _with_seed(np.linspace(0.0, full, steps, endpoint=False), _seed_value(mechanism), True,
-                                        full)
+    grid = np.arange(steps, dtype=np.float64) * (full / steps)  # np.linspace(0, full, steps, endpoint=False), without its Python
+    values, mask, seed_row = _with_seed(grid, _seed_value(mechanism), True, full)
     return InputGrid(values, _internal(mechanism, values), mask, seed_row, True)
 
 

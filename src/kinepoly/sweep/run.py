@@ -22,7 +22,7 @@ import cmath
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Literal
 
@@ -96,6 +96,7 @@ class SweepResult:
     seed_row: int = 0
     """The row computed at the scene's own input (among all rows computed, shown or not)."""
     timing: dict[str, float] = field(default_factory=dict)
+    """Seconds spent: preparing, finding the range, executing, in all (filled by ``run_sweep`` when done)."""
     positions: Positions | None = field(default=None, repr=False, compare=False)
     """The link poses at every row computed (shown or not), read by ``kinepoly.sweep.rows``."""
     shown: Bools | None = field(default=None, repr=False, compare=False)
@@ -390,8 +391,9 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
         t1 = time.perf_counter()
         result = _execute(mechanism, plan, prepared.asked, grid, prepared, progress, positions)
     t2 = time.perf_counter()
-    return replace(result, timing={"prepare_s": prepared.prepare_s, "range_s": t1 - t0, "execute_s": t2 - t1,
-                                   "total_s": prepared.prepare_s + t2 - t0})
+    result.timing.update({"prepare_s": prepared.prepare_s, "range_s": t1 - t0, "execute_s": t2 - t1,
+                          "total_s": prepared.prepare_s + t2 - t0})  # its own dict, filled once it is done
+    return result
 
 
 def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float | None = None,
