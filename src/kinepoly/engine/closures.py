@@ -150,8 +150,11 @@ def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple
     r1 = np.abs(span)
     r2 = abs(_local(mech, j, p2) - _local(mech, j, p3))
     left, right, slack, d, h = circle_circle(w1, r1, w3, r2)
-    singular = np.asarray(~(d > ASSEMBLY_REL_TOL * np.maximum(r1, r2)))
-    ok = _closes(slack, np.maximum(d, np.maximum(r1, r2))) & ~singular & (r1 > 0)
+    longer = np.maximum(r1, r2)  # one number, unless a driven joint makes r1 vary by row
+    singular = np.asarray(~(d > ASSEMBLY_REL_TOL * longer))
+    ok = _closes(slack, np.maximum(d, longer)) & ~singular
+    if np.ndim(r1) or not r1 > 0:
+        ok &= r1 > 0
 
     def place(choice: Choice) -> dict[str, ArrayPose]:
         at = pick(choice, left, right)

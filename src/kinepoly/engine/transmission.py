@@ -91,7 +91,8 @@ def transmission_angles(positions: Positions, plan: PositionPlan,
             directions, point, joint, between, at_zero = _describe(positions, group)
             sine = None if line_sines is None else line_sines.get(group.name)
             if sine is not None:
-                angle = np.arcsin(np.minimum(np.abs(sine), 1.0))
+                angle = np.abs(sine)
+                np.arcsin(np.minimum(angle, 1.0, out=angle), out=angle)
             else:  # a direction of no length (two points of a link in one place) is taken as 90 degrees
                 first, second = directions()
                 turn = np.arctan2(np.abs(cross(first, second)), np.abs(dot(first, second)))
