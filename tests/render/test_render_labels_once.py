@@ -3,16 +3,19 @@ labels again on every page; a label stays where the page before showed it unless
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from itertools import pairwise
 from typing import Any
 
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 from tests.scenes import EXAMPLES
 
 import kinepoly
 from kinepoly.render import labels
-from kinepoly.render.primitives import Text
+from kinepoly.render.primitives import Arrow, Path, Stroke, Text
 from kinepoly.render.sheet import step_sheets
 
 
@@ -57,3 +60,67 @@ def test_a_label_stays_where_the_sheet_before_showed_it() -> None:
                     kept += new[role] == text
                     moved += new[role] != text
     assert kept > 0 and moved <= kept // 5, (kept, moved)
+
+
+def test_a_thing_drawn_on_many_sheets_is_one_object() -> None:
+    """The polygons are drawn once per layout (``FigureDrawing``): an arrow, a direction line, a tip's label
+    request shown on several step sheets is the same object on each, not an equal copy made anew."""
+    sheets = step_sheets(kinepoly.solve(kinepoly.load_scene(EXAMPLES / "shaper.toml")))
+    drawn = [item for sheet in sheets for layer in ("velocity-polygon", "acceleration-polygon")
+             for item in sheet.layer(layer).items if isinstance(item, (Arrow, Path)) and item.role != "highlight"]
+    assert len(drawn) > 5 * len(sheets)
+    assert len({id(item) for item in drawn}) == len(set(drawn))
+
+
+def test_a_step_sheet_highlights_what_the_step_adds() -> None:
+    sheets = step_sheets(kinepoly.solve(kinepoly.load_scene(EXAMPLES / "shaper.toml")))
+    checked = 0
+    for before, after in pairwise(sheets):
+        for layer in ("velocity-polygon", "acceleration-polygon"):
+            old = {item for item in before.layer(layer).items if isinstance(item, Arrow)}
+            new = [item for item in after.layer(layer).items if isinstance(item, Arrow) and item not in old]
+            halos = {item.points for item in after.layer(layer).items if isinstance(item, Path)
+                     and item.role == "highlight"}
+            for arrow in new:
+                assert (arrow.start, arrow.end) in halos, (after.title, arrow.role)
+                checked += 1
+            lit = {points for points in halos if len(points) == 2}
+            shaft = {(arrow.start, arrow.end) for arrow in after.layer(layer).items if isinstance(arrow, Arrow)}
+            assert lit & shaft <= {(arrow.start, arrow.end) for arrow in new}, after.title  # old ones not lit
+    assert checked > 10
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-30, 30), st.floats(-30, 30)), min_size=2, max_size=5),
+       st.floats(0.1, 1.0), st.booleans(), st.booleans())
+def test_pieces_cover_what_the_item_covers(points: list[tuple[float, float]], width: float, closed: bool,
+                                           arrow: bool) -> None:
+    """A stroke or an arrow is tested against labels in short pieces (``item_pieces``); together they cover
+    what the whole item covers, apart from the tips of mitred corners, and nothing more (a round corner aside)."""
+    import numpy as np
+    import shapely
+
+    assume(all(math.dist(a, b) > 0.05 for a, b in pairwise([*points, points[0]])))  # no stroke of no length
+    start, end = points[0], points[1]
+    if arrow and math.dist(start, end) > 3.0:
+        item: Arrow | Path = Arrow(start, end, "#000000", width, 2.0, 0.6)
+        corners: list[tuple[float, float]] = []
+    else:
+        item = Path(tuple(points), Stroke("#000000", width), closed=closed and len(points) >= 3)
+        corners = list(points)
+    whole, pieces = labels.item_geometry(item), [g for g in labels.item_pieces(item) if not g.is_empty]
+    allowed = whole.union(shapely.buffer(shapely.multipoints(corners), width / 2 + 1e-6)) if corners else whole
+    for piece in pieces:  # beyond the whole only at a corner that turns back on itself (no mitre there)
+        assert piece.difference(allowed).area <= 1e-9
+        assert max(piece.bounds[2] - piece.bounds[0], piece.bounds[3] - piece.bounds[1]) <= (
+            labels._PIECE_MM + 2 * width + 1e-9 if isinstance(item, Path) else 40.0)
+    if whole.is_empty:
+        return
+    x0, y0, x1, y1 = whole.bounds
+    grid = np.stack(np.meshgrid(np.arange(x0, x1, width / 3), np.arange(y0, y1, width / 3)), axis=-1).reshape(-1, 2)
+    inside = grid[shapely.contains_xy(whole, grid[:, 0], grid[:, 1])]
+    if corners:  # a mitred corner reaches further than the pieces' disc there
+        far = np.min(np.hypot(*(inside[:, None, :] - np.asarray(corners)[None, :, :]).transpose(2, 0, 1)), axis=1)
+        inside = inside[far > 4 * width]
+    hit = shapely.STRtree(pieces).query(shapely.points(inside), predicate="dwithin", distance=1e-7)[0]
+    assert len(set(hit.tolist())) == len(inside)

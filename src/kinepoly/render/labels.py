@@ -9,12 +9,13 @@ is taken, the label goes further out with a thin leader line back to its anchor.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
-from kinepoly.render.primitives import Arrow, Circle, Item, Path, Stroke, Text
+from kinepoly.render.primitives import Arrow, Circle, Item, Path, Stroke, Text, hash_once
 from kinepoly.render.text import Run, runs_box, text_width
 
 if TYPE_CHECKING:
@@ -33,6 +34,9 @@ _LEADER_FREE_MM = 2.0
 """Near its anchor a leader may cross what is drawn there (the pin, the shaft it names)."""
 _FAR_RINGS_MM = (5.0, 7.5, 10.0, 14.0, 19.0, 25.0, 32.0, 40.0)
 _DIRECTIONS_DEG = (45, 135, -45, -135, 0, 180, 90, -90, 22.5, 157.5, -22.5, -157.5, 67.5, 112.5, -67.5, -112.5)
+_DIRECTIONS = tuple((math.cos(math.radians(angle)), math.sin(math.radians(angle))) for angle in _DIRECTIONS_DEG)
+_FAR_RING_GROUPS = (_FAR_RINGS_MM[:2], _FAR_RINGS_MM[2:4], _FAR_RINGS_MM[4:])
+"""The far rings in the groups tested together: a label that finds a place near stops the search there."""
 
 
 @dataclass(frozen=True)
@@ -57,6 +61,8 @@ class Request:
     """Draw a thin circle round the label (a link's number), so it does not read as a point's name."""
     optional: bool = False
     """Leave the label out rather than put it where it touches something (a link's number)."""
+
+    __hash__ = hash_once
 
 
 def item_geometry(item: Item) -> BaseGeometry:
@@ -89,6 +95,41 @@ def item_geometry(item: Item) -> BaseGeometry:
     if len(points) == 1:
         return ShapelyPoint(points[0]).buffer(max(width / 2, 1e-3))
     return LineString(points).buffer(max(width / 2, 1e-3), cap_style="flat", join_style="mitre")
+
+
+_PIECE_MM = 2.5
+"""Strokes are tested against labels in pieces no longer than this: a piece's bounding box hugs it, so a
+label's box meets the boxes of the strokes that pass near it only, not of every long one around it."""
+
+
+def item_pieces(item: Item) -> list[BaseGeometry]:
+    """``item_geometry`` as the union of small pieces: a stroke's segments cut every ``_PIECE_MM`` (with a
+    small disc at each corner), an arrow's shaft so cut and its head; any other item whole."""
+    import numpy as np
+    import shapely
+
+    heads: list[BaseGeometry] = []
+    if isinstance(item, Arrow):
+        if item.length == 0.0:
+            return [item_geometry(item)]
+        points, half, closed = [item.start, item.shaft_end], item.width / 2, False
+        heads.append(shapely.Polygon(item.head))
+    elif isinstance(item, Path) and len(item.points) >= 2 and not (item.closed and item.fill is not None
+                                                                    and item.fill_opacity >= 1.0):
+        width = item.stroke.width if item.stroke else 0.0
+        points, half, closed = list(item.points), max(width / 2, 1e-3), item.closed
+    else:
+        return [item_geometry(item)]
+    ends = np.asarray(points + ([points[0]] if closed else []), dtype=float)
+    pieces = []
+    for a, b in itertools.pairwise(ends):
+        t = np.linspace(0.0, 1.0, max(1, math.ceil(math.hypot(*(b - a)) / _PIECE_MM)) + 1)[:, None]
+        cuts = a + t * (b - a)
+        pieces.append(np.stack([cuts[:-1], cuts[1:]], axis=1))
+    lines = shapely.linestrings(np.concatenate(pieces))
+    corners = ends[1:-1] if not closed else ends[:-1]
+    discs = shapely.buffer(shapely.points(corners), half, quad_segs=2) if len(corners) else []
+    return [*shapely.buffer(lines, half, cap_style="flat"), *discs, *heads]
 
 
 def fill_geometry(item: Item) -> BaseGeometry | None:
@@ -141,12 +182,12 @@ class _Placed:
             for j in range(math.floor(bounds[1] / c), math.floor(bounds[3] / c) + 1):
                 yield (i, j)
 
-    def append(self, geometry: Any, leader: bool = False) -> None:
+    def append(self, geometry: Any, leader: bool = False, bounds: Box | None = None) -> None:
         index = len(self.geometries)
         if leader:
             self._leaders.add(index)
         self.geometries.append(geometry)
-        bounds = tuple(geometry.bounds)
+        bounds = bounds if bounds is not None else tuple(geometry.bounds)
         self._bounds.append(bounds)
         for key in self._keys(bounds):
             self._cells.setdefault(key, []).append(index)
@@ -157,10 +198,10 @@ class _Placed:
 
     def add(self, placed: Placed) -> None:
         """A placed label's geometries: its box (with its ring), then its leader if it has one."""
-        _, items, geometries = placed
+        _, items, geometries, bounds = placed
         has_leader = any(isinstance(item, Path) and item.role.startswith("leader ") for item in items)
-        for k, geometry in enumerate(geometries):
-            self.append(geometry, leader=has_leader and k == 1)
+        for k, (geometry, box) in enumerate(zip(geometries, bounds, strict=True)):
+            self.append(geometry, has_leader and k == 1, box)
 
     def is_leader(self, index: int) -> bool:
         return index in self._leaders
@@ -242,7 +283,7 @@ class Placer:
         for k, box in enumerate(boxes):
             yield k not in taken and self._inside(box) and not self._placed.touches(grown[k])
 
-    def _leader_ok(self, line: Any, anchor: Point, strict: bool) -> bool:
+    def _leader_ok(self, line: Any, strict: bool) -> bool:
         """A leader (its centre line) keeps its clearance from every label (other leaders may meet it, at a spot
         they share); ``strict``: from everything drawn too, beyond ``_LEADER_FREE_MM`` of its anchor."""
         from shapely.geometry import LineString
@@ -291,21 +332,30 @@ class Placer:
              size: tuple[float, float], shift: Point, optional: bool = False) -> list[Item]:
         from shapely.geometry import LineString
 
-        candidates = [_pushed_box(anchor, (math.cos(math.radians(angle)), math.sin(math.radians(angle))), size, ring)
-                      for ring in _FAR_RINGS_MM for angle in _DIRECTIONS_DEG]
-        free = [b for b, ok in zip(candidates, self._free_of(candidates, False), strict=True) if ok]
-        for strict in (True, False):  # a leader that crosses nothing drawn first, then one that must
-            for b in free:
-                near = (min(max(anchor[0], b[0]), b[2]), min(max(anchor[1], b[1]), b[3]))  # the box's nearest point
-                length = math.hypot(near[0] - anchor[0], near[1] - anchor[1])
-                if length <= 0.6:
+        def leader_to(b: Box) -> Any:
+            near = (min(max(anchor[0], b[0]), b[2]), min(max(anchor[1], b[1]), b[3]))  # the box's nearest point
+            length = math.hypot(near[0] - anchor[0], near[1] - anchor[1])
+            if length <= 0.6:
+                return None
+            k = (length - 0.3) / length
+            start = (anchor[0] + shift[0], anchor[1] + shift[1])
+            return LineString([start, (anchor[0] + k * (near[0] - anchor[0]), anchor[1] + k * (near[1] - anchor[1]))])
+
+        # A leader that crosses nothing drawn first, ring after ring (the nearest that has one ends the search),
+        # then one that must cross something.
+        free: list[tuple[Box, Any]] = []
+        for rings in _FAR_RING_GROUPS:
+            candidates = [_pushed_box(anchor, direction, size, ring) for ring in rings for direction in _DIRECTIONS]
+            for b, ok in zip(candidates, self._free_of(candidates, False), strict=True):
+                leader = leader_to(b) if ok else None
+                if leader is None:
                     continue
-                k = (length - 0.3) / length
-                start = (anchor[0] + shift[0], anchor[1] + shift[1])
-                end = (anchor[0] + k * (near[0] - anchor[0]), anchor[1] + k * (near[1] - anchor[1]))
-                leader = LineString([start, end])
-                if self._leader_ok(leader, anchor, strict):
+                if self._leader_ok(leader, True):
                     return self._accept(b, runs, color, role, anchor, bold, leader)
+                free.append((b, leader))
+        for b, leader in free:
+            if self._leader_ok(leader, False):
+                return self._accept(b, runs, color, role, anchor, bold, leader)
         if optional:
             return []
         # Nowhere free within reach: keep the nearest place inside the region (the overlap test reports it).
@@ -382,8 +432,9 @@ def _point(p: Point) -> Any:
     return ShapelyPoint(p)
 
 
-Placed = tuple[str, list[Item], list[Any]]
-"""A placed label: its layer, its items (text, and leader or ring), and their geometries as placed."""
+Placed = tuple[str, list[Item], list[Any], list[Box]]
+"""A placed label: its layer, its items (text, and leader or ring), their geometries as placed and the
+geometries' bounds."""
 
 
 class LabelCache:
@@ -401,12 +452,30 @@ class LabelCache:
 
     def __init__(self) -> None:
         self._geometry: dict[Item, tuple[Any, Any, Box]] = {}
+        self._pieces: dict[Item, list[Any]] = {}
+        self.parts: dict[Any, Any] = {}
+        self._fitted: dict[Request, Request] = {}
+        """The items and label requests of the parts that the sheets draw alike (``render.sheet.build_sheet``)."""
         self._regions: dict[tuple[Any, ...], tuple[list[Placed], list[str]]] = {}
         self._last: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
         self._widest: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
         """Per region, the placement on the sheet with the most drawing there (a handout's whole drawing)."""
         self.crowded: set[str] = set()
         """The roles of the labels that found no free place on any sheet placed with this cache."""
+
+    def fitted(self, request: Request) -> Request:
+        """The request wrapped to its region (``_fitted``), made once."""
+        found = self._fitted.get(request)
+        if found is None:
+            found = self._fitted[request] = _fitted(request)
+        return found
+
+    def pieces(self, item: Item) -> list[Any]:
+        """The item's geometry in pieces (``item_pieces``), made once."""
+        found = self._pieces.get(item)
+        if found is None:
+            found = self._pieces[item] = item_pieces(item)
+        return found
 
     def geometry(self, item: Item) -> tuple[Any, Any, Box]:
         """The item's hard geometry, its shading (or None) and the hard geometry's bounds."""
@@ -488,14 +557,15 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
     the region is placed again with those labels first, while that helps.
     """
     kept = _kept(cache, region, requests, near)
-    base = shared.copy()
-    for entry in kept.values():
-        base.add(entry)
-    hard = [cache.geometry(item)[0] for item in near]
-    soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
     order = [k for k in range(len(requests)) if k not in kept]
-    best: tuple[list[Placed], list[str]] | None = None
-    for _ in range(_TRIES):
+    best: tuple[list[Placed], list[str]] | None = ([kept[k] for k in range(len(requests))], []) if not order else None
+    if order:
+        base = shared.copy()
+        for entry in kept.values():
+            base.add(entry)
+        hard = [g for item in near for g in cache.pieces(item)]
+        soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
+    for _ in range(_TRIES if order else 0):
         placed, crowded = _attempt(region, requests, order, kept, hard, soft, base.copy())
         if best is not None and len(crowded) >= len(best[1]):
             break  # moving the crowded labels first did not help
@@ -552,7 +622,7 @@ def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kep
                                     request.gap, request.ring, request.optional, far=k in crowd)
         else:
             items = placer.along(request.anchor, request.end, request.runs, request.color, request.role)
-        out[k] = (request.layer, items, placed_so_far.geometries[before:])
+        out[k] = (request.layer, items, placed_so_far.geometries[before:], placed_so_far._bounds[before:])
     return [out[k] for k in range(len(requests))], placer.crowded
 
 
@@ -610,15 +680,19 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
     sheet's labels again, and a region that grew keeps the labels nothing new touches: each
     sheet places only what it adds (``LabelCache``).
     """
+    import numpy as np
+
     cache = cache if cache is not None else LabelCache()
     drawn = [item for item in drawn if item.role not in BACKGROUND_ROLES]
-    bounds = [cache.geometry(item)[2] for item in drawn]
-    ordered = sorted((_fitted(r) for r in requests), key=lambda r: r.priority)
+    bounds = np.array([cache.geometry(item)[2] for item in drawn], dtype=float).reshape(-1, 4)
+    ordered = sorted((cache.fitted(r) for r in requests), key=lambda r: r.priority)
     by_region: dict[Box, list[Request]] = {}
     for request in ordered:
         by_region.setdefault(request.region, []).append(request)
     margin = CLEARANCE_MM + 1e-6
-    near = {region: [drawn[k] for k, b in enumerate(bounds) if _near_region(b, region, margin)] for region in by_region}
+    near = {region: [drawn[k] for k in np.flatnonzero(
+        (bounds[:, 0] <= region[2] + margin) & (bounds[:, 2] >= region[0] - margin)
+        & (bounds[:, 1] <= region[3] + margin) & (bounds[:, 3] >= region[1] - margin)).tolist()] for region in by_region}
     keys = {region: (region, tuple(reqs), tuple(near[region])) for region, reqs in by_region.items()}
     shared = _Placed()
     results: dict[Box, list[Placed]] = {}
@@ -626,25 +700,28 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
         found = cache._regions.get(keys[region])
         if found is not None:
             results[region] = found[0]
-            for entry in found[0]:
-                shared.add(entry)
             cache.crowded.update(found[1])
+            if any(_near_region(other, region, margin) for other in by_region if other != region):
+                for entry in found[0]:
+                    shared.add(entry)
+            # else its labels, kept only when well inside it (below), are beyond the reach of any other's
     for region, reqs in by_region.items():
         if region in results:
             continue
         placed, crowded = _place_region(cache, region, reqs, near[region], shared)
         results[region] = placed
         cache.crowded.update(crowded)
-        own = [g for _, _, geometries in placed for g in geometries]
+        own = [g for _, _, geometries, _ in placed for g in geometries]
         mine = {id(g) for g in own}
-        if all(_well_inside(tuple(g.bounds), region, margin) for g in own) and \
-                not any(_near_region(tuple(g.bounds), region, margin) for g in shared.geometries if id(g) not in mine):
+        if all(_well_inside(b, region, margin) for _, _, _, boxes in placed for b in boxes) and \
+                not any(_near_region(b, region, margin) for g, b in zip(shared.geometries, shared._bounds, strict=True)
+                        if id(g) not in mine):
             cache._regions[keys[region]] = (placed, crowded)
     out: dict[str, list[Item]] = {}
     counters = dict.fromkeys(results, 0)
     for request in ordered:  # the layers' items in the order of the requests
         k = counters[request.region]
-        layer, items, _ = results[request.region][k]
+        layer, items, _, _ = results[request.region][k]
         counters[request.region] = k + 1
         out.setdefault(layer, []).extend(items)
     return out

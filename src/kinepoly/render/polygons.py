@@ -1,13 +1,14 @@
 """The velocity and acceleration polygons as drawn: vectors, tips, direction lines, image triangles.
 
 ``polygon_figure`` reads the construction steps (physical units, pole at 0) and says what the
-polygon shows and at which step each element appears; ``polygon_items`` draws that to a panel's
-scale, up to a step, with the step's new elements under a highlight. Every vector's drawn end
+polygon shows and at which step each element appears; ``FigureDrawing`` draws that to a panel's
+scale once and gives each sheet what it shows up to its step, the step's new elements under a highlight. Every vector's drawn end
 is exactly ``pole + k * vector``.
 """
 
 from __future__ import annotations
 
+import bisect
 import functools
 import math
 from dataclasses import dataclass
@@ -33,7 +34,7 @@ from kinepoly.render.style import (
 from kinepoly.render.text import Run, text_width, tip_runs, vector_runs
 from kinepoly.solution import Solution
 
-__all__ = ["Figure", "FigureVector", "figure_box", "polygon_figure", "polygon_items"]
+__all__ = ["Figure", "FigureDrawing", "FigureVector", "figure_box", "figure_stage", "polygon_figure"]
 
 Kind = Literal["velocity", "acceleration"]
 Point = tuple[float, float]
@@ -258,84 +259,138 @@ def _direction_segments(figure: Figure, panel: Panel) -> tuple[tuple[tuple[Point
     return tuple(tuple(_clip_line(fl.line, panel, area)) for fl in figure.lines)
 
 
-def polygon_items(figure: Figure, panel: Panel, upto: int | None = None) -> tuple[list[Item], list[Request]]:
-    """Draw ``figure`` to ``panel``'s scale: everything of steps <= ``upto`` (all when None), the
-    elements of step ``upto`` highlighted."""
-    layer = f"{figure.kind}-polygon"
-    prime = figure.kind == "acceleration"
-    shown = (lambda step: True) if upto is None else (lambda step: step <= upto)
-    current = (lambda step: False) if upto is None else (lambda step: step == upto)
-    halos: list[Item] = []
-    items: list[Item] = []
-    requests: list[Request] = []
-    region = panel.drawing_rect
-    tips = {t.label: t for t in figure.tips}
-    for image in figure.images:
-        if not shown(image.step):
-            continue
-        corners = _ring(tuple(panel.paper(tips[label].value) if label in tips else panel.origin
-                              for label in image.tips))
-        if _area(corners) < 0.02 * max(_span(corners) ** 2, 1e-12):
-            continue
-        color = link_color(image.index)
-        items.append(Path(corners, Stroke(color, 0.15), fill=color, fill_opacity=0.45, closed=True,
-                          role=f"image {image.link}"))
-    for fl, segments in zip(figure.lines, _direction_segments(figure, panel), strict=True):
-        if not shown(fl.step):
-            continue
-        for a, b in segments:
-            items.append(Path((a, b), DIRECTION_LINE, role=f"direction {fl.line.label}"))
-            if current(fl.step):
-                halos.append(Path((a, b), HALO, role="highlight"))
-    dots: list[Item] = []
-    tiny: dict[tuple[float, float], list[tuple[str, str]]] = {}
-    """The vectors too short to draw, by where they end: named in one label there (with the tip's, if one is)."""
-    for v in figure.vectors:
-        if not shown(v.step):
-            continue
-        start, end = panel.paper(v.start), panel.paper(v.end)
-        length = math.hypot(end[0] - start[0], end[1] - start[1])
-        color = TERM_COLORS[v.term]
-        runs = _labelled_runs(v.label, LABEL_MM)
-        if length == 0.0 or norm(sub(v.end, v.start)) == 0.0:
-            continue
-        if length < TINY_FACTOR * HEAD_LENGTH_MM * 1.5:
-            dots.append(Circle(end, 0.55, None, fill=color, role=f"vector {v.label}"))
-            tiny.setdefault(_spot(end), []).append((v.label, color))
-        else:
-            items.append(Arrow(start, end, color, VECTOR_WIDTH_MM, HEAD_LENGTH_MM, HEAD_HALF_WIDTH_MM,
-                               role=f"vector {v.label}"))
-            requests.append(Request(layer, region, runs, start, end, color=color, role=f"vector {v.label}",
-                                    priority=4))
-        if current(v.step):
-            halos.append(Path((start, end), HALO, role="highlight"))
-    items += dots
-    pole = panel.paper((0.0, 0.0))
-    items.append(Circle(pole, 0.8, Stroke("#000000", 0.25), fill="#ffffff", role="pole"))
-    pole_label = ", ".join(["o", *(name.lower() for name in figure.pole_names)])
-    requests.append(Request(layer, region, _with_vectors(_joined_tip_runs(["o", *figure.pole_names], prime),
-                                                         tiny.pop(_spot(pole), [])), pole,
-                            role=f"tip {pole_label}", priority=3, gap=0.8))
-    groups: dict[tuple[float, float], list[FigureTip]] = {}
-    for tip in figure.tips:
-        if shown(tip.step):
-            p = panel.paper(tip.value)
-            groups.setdefault((round(p[0], 2), round(p[1], 2)), []).append(tip)
-    for group in groups.values():
-        p = panel.paper(group[0].value)
-        if math.hypot(p[0] - pole[0], p[1] - pole[1]) < 0.05:
-            continue
-        items.append(Circle(p, 0.45, None, fill="#000000", role=f"tip {group[0].label.lower()}"))
-        if any(current(t.step) for t in group):
-            halos.append(Circle(p, 1.8, None, fill=HALO.color, role="highlight"))
-        runs = _with_vectors(_joined_tip_runs([t.label for t in group], prime), tiny.pop(_spot(p), []))
-        requests.append(Request(layer, region, runs, p, role="tip " + ", ".join(t.label.lower() for t in group),
-                                priority=3, gap=0.6))
-    for spot, named in tiny.items():
-        label = ", ".join(name for name, _ in named)
-        requests.append(Request(layer, region, _with_vectors((), named), spot, color=named[0][1],
-                                role=f"vector {label}", priority=3, gap=0.6))
-    return halos + items, requests
+def figure_stage(figure: Figure, upto: int | None) -> tuple[int, bool]:
+    """What ``FigureDrawing(figure, panel).at(upto)`` draws, as (how many of the steps at which the figure's
+    elements appear it shows, whether the last of them is highlighted): two sheets of equal stage draw the
+    figure alike."""
+    steps = sorted({*(t.step for t in figure.tips), *(v.step for v in figure.vectors),
+                    *(fl.step for fl in figure.lines), *(image.step for image in figure.images)})
+    if upto is None:
+        return (len(steps), False)
+    return (bisect.bisect_right(steps, upto), upto in steps)
+
+
+class FigureDrawing:
+    """``figure`` drawn to ``panel``'s scale once; ``at(upto)`` gives what a sheet of step ``upto`` shows.
+
+    Each element is drawn once with the step at which it appears (and its highlight); a sheet picks
+    those of steps <= ``upto``. Only the labels that join several names at one spot (coinciding tips,
+    the short vectors ending there) depend on which of those names are shown yet; each such label is
+    made once for every set of names it shows. Equal things are one object on every sheet.
+    """
+
+    def __init__(self, figure: Figure, panel: Panel) -> None:
+        self.figure, self.panel = figure, panel
+        self._layer = f"{figure.kind}-polygon"
+        self._prime = figure.kind == "acceleration"
+        self._region = panel.drawing_rect
+        self._images: list[tuple[int, Item]] = []
+        tips = {t.label: t for t in figure.tips}
+        for image in figure.images:
+            corners = _ring(tuple(panel.paper(tips[label].value) if label in tips else panel.origin
+                                  for label in image.tips))
+            if _area(corners) < 0.02 * max(_span(corners) ** 2, 1e-12):
+                continue
+            color = link_color(image.index)
+            self._images.append((image.step, Path(corners, Stroke(color, 0.15), fill=color, fill_opacity=0.45,
+                                                  closed=True, role=f"image {image.link}")))
+        self._lines = [(fl.step, Path((a, b), DIRECTION_LINE, role=f"direction {fl.line.label}"),
+                        Path((a, b), HALO, role="highlight"))
+                       for fl, segments in zip(figure.lines, _direction_segments(figure, panel), strict=True)
+                       for a, b in segments]
+        self._vectors: list[tuple[int, Item, Request | None, Item, tuple[tuple[float, float], str, str] | None]] = []
+        """Per vector drawn: its step, its arrow (or dot), its label (None for a dot), its highlight, and for a
+        vector too short to draw, where it ends, its name and colour (named in the label there)."""
+        for v in figure.vectors:
+            start, end = panel.paper(v.start), panel.paper(v.end)
+            length = math.hypot(end[0] - start[0], end[1] - start[1])
+            if length == 0.0 or norm(sub(v.end, v.start)) == 0.0:
+                continue
+            color = TERM_COLORS[v.term]
+            halo = Path((start, end), HALO, role="highlight")
+            if length < TINY_FACTOR * HEAD_LENGTH_MM * 1.5:
+                dot = Circle(end, 0.55, None, fill=color, role=f"vector {v.label}")
+                self._vectors.append((v.step, dot, None, halo, (_spot(end), v.label, color)))
+            else:
+                arrow = Arrow(start, end, color, VECTOR_WIDTH_MM, HEAD_LENGTH_MM, HEAD_HALF_WIDTH_MM,
+                              role=f"vector {v.label}")
+                request = Request(self._layer, self._region, _labelled_runs(v.label, LABEL_MM), start, end, color=color,
+                                  role=f"vector {v.label}", priority=4)
+                self._vectors.append((v.step, arrow, request, halo, None))
+        self._pole_point = panel.paper((0.0, 0.0))
+        self._pole = Circle(self._pole_point, 0.8, Stroke("#000000", 0.25), fill="#ffffff", role="pole")
+        self._tips = [(tip, panel.paper(tip.value)) for tip in figure.tips]
+        self._made: dict[tuple[object, ...], Item | Request] = {}
+        """The joined labels, tip dots and their highlights made so far, by what they show."""
+
+    def _label(self, names: tuple[str, ...], short: tuple[tuple[str, str], ...], at: Point, gap: float) -> Request:
+        """The label at a spot: the tips' names there (the pole's with ``o``), then the short vectors' ending there."""
+        key = ("label", names, short, at)
+        found = self._made.get(key)
+        if not isinstance(found, Request):
+            runs = _with_vectors(_joined_tip_runs(list(names), self._prime) if names else (), list(short))
+            if names:
+                role, color = "tip " + ", ".join(name.lower() for name in names), "#000000"
+            else:
+                role, color = "vector " + ", ".join(name for name, _ in short), short[0][1]
+            found = self._made[key] = Request(self._layer, self._region, runs, at, color=color, role=role,
+                                              priority=3, gap=gap)
+        return found
+
+    def _dot(self, tip: FigureTip, at: Point, highlight: bool) -> Item:
+        """The dot of the tips at one spot, named by the first of them; or its highlight."""
+        key = ("highlight" if highlight else "dot", tip.label)
+        found = self._made.get(key)
+        if not isinstance(found, Circle):
+            found = self._made[key] = (Circle(at, 1.8, None, fill=HALO.color, role="highlight") if highlight else
+                                       Circle(at, 0.45, None, fill="#000000", role=f"tip {tip.label.lower()}"))
+        return found
+
+    def at(self, upto: int | None = None) -> tuple[list[Item], list[Request]]:
+        """Everything of steps <= ``upto`` (all when None), the elements of step ``upto`` highlighted: the
+        items (the highlights first) and the label requests."""
+        last = math.inf if upto is None else upto
+        halos: list[Item] = []
+        items: list[Item] = [item for step, item in self._images if step <= last]
+        for step, segment, glow in self._lines:
+            if step <= last:
+                items.append(segment)
+                if step == upto:
+                    halos.append(glow)
+        requests: list[Request] = []
+        dots: list[Item] = []
+        tiny: dict[tuple[float, float], list[tuple[str, str]]] = {}
+        """The vectors too short to draw, by where they end: named in one label there (with the tip's, if one is)."""
+        for step, drawn, request, halo, short in self._vectors:
+            if step > last:
+                continue
+            if request is not None:
+                items.append(drawn)
+                requests.append(request)
+            elif short is not None:
+                dots.append(drawn)
+                tiny.setdefault(short[0], []).append(short[1:])
+            if step == upto:
+                halos.append(halo)
+        items += dots
+        pole = self._pole_point
+        items.append(self._pole)
+        requests.append(self._label(("o", *self.figure.pole_names), tuple(tiny.pop(_spot(pole), [])), pole, 0.8))
+        groups: dict[tuple[float, float], list[tuple[FigureTip, Point]]] = {}
+        for tip, p in self._tips:
+            if tip.step <= last:
+                groups.setdefault((round(p[0], 2), round(p[1], 2)), []).append((tip, p))
+        for group in groups.values():
+            first, p = group[0]
+            if math.hypot(p[0] - pole[0], p[1] - pole[1]) < 0.05:
+                continue
+            items.append(self._dot(first, p, False))
+            if any(tip.step == upto for tip, _ in group):
+                halos.append(self._dot(first, p, True))
+            requests.append(self._label(tuple(tip.label for tip, _ in group), tuple(tiny.pop(_spot(p), [])), p, 0.6))
+        for spot, ending in tiny.items():
+            requests.append(self._label((), tuple(ending), spot, 0.6))
+        return halos + items, requests
 
 
 def _spot(p: Point) -> tuple[float, float]:

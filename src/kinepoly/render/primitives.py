@@ -23,9 +23,20 @@ __all__ = [
     "Sheet",
     "Stroke",
     "Text",
+    "hash_once",
 ]
 
 Point = tuple[float, float]
+
+def hash_once(item: object) -> int:
+    """A frozen value's hash, computed on its first use and kept on it: a handout's pages look the same
+    items and label requests up by value many times (``handout.drawing``, ``render.labels.LabelCache``)."""
+    found: int | None = item.__dict__.get("_hash")
+    if found is None:
+        found = hash(tuple(getattr(item, name) for name in item.__dataclass_fields__))  # type: ignore[attr-defined]
+        object.__setattr__(item, "_hash", found)
+    return found
+
 
 LAYERS = ("mechanism", "higher-pairs", "velocity-polygon", "acceleration-polygon", "instant-centers", "scales", "title")
 """The layers of every sheet, bottom to top. A layer may be empty; it is still written."""
@@ -51,6 +62,8 @@ class Path:
     closed: bool = False
     role: str = ""
 
+    __hash__ = hash_once
+
 
 @dataclass(frozen=True)
 class Circle:
@@ -59,6 +72,8 @@ class Circle:
     stroke: Stroke | None = Stroke()
     fill: str | None = None
     role: str = ""
+
+    __hash__ = hash_once
 
 
 @dataclass(frozen=True)
@@ -72,6 +87,8 @@ class Arrow:
     head_length: float
     head_half_width: float
     role: str = ""
+
+    __hash__ = hash_once
 
     @property
     def length(self) -> float:
@@ -104,6 +121,8 @@ class Text:
     role: str = ""
     anchor: Point | None = None
     bold: bool = False
+
+    __hash__ = hash_once
 
     @property
     def box(self) -> tuple[float, float, float, float]:

@@ -19,7 +19,7 @@ from kinepoly.render import higher_pairs as higher_pairs_layer
 from kinepoly.render.labels import FEW, LabelCache, Request, place
 from kinepoly.render.layout import Content, Panel, arrange, larger_papers, paper_name, paper_size
 from kinepoly.render.mechanism import mechanism_box, mechanism_items
-from kinepoly.render.polygons import Figure, figure_box, polygon_figure, polygon_items
+from kinepoly.render.polygons import Figure, FigureDrawing, figure_box, figure_stage, polygon_figure
 from kinepoly.render.primitives import LAYERS, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.titleblock import (
     STEP_TEXT_MM,
@@ -311,22 +311,32 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
     requests: list[Request] = []
     mech_panel = layout.panel("mechanism")
     assert mech_panel is not None
-    items, reqs = mechanism_items(solution, mech_panel)
-    layers["mechanism"] += items
-    requests += reqs
-    items, reqs = higher_pairs_layer.higher_pair_items(solution, mech_panel)
-    layers[higher_pairs_layer.LAYER] += items
-    requests += reqs
+    parts = labels.parts
+    if "mechanism" not in parts:  # the parts every sheet of the layout draws alike, made once
+        parts["mechanism"] = mechanism_items(solution, mech_panel)
+        parts[higher_pairs_layer.LAYER] = higher_pairs_layer.higher_pair_items(solution, mech_panel)
+        parts[centers_layer.LAYER] = centers_layer.centers_items(solution, mech_panel, layout.panel("centers"))
+        parts["headings"] = _headings(solution, layout)
+    for name in ("mechanism", higher_pairs_layer.LAYER):
+        items, reqs = parts[name]
+        layers[name] += items
+        requests += reqs
     for figure in layout.figures:
         panel = layout.panel(figure.kind)
         assert panel is not None
-        items, reqs = polygon_items(figure, panel, step)
+        drawing = parts.get(figure.kind)
+        if drawing is None:
+            drawing = parts[figure.kind] = FigureDrawing(figure, panel)
+        key = (figure.kind, figure_stage(figure, step))
+        if key not in parts:
+            parts[key] = drawing.at(step)
+        items, reqs = parts[key]
         layers[f"{figure.kind}-polygon"] += items
         requests += reqs
-    items, reqs = centers_layer.centers_items(solution, mech_panel, layout.panel("centers"))
+    items, reqs = parts[centers_layer.LAYER]
     layers[centers_layer.LAYER] += items
     requests += reqs
-    headings, bars = _headings(solution, layout)
+    headings, bars = parts["headings"]
     layers["title"] += _frame_items(layout) + headings + (_title_items(solution, layout, step) if title_block else [])
     layers["scales"] += bars
     drawn = [item for name in LAYERS for item in layers[name]]

@@ -60,6 +60,7 @@ _WIDTH_EM = {ch: adv / 2048 for ch, adv in zip(_CHARS, _ADVANCE, strict=True)}
 _WIDTH_BOLD_EM = {ch: adv / 2048 for ch, adv in zip(_CHARS, _ADVANCE_BOLD, strict=True)}
 
 
+@functools.lru_cache(maxsize=8192)
 def text_width(text: str, size: float, bold: bool = False) -> float:
     """Advance width of ``text`` in DejaVu Sans (Bold) at em size ``size`` (mm).
 
