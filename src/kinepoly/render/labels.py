@@ -241,20 +241,16 @@ class _Placed:
 class Placer:
     """Places labels one after another in one region, avoiding what is drawn and what is placed."""
 
-    def __init__(self, region: Box, drawn: Iterable[Item], placed: _Placed | None = None,
-                 geometries: tuple[list[Any], list[Any]] | None = None) -> None:
+    def __init__(self, region: Box, hard: list[Any], soft: list[Any], placed: _Placed) -> None:
+        """``hard``: what is drawn near the region (``item_pieces``), which a label may not touch; ``soft``: the
+        light shading there, which it avoids where it can; ``placed``: the labels placed so far."""
         from shapely import STRtree
 
         self.region = region
-        if geometries is None:
-            items = list(drawn)
-            self._hard: list[Any] = [item_geometry(item) for item in items]
-            self._soft: list[Any] = [g for g in (fill_geometry(item) for item in items) if g is not None]
-        else:
-            self._hard, self._soft = geometries
+        self._hard, self._soft = hard, soft
         self._hard_tree = STRtree(self._hard)
         self._soft_tree = STRtree(self._soft)
-        self._placed = placed if placed is not None else _Placed()
+        self._placed = placed
         self.crowded: list[str] = []
         """The roles of labels put where they touch something: no free place was within reach."""
 
@@ -453,8 +449,8 @@ class LabelCache:
     def __init__(self) -> None:
         self._geometry: dict[Item, tuple[Any, Any, Box]] = {}
         self._pieces: dict[Item, list[Any]] = {}
-        self.parts: dict[Any, Any] = {}
         self._fitted: dict[Request, Request] = {}
+        self.parts: dict[Any, Any] = {}
         """The items and label requests of the parts that the sheets draw alike (``render.sheet.build_sheet``)."""
         self._regions: dict[tuple[Any, ...], tuple[list[Placed], list[str]]] = {}
         self._last: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
@@ -558,24 +554,15 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
     """
     kept = _kept(cache, region, requests, near)
     order = [k for k in range(len(requests)) if k not in kept]
-    best: tuple[list[Placed], list[str]] | None = ([kept[k] for k in range(len(requests))], []) if not order else None
     if order:
         base = shared.copy()
         for entry in kept.values():
             base.add(entry)
         hard = [g for item in near for g in cache.pieces(item)]
         soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
-    for _ in range(_TRIES if order else 0):
-        placed, crowded = _attempt(region, requests, order, kept, hard, soft, base.copy())
-        if best is not None and len(crowded) >= len(best[1]):
-            break  # moving the crowded labels first did not help
-        best = (placed, crowded)
-        if not crowded or len(crowded) > _FEW:
-            break  # none crowded, or so many that the polygon's own points crowd: moving them first cannot help
-        first = [k for k in order if requests[k].role in crowded]
-        order = first + [k for k in order if k not in first]
-    assert best is not None
-    placed, crowded = best
+        placed, crowded = _tries(region, requests, order, kept, hard, soft, base)
+    else:
+        placed, crowded = [kept[k] for k in range(len(requests))], []
     for entry in placed:
         shared.add(entry)
     by_request: dict[Request, list[Placed]] = {}
@@ -587,6 +574,24 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
     if widest is None or (len(drawn) >= len(widest[1]) and drawn.issuperset(widest[1])):
         cache._widest[region] = (by_request, drawn)
     return placed, crowded
+
+
+def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dict[int, Placed], hard: list[Any],
+           soft: list[Any], base: _Placed) -> tuple[list[Placed], list[str]]:
+    """The best of up to ``_TRIES`` placements of the requests not kept, each with the labels that found no free
+    place before moved to the front."""
+    best: tuple[list[Placed], list[str]] | None = None
+    for _ in range(_TRIES):
+        placed, crowded = _attempt(region, requests, order, kept, hard, soft, base.copy())
+        if best is not None and len(crowded) >= len(best[1]):
+            break  # moving the crowded labels first did not help
+        best = (placed, crowded)
+        if not crowded or len(crowded) > _FEW:
+            break  # none crowded, or so many that the polygon's own points crowd: moving them first cannot help
+        first = [k for k in order if requests[k].role in crowded]
+        order = first + [k for k in order if k not in first]
+    assert best is not None
+    return best
 
 
 _CROWD_MM = 3.0
@@ -611,7 +616,7 @@ def _crowd(requests: Sequence[Request]) -> set[int]:
 def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kept: dict[int, Placed],
              hard: list[Any], soft: list[Any], placed_so_far: _Placed) -> tuple[list[Placed], list[str]]:
     """One placement of the requests not kept, in ``order``; every request's label and the roles crowded."""
-    placer = Placer(region, (), placed_so_far, (hard, soft))
+    placer = Placer(region, hard, soft, placed_so_far)
     out: dict[int, Placed] = dict(kept)
     crowd = _crowd(requests)
     for k in order:
