@@ -90,6 +90,12 @@ def test_a_step_sheet_highlights_what_the_step_adds() -> None:
     assert checked > 10
 
 
+def _turn_cosine(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float]) -> float:
+    """The cosine of the angle between a -> b and b -> c (-1: the stroke turns back on itself)."""
+    u, v = (b[0] - a[0], b[1] - a[1]), (c[0] - b[0], c[1] - b[1])
+    return (u[0] * v[0] + u[1] * v[1]) / (math.hypot(*u) * math.hypot(*v))
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.lists(st.tuples(st.floats(-30, 30), st.floats(-30, 30)), min_size=2, max_size=5),
        st.floats(0.1, 1.0), st.booleans(), st.booleans())
@@ -100,7 +106,9 @@ def test_pieces_cover_what_the_item_covers(points: list[tuple[float, float]], wi
     import numpy as np
     import shapely
 
-    assume(all(math.dist(a, b) > 0.05 for a, b in pairwise([*points, points[0]])))  # no stroke of no length
+    ring = [*points, points[0], points[1]]
+    assume(all(math.dist(a, b) > 0.05 for a, b in pairwise(ring)))  # no stroke of no length
+    assume(all(_turn_cosine(a, b, c) > -0.99 for a, b, c in zip(ring, ring[1:], ring[2:])))  # nor a hairpin
     start, end = points[0], points[1]
     if arrow and math.dist(start, end) > 3.0:
         item: Arrow | Path = Arrow(start, end, "#000000", width, 2.0, 0.6)

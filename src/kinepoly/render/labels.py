@@ -434,7 +434,8 @@ geometries' bounds."""
 
 
 class LabelCache:
-    """What the sheets of one layout (a handout's pages, a drawing's step sheets) share in placing labels.
+    """What the sheets of one layout (a handout's pages, a drawing's step sheets) share: the parts they draw
+    alike (``parts``), and what placing their labels needs.
 
     The geometry of each drawn item is made once. A region's labels are placed once and reused on
     every later sheet whose requests in that region, and drawn items near it, are the same (the
