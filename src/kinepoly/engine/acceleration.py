@@ -18,7 +18,16 @@ import numpy as np
 
 from kinepoly.engine.carry import relative_acceleration
 from kinepoly.engine.closures import other_side
-from kinepoly.engine.plan import DriveGroup, Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.engine.plan import (
+    CamGroup,
+    DriveGroup,
+    Dyad,
+    GearGroup,
+    NewtonGroup,
+    PositionPlan,
+    slide_roles,
+    two_slide_roles,
+)
 from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.engine.velocity import (
@@ -397,12 +406,6 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
                            *, unit: str = "mm", record: bool = False, strict: bool = False, rules: Rules = RIGHT,
                            crossing: CrossLines = cross_lines) -> AccelerationResult:
     """Construct the acceleration polygon at every row for every group of ``plan``, on top of its velocity polygon."""
-    from kinepoly.engine.cam_polygons import acceleration_by_cam
-    from kinepoly.engine.group import acceleration_by_linear_solve
-    from kinepoly.engine.plan import CamGroup, GearGroup
-    from kinepoly.engine.rolling import acceleration_by_rolling
-    from kinepoly.engine.triad import acceleration_by_assur_point, triad_of
-
     positions = velocity.polygon.positions
     polygon = Polygon(positions, "acceleration", omega=velocity.omega, unit=unit, record=record, strict=strict,
                       crossing=crossing)
@@ -416,14 +419,26 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
             _dyad(ctx, group)
         elif isinstance(group, DriveGroup):
             _drive_group(ctx, group)
-        elif isinstance(group, GearGroup):
-            acceleration_by_rolling(ctx, group)
-        elif isinstance(group, CamGroup):
-            acceleration_by_cam(ctx, group)
-        elif (triad := triad_of(polygon.mechanism, group)) is not None:
-            acceleration_by_assur_point(ctx, triad)
         else:
-            acceleration_by_linear_solve(ctx, group)
+            _other_group(ctx, group)
     for link, point in wanted:
         polygon.tip(link, point)
     return AccelerationResult(polygon, ctx.sliding, ctx.coriolis)
+
+
+def _other_group(ctx: _Context, group: GearGroup | CamGroup | NewtonGroup) -> None:
+    """A gear pair, a cam pair, a triad (through its Assur point) or any other group (a linear solve), by the
+    modules that build on this one (imported here, where such a group is met)."""
+    from kinepoly.engine.cam_polygons import acceleration_by_cam
+    from kinepoly.engine.group import acceleration_by_linear_solve
+    from kinepoly.engine.rolling import acceleration_by_rolling
+    from kinepoly.engine.triad import acceleration_by_assur_point, triad_of
+
+    if isinstance(group, GearGroup):
+        acceleration_by_rolling(ctx, group)
+    elif isinstance(group, CamGroup):
+        acceleration_by_cam(ctx, group)
+    elif (triad := triad_of(ctx.b.mechanism, group)) is not None:
+        acceleration_by_assur_point(ctx, triad)
+    else:
+        acceleration_by_linear_solve(ctx, group)

@@ -16,7 +16,17 @@ import numpy as np
 
 from kinepoly.engine.carry import relative_velocity
 from kinepoly.engine.closures import other_side
-from kinepoly.engine.plan import DriveGroup, Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.engine.contacts import record_equivalent_links
+from kinepoly.engine.plan import (
+    CamGroup,
+    DriveGroup,
+    Dyad,
+    GearGroup,
+    NewtonGroup,
+    PositionPlan,
+    slide_roles,
+    two_slide_roles,
+)
 from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
 from kinepoly.engine.position import Positions
 from kinepoly.engine.steps import Direction, DrawnVector, Step
@@ -398,13 +408,6 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
     ``wanted`` holds (link, point) pairs: the velocity of ``point`` as a point of ``link``.
     ``record``: keep the steps of row 0; ``strict``: a parallel pair of lines raises (a solve).
     """
-    from kinepoly.engine.cam_polygons import velocity_by_cam
-    from kinepoly.engine.contacts import record_equivalent_links
-    from kinepoly.engine.group import velocity_by_linear_solve
-    from kinepoly.engine.plan import CamGroup, GearGroup
-    from kinepoly.engine.rolling import velocity_by_rolling
-    from kinepoly.engine.triad import triad_of, velocity_by_assur_point
-
     polygon = Polygon(positions, "velocity", unit=unit, record=record, strict=strict, crossing=crossing)
     sliding: dict[str, Points] = {}
     sines: dict[str, Reals] = {}
@@ -418,14 +421,26 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
             _dyad(polygon, group, sliding, sines)
         elif isinstance(group, DriveGroup):
             _drive_group(polygon, group, sliding)
-        elif isinstance(group, GearGroup):
-            velocity_by_rolling(polygon, group, sliding)
-        elif isinstance(group, CamGroup):
-            velocity_by_cam(polygon, group, sliding, equivalent)
-        elif (triad := triad_of(polygon.mechanism, group)) is not None:
-            velocity_by_assur_point(polygon, triad, sliding, equivalent)
         else:
-            velocity_by_linear_solve(polygon, group, sliding)
+            _other_group(polygon, group, sliding, equivalent)
     for link, point in wanted:
         polygon.tip(link, point)
     return VelocityResult(polygon, sliding, sines, equivalent)
+
+
+def _other_group(polygon: Polygon, group: GearGroup | CamGroup | NewtonGroup, sliding: dict[str, Points], equivalent: dict[str, Points]) -> None:
+    """A gear pair, a cam pair, a triad (through its Assur point) or any other group (a linear solve), by the
+    modules that build on this one (imported here, where such a group is met)."""
+    from kinepoly.engine.cam_polygons import velocity_by_cam
+    from kinepoly.engine.group import velocity_by_linear_solve
+    from kinepoly.engine.rolling import velocity_by_rolling
+    from kinepoly.engine.triad import triad_of, velocity_by_assur_point
+
+    if isinstance(group, GearGroup):
+        velocity_by_rolling(polygon, group, sliding)
+    elif isinstance(group, CamGroup):
+        velocity_by_cam(polygon, group, sliding, equivalent)
+    elif (triad := triad_of(polygon.mechanism, group)) is not None:
+        velocity_by_assur_point(polygon, triad, sliding, equivalent)
+    else:
+        velocity_by_linear_solve(polygon, group, sliding)
