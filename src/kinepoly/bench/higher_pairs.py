@@ -99,6 +99,9 @@ def cam_row(mp: Any, mechanism: Mechanism, cam: CamSpec, q: list[Any], world: Wo
 
 @dataclass(frozen=True)
 class _Side:
+    """One gear of a pair in the reference: its link, its pitch circle or line, and the phase its rolled arc
+    sigma is measured from (an angle for a circle, a distance along a rack's line)."""
+
     link: str
     curve: PitchCircle | PitchLine
     phase: float

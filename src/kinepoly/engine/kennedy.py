@@ -77,6 +77,9 @@ class _Known:
 
 @dataclass(frozen=True)
 class _Line:
+    """A Kennedy line that may carry a center: through the known centers of ``sides``, the two edges that
+    close a triangle with the sought one at the ``third`` link; ``join`` is the line through them."""
+
     third: str
     sides: tuple[Edge, Edge]
     join: Wedge
