@@ -192,19 +192,12 @@ class _Placed:
         for key in self._keys(bounds):
             self._cells.setdefault(key, []).append(index)
 
-    def extend(self, geometries: Iterable[Any]) -> None:
-        for geometry in geometries:
-            self.append(geometry)
-
     def add(self, placed: Placed) -> None:
         """A placed label's geometries: its box (with its ring), then its leader if it has one."""
         _, items, geometries, bounds = placed
         has_leader = any(isinstance(item, Path) and item.role.startswith("leader ") for item in items)
         for k, (geometry, box) in enumerate(zip(geometries, bounds, strict=True)):
             self.append(geometry, has_leader and k == 1, box)
-
-    def is_leader(self, index: int) -> bool:
-        return index in self._leaders
 
     def touches(self, geometry: Any, labels_only: bool = False, distance: float = 0.0) -> bool:
         """Whether ``geometry`` comes within ``distance`` of any placed geometry (``labels_only``: of any placed
@@ -258,9 +251,6 @@ class Placer:
         x0, y0, x1, y1 = self.region
         return b[0] >= x0 and b[1] >= y0 and b[2] <= x1 and b[3] <= y1
 
-    def _free(self, b: Box, avoid_fill: bool) -> bool:
-        return next(self._free_of([b], avoid_fill))
-
     def _free_of(self, boxes: Sequence[Box], avoid_fill: bool) -> Iterator[bool]:
         """For each of ``boxes`` in turn, whether it lies inside the region, its clearance touching nothing
         drawn (with ``avoid_fill`` no shading either) and no placed label; the drawing is tested for all
@@ -296,10 +286,6 @@ class Placer:
         t = _LEADER_FREE_MM / length
         clear = LineString([(ax + t * (bx - ax), ay + t * (by - ay)), (bx, by)])
         return not len(self._hard_tree.query(clear, predicate="dwithin", distance=reach))
-
-    def block(self, item: Item) -> None:
-        """Treat ``item`` as drawn from now on (something added after the labels started)."""
-        self._placed.append(item_geometry(item))
 
     def _text(self, b: Box, runs: tuple[Run, ...], color: str, role: str, anchor: Point, bold: bool) -> Text:
         x0, y0, _, _ = runs_box(runs, bold)
