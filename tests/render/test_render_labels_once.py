@@ -16,7 +16,7 @@ from tests.scenes import EXAMPLES
 import kinepoly
 from kinepoly.render import labels
 from kinepoly.render.primitives import Arrow, Path, Stroke, Text
-from kinepoly.render.sheet import step_sheets
+from kinepoly.render.sheet import build_sheet, step_sheets
 
 
 def _counting(monkeypatch: pytest.MonkeyPatch) -> Counter[str]:
@@ -132,3 +132,14 @@ def test_pieces_cover_what_the_item_covers(points: list[tuple[float, float]], wi
         inside = inside[far > 4 * width]
     hit = shapely.STRtree(pieces).query(shapely.points(inside), predicate="dwithin", distance=1e-7)[0]
     assert len(set(hit.tolist())) == len(inside)
+
+
+def test_a_frame_point_named_o_is_named_once_at_the_pole() -> None:
+    """kc0-six-bar has a frame point O: its tip is the pole o, which the pole's label names once."""
+    sheet = build_sheet(kinepoly.solve(kinepoly.load_scene(EXAMPLES / "kc0-six-bar.toml")))
+    for layer, pole in (("velocity-polygon", "o"), ("acceleration-polygon", "o′")):
+        label = next(item for item in sheet.layer(layer).items if isinstance(item, Text)
+                     and item.role.startswith("tip o,"))
+        names = label.role.removeprefix("tip ").split(", ")
+        assert names.count("o") == 1 and len(names) == len(set(names)) >= 3, label.role
+        assert label.string.startswith(pole + ",") and label.string.count(pole) == 1, label.string

@@ -375,7 +375,8 @@ class FigureDrawing:
         items += dots
         pole = self._pole_point
         items.append(self._pole)
-        requests.append(self._label(("o", *self.figure.pole_names), tuple(tiny.pop(_spot(pole), [])), pole, 0.8))
+        names = ("o", *(name for name in self.figure.pole_names if name.lower() != "o"))  # a frame point O is the pole
+        requests.append(self._label(names, tuple(tiny.pop(_spot(pole), [])), pole, 0.8))
         groups: dict[tuple[float, float], list[tuple[FigureTip, Point]]] = {}
         for tip, p in self._tips:
             if tip.step <= last:
