@@ -27,6 +27,7 @@ from kinepoly.engine.cam_contact import Candidates, Ints
 from kinepoly.engine.cam_place import floating_unreachable, follow_contact, guessed_contact, seeded_contact
 from kinepoly.engine.closures import Choice, Closure
 from kinepoly.engine.newton import group_size, newton_row, start_poses
+from kinepoly.engine.newton_walk import Walk, known_points
 from kinepoly.engine.plan import CamGroup, NewtonGroup, PositionPlan
 from kinepoly.engine.position import Failure, Placement, Positions, describe_input, input_values, solve_positions
 from kinepoly.errors import AssemblyError, SingularityError
@@ -49,11 +50,6 @@ def _row_poses(poses: Mapping[str, ArrayPose], row: int) -> dict[str, LinkPose]:
 def _row_values(placed: Placement, row: int) -> dict[int, float]:
     """Each input's value at ``row``, by input index."""
     return {index: float(values[row]) for index, values in enumerate(placed.values)}
-
-
-def _known_points(mechanism: Mechanism, poses: Mapping[str, LinkPose]) -> dict[str, complex]:
-    return {p.name: complex(*pose.world(p.local)) for link, pose in poses.items()
-            for p in mechanism.scene.link(link).points}
 
 
 @dataclass(frozen=True)
@@ -136,7 +132,7 @@ class NearestGuess:
             f"(give [guess] {point} = [{guess_x}, {guess_y}] to take it)")
 
     def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
-        known = _known_points(mechanism, _row_poses(placed.poses, 0))
+        known = known_points(mechanism, _row_poses(placed.poses, 0))
         points = {**{name: complex(x, y) for name, (x, y) in self.guess.items()}, **known}
         start, missing = start_poses(mechanism, group, points)
         if start is None:
@@ -144,8 +140,9 @@ class NearestGuess:
                 f"group {group.name} is not a dyad and is solved by Newton's method from [guess]; "
                 f"link {missing} has no guessed or known point: add [guess] positions for its points")
         size = group_size(mechanism, group, points)
-        found, residual = newton_row(mechanism, group, _row_poses({k: placed.poses[k] for k in group.known_links()},
-                                                                    0), start, size, _row_values(placed, 0))
+        closure = newton_row(mechanism, group, _row_poses({k: placed.poses[k] for k in group.known_links()}, 0),
+                             start, size, _row_values(placed, 0))
+        found, residual = closure.poses, closure.residual
         if found is None:
             raise AssemblyError(
                 f"group {group.name} does not close at {describe_input(mechanism)}: Newton's method stopped with a "
@@ -234,51 +231,55 @@ class Continuity:
         return labels if isinstance(labels, int) else np.asarray(labels == 0)
 
     def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
-        """Each row from the group's points one and two rows back, extrapolated, from the seed row
-        forward and then backward; a row that does not close is marked and skipped."""
+        """Each row from the rows before it, from the seed row forward and then backward, on the seed's
+        assembly (``engine.newton_walk``); a row that does not close, or closes only in another assembly
+        beyond a dead point, is marked and skipped."""
         ok = placed.ok
         n = len(ok)
         origin = {link: np.zeros(n, np.complex128) for link in group.links}
         rotation = {link: np.ones(n, np.complex128) for link in group.links}
         closed = np.zeros(n, np.bool_)
-        known_links = group.known_links()
+        elsewhere = np.zeros(n, np.bool_)
         solved = self._seed()
         seed = {link: solved[link] for link in group.links}
-        points = _known_points(mechanism, seed)
+        points = known_points(mechanism, seed)
         size = group_size(mechanism, group, points)
+        reach = max((abs(complex(*p.local)) for link in group.links for p in mechanism.scene.link(link).points),
+                    default=size) or size
+        seed_known = _row_poses({k: placed.poses[k] for k in group.known_links()}, self.seed_row)
+        start, _ = start_poses(mechanism, group, {**points, **known_points(mechanism, seed_known)})
+        sign = 0 if start is None else newton_row(mechanism, group, seed_known, start, size,
+                                                  _row_values(placed, self.seed_row)).sign
         done = 0
         for order in (range(self.seed_row, n), range(self.seed_row - 1, -1, -1)):
-            history: list[dict[str, complex]] = [points]
+            walk = Walk(mechanism, group, placed, size, reach, sign, [(self.seed_row, points)])
             for row in order:
                 done += 1
                 if self.progress is not None and done % 64 == 0:
                     self.progress(done, n)
                 if not ok[row]:
+                    walk.gap()
                     continue
-                if row == self.seed_row:
-                    found: dict[str, LinkPose] | None = seed
-                else:
-                    last = history[-1]
-                    guess = last if len(history) == 1 else {k: 2.0 * v - history[-2][k] for k, v in last.items()}
-                    known = _row_poses({k: placed.poses[k] for k in known_links}, row)
-                    start, _ = start_poses(mechanism, group, {**guess, **_known_points(mechanism, known)})
-                    found = None if start is None else newton_row(mechanism, group, known, start, size,
-                                                                  _row_values(placed, row))[0]
+                found, elsewhere[row] = (seed, False) if row == self.seed_row else walk.row(row)
                 if found is None:
                     continue
                 for link, pose in found.items():
                     origin[link][row] = complex(pose.x, pose.y)
                     rotation[link][row] = complex(math.cos(pose.theta), math.sin(pose.theta))
                 closed[row] = True
-                history = [*history[-1:], _known_points(mechanism, found)]
         if self.progress is not None:
             self.progress(n, n)
         poses = {**placed.poses, **{link: ArrayPose(origin[link], rotation[link]) for link in group.links}}
         failures = placed.failures
-        if not closed[ok].all():
-            failures = (*failures, Failure(group.name, "", ok & ~closed, lambda _: (
+        if (ok & ~closed & ~elsewhere).any():
+            failures = (*failures, Failure(group.name, "", ok & ~closed & ~elsewhere, lambda _: (
                 f"Newton's method does not close group {group.name} from the rows before it "
                 f"(the group cannot be assembled there){floating_unreachable(group)}")))
+        if elsewhere.any():
+            failures = (*failures, Failure(group.name, "", elsewhere, lambda _: (
+                f"group {group.name} cannot be carried here from the rows before: its assembly meets a dead point "
+                "on the way, and the group closes here only on the far side of it (the sweep resumes after the "
+                "next rows where it does not close at all)")))
         return replace(placed, poses=poses, ok=ok & closed, failures=failures)
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -29,7 +30,7 @@ from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import CamSpec, SliderSpec
 
-__all__ = ["CLOSED_REL", "group_size", "newton_row", "start_poses"]
+__all__ = ["CLOSED_REL", "RowClosure", "group_size", "newton_row", "start_poses"]
 
 CLOSED_REL = 1e-9
 """A group is closed when its joint residual is at most this times the group's size."""
@@ -238,10 +239,20 @@ def start_poses(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, c
     return np.array(q), ""
 
 
+@dataclass(frozen=True)
+class RowClosure:
+    """What Newton's method made of one row: the group's poses (None where it does not close), the final
+    joint residual, and the sign of the Jacobian's determinant there (0 where it is not square)."""
+
+    poses: dict[str, LinkPose] | None
+    residual: float
+    sign: int
+
+
 def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], start: Reals,
-               size: float, values: Mapping[int, float] | None = None) -> tuple[dict[str, LinkPose] | None, float]:
-    """Close the group at one row from ``start``: the poses (None where it does not close) and the
-    final joint residual. ``values``: the inputs' values at the row, by input index (for driven joints)."""
+               size: float, values: Mapping[int, float] | None = None) -> RowClosure:
+    """Close the group at one row from ``start``. ``values``: the inputs' values at the row, by input
+    index (for driven joints)."""
     system = _RowSystem(mechanism, group, known, size, values or {})
     q = np.concatenate((start, system.start_parameters(start))) if group.cams else start
     r, jac = system.evaluate(q)
@@ -263,6 +274,7 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
         else:
             break
     if not norm_r <= CLOSED_REL * size:
-        return None, norm_r
-    return {link: LinkPose(float(q[3 * k]), float(q[3 * k + 1]), float(q[3 * k + 2]))
-            for k, link in enumerate(group.links)}, norm_r
+        return RowClosure(None, norm_r, 0)
+    sign = int(np.sign(np.linalg.det(jac))) if jac.shape[0] == jac.shape[1] else 0
+    return RowClosure({link: LinkPose(float(q[3 * k]), float(q[3 * k + 1]), float(q[3 * k + 2]))
+                       for k, link in enumerate(group.links)}, norm_r, sign)
