@@ -43,15 +43,6 @@ __all__ = ["Continuity", "NearestGuess", "position_at_input"]
 Vec = tuple[float, float]
 
 
-def _row_poses(poses: Mapping[str, ArrayPose], row: int) -> dict[str, LinkPose]:
-    return {link: LinkPose(*pose.row(row)) for link, pose in poses.items()}
-
-
-def _row_values(placed: Placement, row: int) -> dict[int, float]:
-    """Each input's value at ``row``, by input index."""
-    return {index: float(values[row]) for index, values in enumerate(placed.values)}
-
-
 @dataclass(frozen=True)
 class NearestGuess:
     """The solve's policy (row 0 of a batch of one): nearest the ``[guess]``, with look-ahead."""
@@ -132,7 +123,7 @@ class NearestGuess:
             f"(give [guess] {point} = [{guess_x}, {guess_y}] to take it)")
 
     def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
-        known = known_points(mechanism, _row_poses(placed.poses, 0))
+        known = known_points(mechanism, placed.row_poses(placed.poses, 0))
         points = {**{name: complex(x, y) for name, (x, y) in self.guess.items()}, **known}
         start, missing = start_poses(mechanism, group, points)
         if start is None:
@@ -140,8 +131,8 @@ class NearestGuess:
                 f"group {group.name} is not a dyad and is solved by Newton's method from [guess]; "
                 f"link {missing} has no guessed or known point: add [guess] positions for its points")
         size = group_size(mechanism, group, points)
-        closure = newton_row(mechanism, group, _row_poses({k: placed.poses[k] for k in group.known_links()}, 0),
-                             start, size, _row_values(placed, 0))
+        closure = newton_row(mechanism, group, placed.row_poses(group.known_links(), 0), start, size,
+                             placed.row_values(0))
         found, residual = closure.poses, closure.residual
         if found is None:
             raise AssemblyError(
@@ -244,15 +235,13 @@ class Continuity:
         seed = {link: solved[link] for link in group.links}
         points = known_points(mechanism, seed)
         size = group_size(mechanism, group, points)
-        reach = max((abs(complex(*p.local)) for link in group.links for p in mechanism.scene.link(link).points),
-                    default=size) or size
-        seed_known = _row_poses({k: placed.poses[k] for k in group.known_links()}, self.seed_row)
+        seed_known = placed.row_poses(group.known_links(), self.seed_row)
         start, _ = start_poses(mechanism, group, {**points, **known_points(mechanism, seed_known)})
         sign = 0 if start is None else newton_row(mechanism, group, seed_known, start, size,
-                                                  _row_values(placed, self.seed_row)).sign
+                                                  placed.row_values(self.seed_row)).sign
         done = 0
         for order in (range(self.seed_row, n), range(self.seed_row - 1, -1, -1)):
-            walk = Walk(mechanism, group, placed, size, reach, sign, [(self.seed_row, points)])
+            walk = Walk(mechanism, group, placed, size, sign, [(self.seed_row, points)])
             for row in order:
                 done += 1
                 if self.progress is not None and done % 64 == 0:

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 
 from kinepoly.engine.newton import RowClosure, newton_row, start_poses
 from kinepoly.engine.plan import NewtonGroup
@@ -54,14 +55,19 @@ class Walk:
     placed: Placement
     size: float
     """The group's length scale for Newton's method (``engine.newton.group_size``)."""
-    reach: float
-    """The longest distance of a point of the group's links from the link's own origin."""
     sign: int
     """The sign of the group's Jacobian on the assembly followed (0 while not known)."""
     history: list[tuple[int, dict[str, complex]]]
     """The last two rows taken, with the group's points there."""
     following: bool = True
     """False after a row where the group does not close at all: the next row that closes resumes."""
+
+    @cached_property
+    def reach(self) -> float:
+        """The longest distance of a point of the group's links from the link's own origin."""
+        scene = self.mechanism.scene
+        return max((abs(complex(*p.local)) for link in self.group.links for p in scene.link(link).points),
+                   default=self.size) or self.size
 
     def gap(self) -> None:
         """A row where the group cannot be placed (an earlier group did not close there)."""
@@ -72,7 +78,7 @@ class Walk:
         row closes only in another assembly (beyond a dead point)."""
         last_row, last = self.history[-1]
         guess = self._guess(row)
-        closure = self._solve(self._known(row), guess, self._values(row))
+        closure = self._solve(self._known(row), guess, self.placed.row_values(row))
         adjacent = self.following and abs(row - last_row) == 1 and len(self.history) > 1
         if closure.poses is None and adjacent:
             closure = self._follow(row) or closure  # a motion too quick for the extrapolation: in smaller steps
@@ -123,10 +129,7 @@ class Walk:
         return miss > ON_COURSE[0] * step + ON_COURSE[1] * self.reach
 
     def _known(self, row: int) -> dict[str, LinkPose]:
-        return {link: LinkPose(*self.placed.poses[link].row(row)) for link in self.group.known_links()}
-
-    def _values(self, row: int) -> dict[int, float]:
-        return {index: float(values[row]) for index, values in enumerate(self.placed.values)}
+        return self.placed.row_poses(self.group.known_links(), row)
 
     def _solve(self, known: Mapping[str, LinkPose], guess: Mapping[str, complex],
                values: Mapping[int, float]) -> RowClosure:
@@ -140,7 +143,7 @@ class Walk:
         where the course ends between them."""
         a = self.history[-1][0]
         known_a, known_b = self._known(a), self._known(row)
-        values_a, values_b = self._values(a), self._values(row)
+        values_a, values_b = self.placed.row_values(a), self.placed.row_values(row)
         path = [(-1.0, self.history[-2][1]), (0.0, self.history[-1][1])]
         t, h, found = 0.0, 0.5, None
         while t < 1.0:

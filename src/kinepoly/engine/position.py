@@ -9,7 +9,7 @@ assembly policy's decision (``engine.assembly``): this module only executes.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Protocol
 
@@ -59,6 +59,14 @@ class Placement:
     """Points found while placing (a spline cam's contact and centre of curvature), by name."""
     contact_parameters: dict[str, Reals] = field(default_factory=dict)
     """Each spline cam's contact parameter on its profile at every row (``engine.cam_place``)."""
+
+    def row_poses(self, links: Iterable[str], row: int) -> dict[str, LinkPose]:
+        """The poses of ``links`` at ``row`` as scalar values (for the one-row solvers)."""
+        return {link: LinkPose(*self.poses[link].row(row)) for link in links}
+
+    def row_values(self, row: int) -> dict[int, float]:
+        """Each input's value at ``row``, by input index."""
+        return {index: float(values[row]) for index, values in enumerate(self.values)}
 
 
 @dataclass

@@ -51,8 +51,6 @@ class Frame:
     placed: dict[Item, Item] = field(default_factory=dict, compare=False, repr=False)
     """Each item drawn on the frame's pages, moved to its place on the page once (``moved``): equal items are
     one object on every page."""
-    placed_by_id: dict[int, tuple[Item, Item]] = field(default_factory=dict, compare=False, repr=False)
-    """The same by the item's identity (the item kept with it), found without hashing the item."""
 
 
 def scales_of(layout: Layout) -> dict[str, float]:
@@ -214,18 +212,15 @@ def drawing_layers(solution: Solution, frame: Frame, drawing: Drawing, say: Cata
     keep, lines, center = _centers_filter(solution, drawing)
     layers["instant-centers"] = _highlighted([_decimal(i, say) for i in layers["instant-centers"] if keep(i)],
                                              lines, center)
-    placed, by_id = frame.placed, frame.placed_by_id
+    placed = frame.placed
     out: dict[str, list[Item]] = {}
     for name in LAYERS:
         out[name] = []
         for item in layers[name]:
-            found = by_id.get(id(item))
-            if found is None or found[0] is not item:
-                shown = placed.get(item)
-                if shown is None:
-                    shown = placed[item] = moved(item, frame.shift)
-                found = by_id[id(item)] = (item, shown)
-            out[name].append(found[1])
+            shown = placed.get(item)
+            if shown is None:
+                shown = placed[item] = moved(item, frame.shift)
+            out[name].append(shown)
     return out
 
 

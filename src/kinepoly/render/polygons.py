@@ -34,7 +34,7 @@ from kinepoly.render.style import (
 from kinepoly.render.text import Run, text_width, tip_runs, vector_runs
 from kinepoly.solution import Solution
 
-__all__ = ["Figure", "FigureDrawing", "FigureVector", "figure_box", "figure_stage", "polygon_figure"]
+__all__ = ["Figure", "FigureDrawing", "FigureVector", "figure_box", "polygon_figure"]
 
 Kind = Literal["velocity", "acceleration"]
 Point = tuple[float, float]
@@ -259,17 +259,6 @@ def _direction_segments(figure: Figure, panel: Panel) -> tuple[tuple[tuple[Point
     return tuple(tuple(_clip_line(fl.line, panel, area)) for fl in figure.lines)
 
 
-def figure_stage(figure: Figure, upto: int | None) -> tuple[int, bool]:
-    """What ``FigureDrawing(figure, panel).at(upto)`` draws, as (how many of the steps at which the figure's
-    elements appear it shows, whether the last of them is highlighted): two sheets of equal stage draw the
-    figure alike."""
-    steps = sorted({*(t.step for t in figure.tips), *(v.step for v in figure.vectors),
-                    *(fl.step for fl in figure.lines), *(image.step for image in figure.images)})
-    if upto is None:
-        return (len(steps), False)
-    return (bisect.bisect_right(steps, upto), upto in steps)
-
-
 class FigureDrawing:
     """``figure`` drawn to ``panel``'s scale once; ``at(upto)`` gives what a sheet of step ``upto`` shows.
 
@@ -320,6 +309,8 @@ class FigureDrawing:
         self._pole_point = panel.paper((0.0, 0.0))
         self._pole = Circle(self._pole_point, 0.8, Stroke("#000000", 0.25), fill="#ffffff", role="pole")
         self._tips = [(tip, panel.paper(tip.value)) for tip in figure.tips]
+        self._steps = sorted({step for step, _ in self._images} | {step for step, _, _ in self._lines}
+                             | {v[0] for v in self._vectors} | {tip.step for tip, _ in self._tips})
         self._made: dict[tuple[object, ...], Item | Request] = {}
         """The joined labels, tip dots and their highlights made so far, by what they show."""
 
@@ -345,6 +336,13 @@ class FigureDrawing:
             found = self._made[key] = (Circle(at, 1.8, None, fill=HALO.color, role="highlight") if highlight else
                                        Circle(at, 0.45, None, fill="#000000", role=f"tip {tip.label.lower()}"))
         return found
+
+    def stage(self, upto: int | None) -> tuple[int, bool]:
+        """What ``at(upto)`` shows, as (how many of the steps that add an element it shows, whether the last of
+        them is highlighted): two sheets of equal stage show the figure alike."""
+        if upto is None:
+            return (len(self._steps), False)
+        return (bisect.bisect_right(self._steps, upto), upto in self._steps)
 
     def at(self, upto: int | None = None) -> tuple[list[Item], list[Request]]:
         """Everything of steps <= ``upto`` (all when None), the elements of step ``upto`` highlighted: the

@@ -19,7 +19,7 @@ from kinepoly.render import higher_pairs as higher_pairs_layer
 from kinepoly.render.labels import FEW, LabelCache, Request, place
 from kinepoly.render.layout import Content, Panel, arrange, larger_papers, paper_name, paper_size
 from kinepoly.render.mechanism import mechanism_box, mechanism_items
-from kinepoly.render.polygons import Figure, FigureDrawing, figure_box, figure_stage, polygon_figure
+from kinepoly.render.polygons import Figure, FigureDrawing, figure_box, polygon_figure
 from kinepoly.render.primitives import LAYERS, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.titleblock import (
     STEP_TEXT_MM,
@@ -327,7 +327,7 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
         drawing = parts.get(figure.kind)
         if drawing is None:
             drawing = parts[figure.kind] = FigureDrawing(figure, panel)
-        key = (figure.kind, figure_stage(figure, step))
+        key = (figure.kind, drawing.stage(step))
         if key not in parts:
             parts[key] = drawing.at(step)
         items, reqs = parts[key]
