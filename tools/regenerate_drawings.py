@@ -67,9 +67,14 @@ def stale(examples: Path, drawings: Path, replace: bool = False) -> list[str]:
         fresh = Path(tmp)
         for scene in sorted(examples.glob("*.toml")):
             draw_example(scene, fresh)
-            for fmt in DRAWN_FORMATS:
+            svg_stale = False
+            for fmt in DRAWN_FORMATS:  # svg first: a PNG of a changed drawing is stale however little it moved
                 name = f"{scene.stem}.{fmt}"
                 why = _difference(fmt, drawings / name, fresh / name)
+                if fmt == "svg":
+                    svg_stale = bool(why)
+                elif fmt == "png" and svg_stale and not why:
+                    why = "stale (its SVG differs)"
                 if why:
                     problems.append(f"{drawings / name}: {why}")
                     if replace:

@@ -58,3 +58,18 @@ def test_regenerating_writes_only_the_drawings_that_differ(tmp_path: Path) -> No
     assert (drawings / "four-bar.dxf").read_bytes() == current
     assert (drawings / "four-bar.svg").read_bytes() == (DRAWINGS / "four-bar.svg").read_bytes()
     assert stale(examples, drawings) == []
+
+
+def test_a_png_whose_svg_is_stale_is_stale_too(tmp_path: Path) -> None:
+    """A label that changed moves few pixels, under the PNG's tolerance; the SVG tells, and the PNG goes with it."""
+    examples, drawings = tmp_path / "examples", tmp_path / "drawings"
+    examples.mkdir()
+    drawings.mkdir()
+    (examples / "four-bar.toml").write_text((EXAMPLES / "four-bar.toml").read_text())
+    for fmt in DRAWN_FORMATS:
+        (drawings / f"four-bar.{fmt}").write_bytes((DRAWINGS / f"four-bar.{fmt}").read_bytes())
+    svg = (drawings / "four-bar.svg").read_text()
+    (drawings / "four-bar.svg").write_text(svg.replace(">o<", ">q<", 1))
+    problems = stale(examples, drawings)
+    assert any("four-bar.svg" in p for p in problems)
+    assert any("four-bar.png: stale (its SVG differs)" in p for p in problems), problems
