@@ -40,16 +40,22 @@ def test_the_comparison_sees_a_changed_drawing(tmp_path: Path) -> None:
     assert png_rms(tmp_path / "four-bar.png", tmp_path / "four-bar.png") == pytest.approx(0.0)
 
 
-def test_regenerating_writes_only_the_drawings_that_differ(tmp_path: Path) -> None:
-    """The regenerator replaces a missing or stale file and leaves a current one untouched, byte for byte."""
-    from tools.regenerate_drawings import main
-
+def _four_bar_copy(tmp_path: Path) -> tuple[Path, Path]:
+    """A folder of examples holding the four-bar and a folder of its committed drawings, under ``tmp_path``."""
     examples, drawings = tmp_path / "examples", tmp_path / "drawings"
     examples.mkdir()
     drawings.mkdir()
     (examples / "four-bar.toml").write_text((EXAMPLES / "four-bar.toml").read_text())
     for fmt in DRAWN_FORMATS:
         (drawings / f"four-bar.{fmt}").write_bytes((DRAWINGS / f"four-bar.{fmt}").read_bytes())
+    return examples, drawings
+
+
+def test_regenerating_writes_only_the_drawings_that_differ(tmp_path: Path) -> None:
+    """The regenerator replaces a missing or stale file and leaves a current one untouched, byte for byte."""
+    from tools.regenerate_drawings import main
+
+    examples, drawings = _four_bar_copy(tmp_path)
     current = (drawings / "four-bar.dxf").read_bytes() + b"999\nmoved header\n"  # a DXF comment: same entities
     (drawings / "four-bar.dxf").write_bytes(current)
     (drawings / "four-bar.png").unlink()
@@ -62,12 +68,7 @@ def test_regenerating_writes_only_the_drawings_that_differ(tmp_path: Path) -> No
 
 def test_a_png_whose_svg_is_stale_is_stale_too(tmp_path: Path) -> None:
     """A label that changed moves few pixels, under the PNG's tolerance; the SVG tells, and the PNG goes with it."""
-    examples, drawings = tmp_path / "examples", tmp_path / "drawings"
-    examples.mkdir()
-    drawings.mkdir()
-    (examples / "four-bar.toml").write_text((EXAMPLES / "four-bar.toml").read_text())
-    for fmt in DRAWN_FORMATS:
-        (drawings / f"four-bar.{fmt}").write_bytes((DRAWINGS / f"four-bar.{fmt}").read_bytes())
+    examples, drawings = _four_bar_copy(tmp_path)
     svg = (drawings / "four-bar.svg").read_text()
     (drawings / "four-bar.svg").write_text(svg.replace(">o<", ">q<", 1))
     problems = stale(examples, drawings)
