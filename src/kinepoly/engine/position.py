@@ -169,7 +169,9 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
     if isinstance(inp, LinkInput):
         pivot = mechanism.input_pivot(inp).point
         x, y = mechanism.local(ground, pivot)
-        rotation = np.exp(1j * inputs)  # e^(i theta): one complex exponential is cheaper than cos and sin apart
+        rotation = np.empty(n, np.complex128)  # e^(i theta), its parts written in place: the same bits as
+        np.cos(inputs, out=rotation.real)       # np.exp(1j * theta), without its complex temporaries
+        np.sin(inputs, out=rotation.imag)
         poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), np.full(n, complex(x, y)), rotation)
     else:
         slider = mechanism.slider(inp.slider)

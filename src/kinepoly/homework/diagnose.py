@@ -29,6 +29,7 @@ import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Generic, TypeVar
 
 from kinepoly.engine.acceleration import Rules
 from kinepoly.errors import KinepolyError
@@ -45,7 +46,7 @@ from kinepoly.homework.reference import (
 )
 from kinepoly.scene.spec import LinkInput, Scene
 
-__all__ = ["Candidate", "Diagnosis", "Recomputed", "candidates", "diagnose", "recompute"]
+__all__ = ["Candidate", "Diagnosis", "Mistake", "Recomputed", "candidates", "diagnose", "recompute"]
 
 _CONSTRUCTIONS = (
     ("coriolis-left-out", "the Coriolis term 2 omega x v_rel left out of the acceleration polygon",
@@ -63,22 +64,21 @@ _NOUNS = {"omega": "angular velocity", "alpha": "angular acceleration", "theta":
           "s_dot": "sliding velocity s_dot", "s_ddot": "sliding acceleration s_ddot", "center": "instant center"}
 
 
-@dataclass(frozen=True)
-class Recomputed:
-    """The whole problem solved again with one mistake: its answers by key."""
-
-    code: str
-    text: str
-    values: Values
+_Answer = TypeVar("_Answer")
 
 
 @dataclass(frozen=True)
-class Candidate:
-    """What the answer to one key would be with one mistake."""
+class Mistake(Generic[_Answer]):
+    """What one mistake (its code and its text) makes of the answers: of the whole problem (``Recomputed``,
+    its answers by key) or of one key (``Candidate``)."""
 
     code: str
     text: str
-    value: Value
+    answer: _Answer
+
+
+Recomputed = Mistake[Values]
+Candidate = Mistake[Value]
 
 
 @dataclass(frozen=True)
@@ -255,7 +255,7 @@ def candidates(reference: Reference, recomputed: tuple[Recomputed, ...], key: An
         return []
     out = _reading_mistakes(reference, key, expected)
     for mistake in recomputed:
-        value = value_in(mistake.values, key)
+        value = value_in(mistake.answer, key)
         if value is not None:
             out.append(Candidate(mistake.code, mistake.text, value))
     return out + _others(reference, key)
@@ -269,10 +269,10 @@ def diagnose(reference: Reference, recomputed: tuple[Recomputed, ...], key: Answ
     tried: list[str] = []
     matches: list[tuple[float, int, Candidate]] = []
     for candidate in candidates(reference, recomputed, key):
-        if expected is not None and compare(key.kind, expected, candidate.value, tolerance, floor).is_correct:
+        if expected is not None and compare(key.kind, expected, candidate.answer, tolerance, floor).is_correct:
             continue  # this mistake changes nothing visible here
         tried.append(candidate.code)
-        match = compare(key.kind, candidate.value, given, tolerance, floor)
+        match = compare(key.kind, candidate.answer, given, tolerance, floor)
         if match.is_correct:
             matches.append((match.closeness, len(matches), candidate))
     if not matches:
@@ -282,4 +282,4 @@ def diagnose(reference: Reference, recomputed: tuple[Recomputed, ...], key: Answ
     matches.sort(key=lambda item: (0.0 if item[0] <= least * (1.0 + _TIE) else item[0], item[1]))
     best = matches[0][2]
     others = tuple(dict.fromkeys(c.code for _, _, c in matches[1:] if c.code != best.code))
-    return Diagnosis(best.code, best.text, best.value, others)
+    return Diagnosis(best.code, best.text, best.answer, others)
