@@ -12,9 +12,11 @@ and the coupler point C where the method has it) and the angles, omegas and alph
 and 4. Times are the best of several runs (the slow ones run once); ratios are to the closed form
 measured in the same run, so that a loaded machine moves both. Agreement: the largest difference
 from the sweep over all rows, relative to the largest magnitude of that kind of quantity.
-Two more rows tell what a sweep costs whatever its length: ``run_sweep`` over 36 rows (the
+Three more figures tell what a sweep costs whatever its length: ``run_sweep`` over 36 rows (the
 Python that runs once per call, next to which the numpy passes over the rows hardly count)
-and ``prepare_sweep`` alone (the mechanism's indexes built on first use are not in it).
+and ``prepare_sweep`` alone (the mechanism's indexes built on first use are not in it); and the
+sweep against the closed form over ten times the positions, where that once-per-call Python is
+spread over ten times the rows (the cost per row).
 
     python benchmarks/bench_sweep.py [--quick]
 """
@@ -40,6 +42,7 @@ from kinepoly.sweep import SweepResult, prepare_sweep, run_sweep, sweep
 SCENE = ROOT / "examples" / "four-bar.toml"
 STEPS = 3600
 FEW = 36
+LONG = 10 * STEPS
 A1, A2, A3, A4 = 100.0, 40.0, 120.0, 80.0  # frame, crank, coupler, rocker (examples/four-bar.toml)
 B3, BETA3 = 60.0, math.radians(30.0)  # coupler point C: 60 from A at 30 degrees to AB
 OMEGA2, ALPHA2 = 10.0, 5.0
@@ -195,6 +198,10 @@ def main() -> int:
         t_run, _ = best(lambda: run_sweep(prepared, steps=STEPS), repeat)
         rounds.append((t_sweep / t_closed, t_run / t_closed, t_closed, t_sweep, t_run))
     ratio_sweep, ratio_run, t_closed, t_sweep, t_run = min(rounds)
+    # the cost per row apart from the Python run once per call: ten times the rows, both methods
+    theta_long = np.radians(np.linspace(0.0, 360.0, LONG, endpoint=False))
+    t_closed_long, _ = best(lambda: closed_form(theta_long), max(5, repeat // 10))
+    t_sweep_long, _ = best(lambda: sweep(scene, steps=LONG), max(5, repeat // 10))
     swept = from_sweep(result)
     assert np.array_equal(result.input.values, theta_deg)
     rows: list[tuple[str, float | None, str, float | None]] = [
@@ -248,6 +255,8 @@ def main() -> int:
         print(f"{name:62s} {seconds * 1e3:8.3f} ms {seconds / t_closed:9.2f} {seconds / t_sweep:9.2f} {agree_text:>10s}")
     print(f"target: sweep / closed form <= 1.3; measured {ratio_sweep:.2f} (all in), {ratio_run:.2f} (prepared plan); "
           f"the sweep's own split: {result.timing}")
+    print(f"over {LONG} positions: sweep {t_sweep_long * 1e3:.3f} ms, closed form {t_closed_long * 1e3:.3f} ms, "
+          f"ratio {t_sweep_long / t_closed_long:.2f} (the cost per row, the Python run once per call spread thin)")
     return 0
 
 
