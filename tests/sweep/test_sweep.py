@@ -19,7 +19,7 @@ from kinepoly.sweep import prepare_sweep, run_sweep, sweep
 from kinepoly.sweep.plots import plot_figure, plot_png
 from kinepoly.sweep.table import csv_text
 
-EXAMPLE_NAMES = ["four-bar", "slider-crank", "slotted-lever", "shaper", "centers-six-bar", "triad"]
+EXAMPLE_NAMES = ["four-bar", "slider-crank", "slotted-lever", "shaper", "centers-six-bar", "triad", "kc0-six-bar"]
 
 
 @pytest.mark.parametrize("name", EXAMPLE_NAMES)
@@ -206,6 +206,22 @@ def test_default_range_of_a_slider_input_is_its_stroke() -> None:
     assert result.input.values[-1] == pytest.approx(160.0, abs=1e-6)  # a3 + a2
     a_y = result.column("r_A_y")
     assert (a_y.values[1:-1] > 0).all()  # the crank stays on the side the guess put it
+
+
+def test_a_newton_groups_range_ends_close_just_inside_its_dead_points() -> None:
+    """kc0-six-bar's input swings between two dead points of its K_C(0) group, which Newton's method closes:
+    both ends of the default range are rows that close (near-singular, and saying why), and the solve,
+    which shares no sweep code, closes 1e-4 degree inside each end and does not close 1e-4 degree beyond it."""
+    text = (EXAMPLES / "kc0-six-bar.toml").read_text()
+    result = sweep(kinepoly.loads_scene(text), steps=36)
+    assert not result.periodic and (result.status <= 1).all()
+    for row in (0, result.rows - 1):
+        assert result.status_name(row) == "near-singular"
+        assert "inside the dead point" in result.warnings[row]
+    for end, outward in ((float(result.input.values[0]), -1.0), (float(result.input.values[-1]), 1.0)):
+        kinepoly.solve(kinepoly.loads_scene(text.replace("angle = 60", f"angle = {end - outward * 1e-4!r}")))
+        with pytest.raises(kinepoly.AssemblyError):
+            kinepoly.solve(kinepoly.loads_scene(text.replace("angle = 60", f"angle = {end + outward * 1e-4!r}")))
 
 
 def test_csv_columns_are_named_like_the_answer_keys() -> None:

@@ -3,7 +3,9 @@
 Without ``--from``/``--to`` the range is a full turn of the input link, 0 to 360 degrees with
 the end left out (it repeats the start), when the mechanism closes all the way round; else it
 is the stretch of input around the scene's own input where it closes (a rocker's swing, a
-slider's stroke), its ends found to about 1e-10 of the step by repeated subdivision. A slider
+slider's stroke), its ends found to about 1e-10 of the step by repeated subdivision (where a group
+is closed by Newton's method, put inside by 1e-7 rad, or 1e-7 of the mechanism's size for a
+slider, so that the end rows close when walked to: ``_newton_margin``). A slider
 input that closes further than ten times the mechanism's size either way stops there, and so
 does a range where a point runs off further than ten times the mechanism's size (a slider
 driven toward an asymptote): both with an ``open-range`` notice.
@@ -29,6 +31,7 @@ import numpy as np
 
 from kinepoly.engine.assembly import Continuity
 from kinepoly.engine.centrode import mechanism_size
+from kinepoly.engine.newton import CLOSED_REL
 from kinepoly.engine.plan import NewtonGroup, PositionPlan
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
@@ -49,6 +52,7 @@ FULL_TURN_CHECK_ROWS = 3600
 _BRIDGE_MAX = 100_000
 _ZOOM = 32
 _ZOOM_ROUNDS = 6
+_NEWTON_EDGE = 100.0
 
 
 @dataclass(frozen=True)
@@ -62,6 +66,9 @@ class InputGrid:
     seed_row: int
     periodic: bool
     notices: tuple[Notice, ...] = ()
+    near_dead: tuple[int, ...] = ()
+    """Rows at an end of the range put just inside a dead point (``_newton_margin``): near-singular."""
+    near_dead_why: str = ""
 
 
 def input_name(mechanism: Mechanism) -> str:
@@ -157,10 +164,25 @@ def _reach(mechanism: Mechanism, seed: dict[str, LinkPose], size: float) -> _Rea
     return _Reach(center, 10.0 * size)
 
 
+def _newton_margin(mechanism: Mechanism, size: float) -> float:
+    """How far inside the last input where a Newton group closes a range's end is put, in the input's unit.
+
+    Beyond a dead point by less than about ``CLOSED_REL`` radians (or ``CLOSED_REL`` times the mechanism's
+    size for a slider), Newton's method still meets its tolerance from a start close enough: the
+    subdivision's last input may lie there, where a sweep's rows, walked from a whole step away, do
+    not close. ``_NEWTON_EDGE`` times that is well inside, and still far below a printed digit.
+    """
+    if isinstance(mechanism.scene.input, LinkInput):
+        radians = _NEWTON_EDGE * CLOSED_REL
+        return math.degrees(radians) if mechanism.scene.units.angle == "deg" else radians
+    return _NEWTON_EDGE * CLOSED_REL * size
+
+
 def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: float,
-          seed: dict[str, LinkPose], reach: _Reach | None = None) -> tuple[float, dict[str, LinkPose]]:
+          seed: dict[str, LinkPose], reach: _Reach | None = None, margin: float = 0.0) -> float:
     """The last input from ``inside`` toward ``outside`` where the mechanism still closes (and, with
-    ``reach``, every point stays within it)."""
+    ``reach``, every point stays within it), less ``margin`` toward ``inside`` where it stops closing."""
+    start = inside
     for _ in range(_ZOOM_ROUNDS):
         values = np.linspace(inside, outside, _ZOOM + 1)
         found = _evaluate(mechanism, plan, values, 0, seed, periodic=False)
@@ -170,9 +192,9 @@ def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: floa
             break
         inside, seed = float(values[last]), found.row(last)
         if last == len(values) - 1:
-            return inside, seed
+            break
         outside = float(values[last + 1])
-    return inside, seed
+    return inside + math.copysign(min(margin, abs(inside - start)), start - inside)  # never past the start
 
 
 def _run_around(ok: Bools, row: int, periodic: bool) -> tuple[int, int]:
@@ -187,8 +209,8 @@ def _run_around(ok: Bools, row: int, periodic: bool) -> tuple[int, int]:
 
 
 def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPose], size: float) -> tuple[
-        float, float, bool, list[Notice]]:
-    """(start, stop, full turn?, notices) of the default sweep."""
+        float, float, bool, list[Notice], tuple[bool, bool]]:
+    """(start, stop, full turn?, notices, which ends are put inside a dead point by ``_newton_margin``)."""
     seed_value = _seed_value(mechanism)
     full = _full_turn(mechanism)
     coarse = 360 if any(isinstance(g, NewtonGroup) for g in plan.groups) else FULL_TURN_CHECK_ROWS
@@ -197,7 +219,7 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
         values, _, seed_row = _with_seed(shown, seed_value, True, full)
         found = _evaluate(mechanism, plan, values, seed_row, seed, periodic=True)
         if found.ok.all():
-            return 0.0, full, True, []
+            return 0.0, full, True, [], (False, False)
         seed_value = float(values[seed_row])
     else:
         reach = 10.0 * size
@@ -213,8 +235,10 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
     ok[seed_row] = True
     before, after = _run_around(ok, seed_row, periodic)
     n = len(values)
+    margin = _newton_margin(mechanism, size) if any(isinstance(g, NewtonGroup) for g in plan.groups) else 0.0
     notices: list[Notice] = []
-    ends = []
+    ends: list[float] = []
+    pulled: list[bool] = []
     for sign, count in ((-1, before), (1, after)):
         row = (seed_row + sign * count) % n
         inside = float(values[row])
@@ -226,15 +250,18 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
                                   f"({size:.6g}) from the scene's input; the sweep stops there (give --from and "
                                   "--to to go further)"))
             ends.append(inside)
+            pulled.append(False)
             continue
         outside = inside + sign * abs(float(values[1] - values[0]))
-        edge, _ = _edge(mechanism, plan, inside, outside, found.row(row), bounds)
-        if found.ok[next_row % n] and not ok[next_row % n]:  # it still closes there, but runs off
+        edge = _edge(mechanism, plan, inside, outside, found.row(row), bounds, margin)
+        runs_off = bool(found.ok[next_row % n] and not ok[next_row % n])  # it still closes there, but runs off
+        if runs_off:
             notices.append(Notice("open-range", f"the mechanism still closes at {edge:.6g}, but a point runs off "
                                   f"beyond ten times its size ({size:.6g}); the sweep stops there (give --from "
                                   "and --to to go further)"))
         ends.append(edge)
-    return ends[0], ends[1], False, notices
+        pulled.append(margin > 0.0 and not runs_off)
+    return ends[0], ends[1], False, notices, (pulled[0], pulled[1])
 
 
 def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
@@ -265,8 +292,13 @@ def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPos
     _check_steps(steps)
     full = _full_turn(mechanism)
     notices: list[Notice] = []
+    pulled, why = (False, False), ""
     if start is None or stop is None:
-        start, stop, periodic, notices = _default_range(mechanism, plan, seed, mechanism_size(mechanism, seed))
+        size = mechanism_size(mechanism, seed)
+        start, stop, periodic, notices, pulled = _default_range(mechanism, plan, seed, size)
+        unit = mechanism.scene.units.angle if full is not None else mechanism.scene.units.length
+        why = (f"near-singular: an end of the range, {_newton_margin(mechanism, size):.2g} {unit} inside the dead "
+               "point beyond which a group closed by Newton's method does not close")
     else:
         if start == stop:
             raise SceneError(f"--from and --to: the range from {start:.6g} to {stop:.6g} is empty; give two different "
@@ -277,4 +309,6 @@ def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPos
     else:
         shown = np.linspace(start, stop, steps + 1)
     values, mask, seed_row = _with_seed(shown, _seed_value(mechanism), periodic, full)
-    return InputGrid(values, _internal(mechanism, values), mask, seed_row, periodic, tuple(notices))
+    shown_rows = np.flatnonzero(mask)
+    near_dead = tuple(int(shown_rows[k]) for k, end in ((0, pulled[0]), (-1, pulled[1])) if end)
+    return InputGrid(values, _internal(mechanism, values), mask, seed_row, periodic, tuple(notices), near_dead, why)

@@ -417,6 +417,10 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
         flags.raise_to(failure.rows, _CANNOT, _failure_text(failure))
     for rough in positions.near:
         flags.raise_to(rough.rows & positions.ok, _NEAR, rough.why)
+    if grid.near_dead:
+        end = np.zeros(len(grid.values), np.bool_)
+        end[list(grid.near_dead)] = True
+        flags.raise_to(end & positions.ok, _NEAR, grid.near_dead_why)
     ok = positions.ok
     velocity = acceleration = None
     higher = bool(scene.cams or scene.gears)  # a follower's s-v-a and the gear ratios need the polygons
