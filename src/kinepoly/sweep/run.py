@@ -24,7 +24,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -66,9 +66,9 @@ _ORDER = {"input": -1, "angle": 0, "position": 0, "slider": 0, "transmission": 0
           "slider-acceleration": 2, "coriolis": 2, "pressure": 0, "ratio": 1}
 
 
-@dataclass(frozen=True)
-class Column:
-    """One reported quantity at every row; ``values`` hold 0.0 where ``valid`` is False."""
+class Column(NamedTuple):
+    """One reported quantity at every row; ``values`` hold 0.0 where ``valid`` is False (a named tuple:
+    frozen, and cheap to make, for a sweep makes one per quantity per call)."""
 
     name: str
     kind: Kind
@@ -159,9 +159,9 @@ class _Flags:
         return {k: "; ".join(v) for k, v in out.items()}
 
 
-def _crossing_flags(flags: _Flags, ok: Bools, crossings: list[LineCrossing | JointSolve]) -> None:
-    """Singular and near-singular rows, as ``PolygonBuilder.cross_lines`` (and ``construct.group``) tell them."""
-    every = bool(ok.all())
+def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineCrossing | JointSolve]) -> None:
+    """Singular and near-singular rows, as ``PolygonBuilder.cross_lines`` (and ``construct.group``) tell them
+    (``every``: whether every row is ``ok``)."""
     for crossing in crossings:
         if isinstance(crossing, JointSolve):
             where = f"group {crossing.group}"
@@ -171,8 +171,8 @@ def _crossing_flags(flags: _Flags, ok: Bools, crossings: list[LineCrossing | Joi
                            "velocity and acceleration are not determined")
             flags.raise_to(near, _NEAR, _condition_text(where, crossing.condition))
             continue
-        lowest, highest = float(crossing.sin_angle.min()), float(crossing.sin_angle.max())
-        if (lowest >= NEAR_SINGULAR_SIN or highest <= -NEAR_SINGULAR_SIN) and every \
+        if every and (float(crossing.sin_angle.min()) >= NEAR_SINGULAR_SIN
+                      or float(crossing.sin_angle.max()) <= -NEAR_SINGULAR_SIN) \
                 and np.isfinite(crossing.along.sum()):  # the lines cross well at every row (of one sense)
             continue
         sine = np.abs(crossing.sin_angle)
@@ -219,12 +219,12 @@ class _Builder:
         self.raw += [(f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)]
         self.sources.append((kind, values))
 
-    def columns(self, level: npt.NDArray[np.int8], shown: Bools) -> tuple[Column, ...]:
-        every = bool(shown.all())
+    def columns(self, level: npt.NDArray[np.int8] | None, shown: Bools, every: bool) -> tuple[Column, ...]:
+        """The columns of the ``shown`` rows (``every``: all of them); ``level`` None where every row is ok."""
         masks = {}
         for limit in (_SINGULAR, _NEAR):
-            valid = level <= limit
-            masks[limit] = (valid if every else valid[shown], bool(valid.all()))
+            valid = np.ones(len(shown), np.bool_) if level is None else level <= limit
+            masks[limit] = (valid if every else valid[shown], level is None or bool(valid.all()))
         out = []
         for name, kind, values, extra in self.raw:
             valid, clean = masks[_SINGULAR if _ORDER[kind] <= 0 else _NEAR]
@@ -311,8 +311,6 @@ def _centrode(out: _Builder, link: str, velocity: VelocityResult, seed_row: int,
 
 
 def _gap_notices(grid: InputGrid, ok: Bools, name: str, unit: str) -> list[Notice]:
-    if ok.all():
-        return []
     shown = grid.values[grid.shown]
     fails = ~ok[grid.shown]
     if not fails.any():
@@ -422,14 +420,15 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
         end[list(grid.near_dead)] = True
         flags.raise_to(end & positions.ok, _NEAR, grid.near_dead_why)
     ok = positions.ok
+    every_ok = bool(ok.all())
     velocity = acceleration = None
     higher = bool(scene.cams or scene.gears)  # a follower's s-v-a and the gear ratios need the polygons
     if asked.needs_velocity or centrode is not None or higher:
         velocity = construct_velocity(positions, plan, asked.velocity)
-        _crossing_flags(flags, ok, velocity.polygon.crossings)
+        _crossing_flags(flags, ok, every_ok, velocity.polygon.crossings)
     if (asked.needs_acceleration or scene.cams) and velocity is not None:
         acceleration = construct_acceleration(velocity, plan, asked.acceleration)
-        _crossing_flags(flags, ok, acceleration.polygon.crossings)
+        _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings)
     name = input_name(mechanism)
     out = _Builder(mechanism, positions)
     _columns(out, asked, velocity, acceleration, name)
@@ -441,13 +440,14 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     for transmission in transmission_angles(positions, plan, sines):
         out.add(f"mu_{transmission.point}", "transmission", _angle_unit(scene, transmission.angle))
     unit = scene.units.angle if isinstance(scene.input, LinkInput) else scene.units.length
-    notices += _gap_notices(grid, ok, name, unit)
+    if not every_ok:
+        notices += _gap_notices(grid, ok, name, unit)
     _overflow_flags(flags, ok, out)
     shown = grid.shown
     every = bool(shown.all())
     input_column = Column(name, "input", grid.values if every else grid.values[shown],
-                          np.ones(int(shown.sum()), np.bool_))
-    return SweepResult(scene, input_column, out.columns(flags.level, shown),
+                          np.ones(len(grid.values) if every else int(shown.sum()), np.bool_))
+    return SweepResult(scene, input_column, out.columns(flags.level if flags.reasons else None, shown, every),
                        flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
                        tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), grid.seed_row,
                        positions=positions, shown=shown, followers=followers)
