@@ -25,7 +25,7 @@ the range continuously.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -66,9 +66,8 @@ class InputGrid:
     seed_row: int
     periodic: bool
     notices: tuple[Notice, ...] = ()
-    near_dead: tuple[int, ...] = ()
-    """Rows at an end of the range put just inside a dead point (``_newton_margin``): near-singular."""
-    near_dead_why: str = ""
+    near_dead: dict[int, str] = field(default_factory=dict)
+    """Rows at an end of the range put just inside a dead point (``_newton_margin``), with their warning."""
 
 
 def input_name(mechanism: Mechanism) -> str:
@@ -209,8 +208,8 @@ def _run_around(ok: Bools, row: int, periodic: bool) -> tuple[int, int]:
 
 
 def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPose], size: float) -> tuple[
-        float, float, bool, list[Notice], tuple[bool, bool]]:
-    """(start, stop, full turn?, notices, which ends are put inside a dead point by ``_newton_margin``)."""
+        float, float, bool, list[Notice], tuple[float, float]]:
+    """(start, stop, full turn?, notices, how far each end is put inside a dead point by ``_newton_margin``)."""
     seed_value = _seed_value(mechanism)
     full = _full_turn(mechanism)
     coarse = 360 if any(isinstance(g, NewtonGroup) for g in plan.groups) else FULL_TURN_CHECK_ROWS
@@ -219,7 +218,7 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
         values, _, seed_row = _with_seed(shown, seed_value, True, full)
         found = _evaluate(mechanism, plan, values, seed_row, seed, periodic=True)
         if found.ok.all():
-            return 0.0, full, True, [], (False, False)
+            return 0.0, full, True, [], (0.0, 0.0)
         seed_value = float(values[seed_row])
     else:
         reach = 10.0 * size
@@ -238,7 +237,7 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
     margin = _newton_margin(mechanism, size) if any(isinstance(g, NewtonGroup) for g in plan.groups) else 0.0
     notices: list[Notice] = []
     ends: list[float] = []
-    pulled: list[bool] = []
+    pulled: list[float] = []
     for sign, count in ((-1, before), (1, after)):
         row = (seed_row + sign * count) % n
         inside = float(values[row])
@@ -250,17 +249,18 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
                                   f"({size:.6g}) from the scene's input; the sweep stops there (give --from and "
                                   "--to to go further)"))
             ends.append(inside)
-            pulled.append(False)
+            pulled.append(0.0)
             continue
         outside = inside + sign * abs(float(values[1] - values[0]))
-        edge = _edge(mechanism, plan, inside, outside, found.row(row), bounds, margin)
         runs_off = bool(found.ok[next_row % n] and not ok[next_row % n])  # it still closes there, but runs off
+        end_margin = 0.0 if runs_off else margin  # a dead point only where it stops closing
+        edge = _edge(mechanism, plan, inside, outside, found.row(row), bounds, end_margin)
         if runs_off:
             notices.append(Notice("open-range", f"the mechanism still closes at {edge:.6g}, but a point runs off "
                                   f"beyond ten times its size ({size:.6g}); the sweep stops there (give --from "
                                   "and --to to go further)"))
         ends.append(edge)
-        pulled.append(margin > 0.0 and not runs_off)
+        pulled.append(end_margin)
     return ends[0], ends[1], False, notices, (pulled[0], pulled[1])
 
 
@@ -292,13 +292,9 @@ def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPos
     _check_steps(steps)
     full = _full_turn(mechanism)
     notices: list[Notice] = []
-    pulled, why = (False, False), ""
+    pulled = (0.0, 0.0)
     if start is None or stop is None:
-        size = mechanism_size(mechanism, seed)
-        start, stop, periodic, notices, pulled = _default_range(mechanism, plan, seed, size)
-        unit = mechanism.scene.units.angle if full is not None else mechanism.scene.units.length
-        why = (f"near-singular: an end of the range, {_newton_margin(mechanism, size):.2g} {unit} inside the dead "
-               "point beyond which a group closed by Newton's method does not close")
+        start, stop, periodic, notices, pulled = _default_range(mechanism, plan, seed, mechanism_size(mechanism, seed))
     else:
         if start == stop:
             raise SceneError(f"--from and --to: the range from {start:.6g} to {stop:.6g} is empty; give two different "
@@ -310,5 +306,8 @@ def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPos
         shown = np.linspace(start, stop, steps + 1)
     values, mask, seed_row = _with_seed(shown, _seed_value(mechanism), periodic, full)
     shown_rows = np.flatnonzero(mask)
-    near_dead = tuple(int(shown_rows[k]) for k, end in ((0, pulled[0]), (-1, pulled[1])) if end)
-    return InputGrid(values, _internal(mechanism, values), mask, seed_row, periodic, tuple(notices), near_dead, why)
+    unit = mechanism.scene.units.angle if full is not None else mechanism.scene.units.length
+    near_dead = {int(shown_rows[k]): f"near-singular: an end of the range, {margin:.2g} {unit} inside the dead point "
+                 "beyond which a group closed by Newton's method does not close"
+                 for k, margin in ((0, pulled[0]), (-1, pulled[1])) if margin > 0.0}
+    return InputGrid(values, _internal(mechanism, values), mask, seed_row, periodic, tuple(notices), near_dead)

@@ -221,10 +221,14 @@ class _Builder:
 
     def columns(self, level: npt.NDArray[np.int8] | None, shown: Bools, every: bool) -> tuple[Column, ...]:
         """The columns of the ``shown`` rows (``every``: all of them); ``level`` None where every row is ok."""
-        masks = {}
-        for limit in (_SINGULAR, _NEAR):
-            valid = np.ones(len(shown), np.bool_) if level is None else level <= limit
-            masks[limit] = (valid if every else valid[shown], level is None or bool(valid.all()))
+        if level is None:
+            everywhere = (np.ones(len(shown) if every else int(shown.sum()), np.bool_), True)
+            masks = {_SINGULAR: everywhere, _NEAR: everywhere}
+        else:
+            masks = {}
+            for limit in (_SINGULAR, _NEAR):
+                valid = level <= limit
+                masks[limit] = (valid if every else valid[shown], bool(valid.all()))
         out = []
         for name, kind, values, extra in self.raw:
             valid, clean = masks[_SINGULAR if _ORDER[kind] <= 0 else _NEAR]
@@ -415,10 +419,10 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
         flags.raise_to(failure.rows, _CANNOT, _failure_text(failure))
     for rough in positions.near:
         flags.raise_to(rough.rows & positions.ok, _NEAR, rough.why)
-    if grid.near_dead:
+    for row, why in grid.near_dead.items():
         end = np.zeros(len(grid.values), np.bool_)
-        end[list(grid.near_dead)] = True
-        flags.raise_to(end & positions.ok, _NEAR, grid.near_dead_why)
+        end[row] = True
+        flags.raise_to(end & positions.ok, _NEAR, why)
     ok = positions.ok
     every_ok = bool(ok.all())
     velocity = acceleration = None
