@@ -304,6 +304,30 @@ def test_plot_draws_the_columns() -> None:
     assert plot_png(result).startswith(b"\x89PNG")
 
 
+def test_plot_windows_on_the_ok_rows_when_flagged_rows_run_off() -> None:
+    """kc0-six-bar's two end rows sit a hair inside dead points (near-singular, rates in the thousands): the
+    velocity panel and hodograph are windowed on the ok rows, which they show whole, and say so."""
+    import matplotlib.pyplot as plt
+
+    result = sweep(kinepoly.loads_scene((EXAMPLES / "kc0-six-bar.toml").read_text()), steps=72)
+    ok = result.status == 0
+    assert (~ok).sum() == 2
+    fig = plot_figure(result)
+    try:
+        axes = {ax.get_title(): ax for ax in fig.axes if ax.get_visible()}
+        rates = np.concatenate([result.column(f"omega_{k}").values for k in "1234"])
+        inside = np.concatenate([result.column(f"omega_{k}").values[ok] for k in "1234"])
+        low, high = axes["order 1: velocities"].get_ylim()
+        assert np.abs(rates).max() > 5 * max(abs(low), abs(high))  # the end rows run off the window
+        assert low <= np.percentile(inside, 1) and np.percentile(inside, 99) <= high
+        assert axes["order 1: velocities"].get_ylabel().endswith("clipped")
+        speeds = np.abs(result.column("v_B_x").values + 1j * result.column("v_B_y").values)
+        window = axes["velocity hodographs"].get_xlim()
+        assert speeds.max() > 5 * (window[1] - window[0]) and speeds[ok].min() < window[1] - window[0]
+    finally:
+        plt.close(fig)
+
+
 def test_cli_writes_csv_and_plot_whole(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     scene = str(EXAMPLES / "four-bar.toml")
     out, png = tmp_path / "sweep.csv", tmp_path / "sweep.png"

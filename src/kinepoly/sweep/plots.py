@@ -18,12 +18,13 @@ import numpy as np
 from kinepoly.sweep.run import Column, SweepResult
 
 if TYPE_CHECKING:
+    import numpy.typing as npt
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ["plot_figure", "plot_png"]
 
-_CANNOT, _SINGULAR = 3, 2
+_OK, _SINGULAR, _CANNOT = 0, 2, 3
 _REACH = 3.0
 """Centrodes run off to infinity where the link stops turning; the panel shows this many sizes around."""
 
@@ -48,19 +49,25 @@ def _wrapped(x: np.ndarray, col: Column, period: float) -> tuple[np.ndarray, np.
     return xs, np.ma.masked_invalid(ys)
 
 
-def _robust_limits(ax: Axes, values: list[np.ndarray], axis: str) -> bool:
+def _finite(values: list[np.ndarray]) -> np.ndarray:
+    return np.concatenate([v[np.isfinite(v)] for v in values if v.size]) if values else np.zeros(0)
+
+
+def _robust_limits(ax: Axes, values: list[np.ndarray], axis: str, bulk: list[np.ndarray]) -> bool:
     """Near a dead point rates run off to infinity; keep the rest of the cycle readable.
 
-    When the extremes exceed five times the 95th percentile of |value|, the axis is limited to
-    the 1st..99th percentiles with a margin, and the label says so.
+    The window is judged on ``bulk``, the values of the rows that are ``ok`` (all values where fewer
+    than 20 are): when the extremes exceed five times its 95th percentile of |value|, the axis is
+    limited to its 1st..99th percentiles with a margin, and the label says so.
     """
-    data = np.concatenate([v[np.isfinite(v)] for v in values if v.size]) if values else np.zeros(0)
-    if data.size < 20:
+    data, core = _finite(values), _finite(bulk)
+    core = core if core.size >= 20 else data
+    if core.size < 20:
         return False
-    typical = float(np.percentile(np.abs(data), 95))
+    typical = float(np.percentile(np.abs(core), 95))
     if typical <= 0.0 or float(np.abs(data).max()) <= 5.0 * typical:
         return False
-    low, high = (float(x) for x in np.percentile(data, [1, 99]))
+    low, high = (float(x) for x in np.percentile(core, [1, 99]))
     margin = 0.15 * max(high - low, typical)
     (ax.set_ylim if axis == "y" else ax.set_xlim)(low - margin, high + margin)
     label = ax.get_ylabel() if axis == "y" else ax.get_xlabel()
@@ -85,6 +92,7 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
     x = result.input.values
     lines = 0
     shown: list[np.ndarray] = []
+    bulk: list[np.ndarray] = []
     for col in result.columns:
         if col.kind in kinds:
             if col.kind == "angle":
@@ -93,6 +101,7 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
             else:
                 ax.plot(x, _masked(col), lw=1.2, label=col.name)
             shown.append(col.values[col.valid])
+            bulk.append(col.values[col.valid & (result.status == _OK)])
             lines += 1
     sliders = [c for c in result.columns if c.kind == slider_kind and c.name != result.input.name]
     if sliders:
@@ -105,7 +114,7 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
     ax.set_title(title, fontsize=9)
     ax.set_xlabel(_input_label(result))
     ax.set_ylabel(unit if lines else slider_unit)
-    _robust_limits(ax, shown, "y")
+    _robust_limits(ax, shown, "y", bulk)
     ax.grid(True, lw=0.3)
     if lines or sliders:
         ax.legend(loc="upper right", fontsize=7)
@@ -128,46 +137,47 @@ def _pairs(result: SweepResult, prefix: str) -> list[tuple[str, Column, Column]]
 
 
 def _curve_panel(ax: Axes, pairs: list[tuple[str, Column, Column]], title: str, unit: str,
-                 pole: bool = False) -> None:
-    xs: list[np.ndarray] = []
-    ys: list[np.ndarray] = []
+                 ok: npt.NDArray[np.bool_] | None = None) -> None:
+    """The curves of ``pairs``; a hodograph (``ok``: the rows that are ok) about its pole, windowed on those rows."""
+    points: list[np.ndarray] = []
+    bulk: list[np.ndarray] = []
     for name, cx, cy in pairs:
-        xs.append(cx.values[cx.valid & cy.valid])
-        ys.append(cy.values[cx.valid & cy.valid])
         valid = cx.valid & cy.valid
+        points.append(cx.values[valid] + 1j * cy.values[valid])
+        if ok is not None:
+            bulk.append(cx.values[valid & ok] + 1j * cy.values[valid & ok])
         line = ax.plot(np.ma.masked_array(cx.values, ~valid), np.ma.masked_array(cy.values, ~valid), lw=1.2,
                        label=name)
         if valid.any():
             first = int(np.flatnonzero(valid)[0])
             ax.plot([cx.values[first]], [cy.values[first]], "o", ms=3, color=line[0].get_color())
-    if pole:
+    if ok is not None:
         ax.plot([0], [0], "k+", ms=8)
         ax.annotate("o", (0, 0), textcoords="offset points", xytext=(4, 4), fontsize=8)
     ax.set_title(title, fontsize=9)
     ax.set_xlabel(f"x ({unit})")
     ax.set_ylabel(f"y ({unit})")
-    clipped = pole and _hodograph_window(ax, xs, ys, unit)
+    clipped = ok is not None and _hodograph_window(ax, points, bulk, unit)
     ax.set_aspect("equal", adjustable="box" if clipped else "datalim")
     ax.grid(True, lw=0.3)
     if pairs:
         ax.legend(loc="best", fontsize=7)
 
 
-def _hodograph_window(ax: Axes, xs: list[np.ndarray], ys: list[np.ndarray], unit: str) -> bool:
-    """A square window on the bulk of the hodographs when some run off to infinity (a dead point)."""
-    if not xs:
+def _hodograph_window(ax: Axes, curves: list[np.ndarray], bulk: list[np.ndarray], unit: str) -> bool:
+    """A square window on the bulk of the hodographs (their ``ok`` rows, all where fewer than 20 are) when
+    some run off to infinity (a dead point)."""
+    points, core = _finite(curves), _finite(bulk)
+    core = core if core.size >= 20 else points
+    if core.size < 20:
         return False
-    points = np.concatenate(xs) + 1j * np.concatenate(ys)
-    points = points[np.isfinite(points)]
-    if points.size < 20:
+    if float(np.abs(points).max()) <= 5.0 * float(np.percentile(np.abs(core), 95)):
         return False
-    size = np.abs(points)
-    if float(size.max()) <= 5.0 * float(np.percentile(size, 95)):
-        return False
-    center = complex(float(np.median(points.real)), float(np.median(points.imag)))
-    reach = 1.15 * float(np.percentile(np.abs(points - center), 98))
+    center = complex(float(np.median(core.real)), float(np.median(core.imag)))
+    reach = 1.15 * float(np.percentile(np.abs(core - center), 98))
     ax.set_xlim(center.real - reach, center.real + reach)
     ax.set_ylim(center.imag - reach, center.imag + reach)
+    ax.locator_params(axis="x", nbins=5)  # a square panel: wide numbers on x would touch
     ax.set_xlabel(f"x ({unit}), clipped")
     ax.set_ylabel(f"y ({unit}), clipped")
     return True
@@ -243,6 +253,7 @@ def _centrode_panel(ax: Axes, result: SweepResult) -> None:
                                        f"({at.real:.4g}, {at.imag:.4g}) {result.scene.units.length}")
     ax.set_xlim(center.real - reach, center.real + reach)
     ax.set_ylim(center.imag - reach, center.imag + reach)
+    ax.locator_params(axis="x", nbins=5)  # a square panel: wide numbers on x would touch
     ax.set_title(f"centrodes of link {link}: {name} (within {_REACH:g} x the mechanism's size)", fontsize=9)
     unit = result.scene.units.length
     ax.set_xlabel(f"x ({unit})")
@@ -355,10 +366,10 @@ def plot_figure(result: SweepResult) -> Figure:
     ]
     if _pairs(result, "v_"):
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "v_"), "velocity hodographs", f"{length}/s",
-                                              pole=True))
+                                              result.status == _OK))
     if _pairs(result, "a_"):
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "a_"), "acceleration hodographs",
-                                              f"{length}/s^2", pole=True))
+                                              f"{length}/s^2", result.status == _OK))
     if any(c.kind == "transmission" for c in result.columns):
         panels.append(lambda ax: _kind_panel(ax, result, "transmission", "transmission angles (0 dead point, 90 best)",
                                              True))
