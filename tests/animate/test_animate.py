@@ -196,3 +196,26 @@ def test_singular_rows_keep_the_mechanism_and_leave_the_polygons_out() -> None:
     assert frames.velocity is not None
     assert list(frames.velocity.valid) == list(~singular)
     assert np.isfinite(frames.velocity.tips).all() and np.abs(frames.velocity.tips - frames.velocity.center).max() <= 45
+
+
+def test_the_scale_fits_the_ok_frames_and_near_singular_ones_beyond_it_are_left_out() -> None:
+    """kc0-six-bar's two end rows sit a hair inside dead points, with rates a thousand times the rest: kv and ka
+    are the round scales that fit the ok frames (as ``fitting_scale`` of their largest reach), and the end
+    frames, whose polygons would run off the panel, keep the mechanism and leave their polygons out."""
+    from kinepoly.motion.frames import fitting_scale
+
+    result, frames = _frames("kc0-six-bar", 24)
+    ok = result.status == 0
+    assert list(np.flatnonzero(~ok)) == [0, result.rows - 1] and frames.count == result.rows
+    for poly in (frames.velocity, frames.acceleration):
+        assert poly is not None
+        prefix = "v" if poly.kind == "velocity" else "a"
+        tips = np.stack([result.column(f"{prefix}_{p}_x").values + 1j * result.column(f"{prefix}_{p}_y").values
+                         for p in "BDH"], axis=1)
+        inside = np.append(tips[ok].ravel(), 0j)
+        reach = 0.5 * max(np.ptp(inside.real), np.ptp(inside.imag))
+        assert poly.scale <= fitting_scale(reach)  # the other tips of the polygon may reach further
+        assert np.abs(tips[~ok]).max() * poly.scale > 45.0  # the end frames would leave the panel
+        assert list(poly.valid) == list(ok)
+        # the largest ok polygon fills its panel to within the round scale's step (at most 2.5 times)
+        assert 45.0 / 2.5 - 6.0 < np.abs(poly.tips[poly.valid] - poly.center).max() <= 45.0

@@ -5,9 +5,10 @@ status) and the engine's velocity and acceleration polygons over all rows
 (``construct_velocity``, ``construct_acceleration`` on the sweep's own positions): it holds no
 geometry of its own. A frame is a row the mechanism reaches; rows it cannot reach are skipped
 and listed. Polygon tips are in paper mm, the pole at 0: ``tips = k * value`` with ``k`` (kv or
-ka) one round number for every frame, the largest polygon of the cycle fitting its panel, so
-sizes compare from frame to frame. Singular rows (a dead or change point) keep the mechanism
-and leave the polygons out (``valid`` False).
+ka) one round number for every frame, the largest polygon of the cycle's ok rows fitting its
+panel, so sizes compare from frame to frame. Singular rows (a dead or change point) keep the
+mechanism and leave the polygons out (``valid`` False), as do near-singular rows whose polygons
+run off the panel at that scale.
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.scene.spec import LinkInput
 from kinepoly.sweep.run import PreparedSweep, SweepResult
 
-__all__ = ["PANEL_MM", "PARTS", "Frames", "LinkFrames", "PolygonFrames", "SliderFrames", "Trace", "Value",
+__all__ = ["NO_POLYGON", "PANEL_MM", "PARTS", "Frames", "LinkFrames", "PolygonFrames", "SliderFrames", "Trace", "Value",
            "fitting_scale", "make_frames"]
 
 PARTS = ("mechanism", "velocity", "acceleration", "centers", "paths", "functions")
@@ -38,9 +39,11 @@ DEFAULT_PARTS = ("mechanism", "velocity", "acceleration", "paths")
 PANEL_MM = 90.0
 """A polygon panel's side on paper: the largest polygon of the cycle fits a disc of this diameter
 around the pole (less a margin for the labels)."""
+NO_POLYGON = ("", "near-singular: beyond the cycle's scale", "singular: no polygon", "")
+"""What a polygon panel says in place of a polygon it leaves out, by the row's status."""
 _ROOM_MM = 0.5 * PANEL_MM - 6.0
 _NICE = (1.0, 2.0, 2.5, 5.0)
-_OK_OR_NEAR = 1
+_OK, _OK_OR_NEAR = 0, 1
 _CANNOT = 3
 
 
@@ -148,8 +151,11 @@ class Frames:
         return next(v for v in self.values if v.name == name)
 
 
-def _polygon_frames(polygon: Polygon, idx: npt.NDArray[np.intp], valid: Bools, unit: str,
+def _polygon_frames(polygon: Polygon, idx: npt.NDArray[np.intp], valid: Bools, ok: Bools, unit: str,
                     extras: list[tuple[str, str, Points | None, str]]) -> PolygonFrames:
+    """The polygon at every frame, at the round scale that fits the largest of the ``ok`` frames (of all
+    ``valid`` ones where none is ok); a near-singular frame whose polygon leaves the panel at that scale
+    is left out, as a singular one is."""
     mech = polygon.mechanism
     ground_points = set(mech.scene.link(mech.ground).point_names) if mech.ground else set()
     ground_points |= {label for label in polygon.tips if mech.ground and label.partition("@")[2] == mech.ground}
@@ -176,9 +182,12 @@ def _polygon_frames(polygon: Polygon, idx: npt.NDArray[np.intp], valid: Bools, u
             images.append(image)
     raw = np.stack(values + aux, axis=1) if values or aux else np.zeros((len(idx), 0), np.complex128)
     finite = valid & np.isfinite(raw).all(axis=1)
-    every = np.append(raw[finite].ravel(), 0j)
+    sized = finite & ok if (finite & ok).any() else finite
+    every = np.append(raw[sized].ravel(), 0j)
     low, high = complex(every.real.min(), every.imag.min()), complex(every.real.max(), every.imag.max())
     scale = fitting_scale(0.5 * max(high.real - low.real, high.imag - low.imag))
+    off = (raw - 0.5 * (low + high)) * scale  # from the panel's centre, in mm
+    finite &= sized | (np.maximum(np.abs(off.real), np.abs(off.imag)).max(axis=1, initial=0.0) <= 0.5 * PANEL_MM)
     tips = np.where(finite[:, None], raw * scale, 0.0).astype(np.complex128)
     return PolygonFrames(polygon.kind, polygon.symbol, scale, unit, tuple(labels), tips, finite, tuple(images),
                          tuple(vectors), 0.5 * (low + high) * scale)
@@ -278,6 +287,7 @@ def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, 
                             "positions asked")
     idx = computed[rows]
     valid = result.status[rows] <= _OK_OR_NEAR
+    ok = result.status[rows] == _OK
     asked = prepared.asked
     length = result.scene.units.length
     velocity: VelocityResult | None = None
@@ -297,12 +307,12 @@ def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, 
             extras: list[tuple[str, str, Points | None, str]] = [
                 (f"{s.point}@{s.guide}", velocity.polygon.label(s.block, s.point), None, "sliding")
                       for s in mech.scene.sliders if s.guide != mech.ground]
-            v_frames = _polygon_frames(velocity.polygon, idx, valid, f"{length}/s", extras)
+            v_frames = _polygon_frames(velocity.polygon, idx, valid, ok, f"{length}/s", extras)
         if acceleration is not None and "acceleration" in parts:
             extras = [(f"{s.point}@{s.guide}", acceleration.polygon.label(s.block, s.point),
                        acceleration.coriolis[s.name], "coriolis")  # a_P(guide) + coriolis + sliding = a_P(block)
                       for s in mech.scene.sliders if s.name in acceleration.coriolis and s.guide != mech.ground]
-            a_frames = _polygon_frames(acceleration.polygon, idx, valid, f"{length}/s^2", extras)
+            a_frames = _polygon_frames(acceleration.polygon, idx, valid, ok, f"{length}/s^2", extras)
         paths: tuple[Trace, ...] = ()
         if "paths" in parts:
             labels = dict.fromkeys(label.partition("@")[0] for label in (*result.scene.find.velocity,

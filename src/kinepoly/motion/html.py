@@ -17,7 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from kinepoly.motion.frames import PANEL_MM, Frames, PolygonFrames
+from kinepoly.motion.frames import NO_POLYGON, PANEL_MM, Frames, PolygonFrames
+from kinepoly.sweep.run import STATUS
 
 __all__ = ["html_page"]
 
@@ -51,7 +52,8 @@ def frames_data(frames: Frames) -> dict[str, Any]:
         "title": frames.title, "input": {"name": frames.input_name, "unit": frames.input_unit},
         "length": frames.length_unit, "rows": rows, "count": len(frames.inputs), "skipped": list(frames.skipped),
         "inputs": [float(x) for x in frames.inputs],
-        "status": [("ok", "near-singular", "singular", "cannot-assemble")[int(s)] for s in frames.status],
+        "status": [STATUS[int(s)] for s in frames.status],
+        "noPolygon": dict(zip(STATUS, NO_POLYGON)),
         "box": list(frames.box), "parts": list(frames.parts),
         "links": [{"name": link.name, "ground": link.ground, "points": list(link.points),
                    "xy": [_xy(row) for row in link.xy]} for link in frames.links],
@@ -159,8 +161,8 @@ const polys = D.polygons.map(p => {
   });
   const labels = p.labels.map(l => { const t = el(svg, "text", {"font-size": 3.2, fill: COLORS[p.kind]});
                                      t.textContent = l; return t; });
-  const singular = el(svg, "text", {x: c[0], y: -c[1], "font-size": 3.5, "text-anchor": "middle", fill: "#888"});
-  singular.textContent = "singular: no polygon";
+  const singular = el(svg, "text", {x: c[0], y: -c[1] + 0.8 * h, "font-size": 3.5, "text-anchor": "middle", fill: "#888"});
+  singular.textContent = "";
   return {p, svg, images, arrows, labels, singular};
 });
 let cursor = null;
@@ -250,6 +252,7 @@ function show(k) {
                                  t.style.display = valid ? "" : "none"; });
     q.images.forEach(line => { line.style.display = valid ? "" : "none"; });
     q.singular.style.display = valid ? "none" : "";
+    q.singular.textContent = D.noPolygon[D.status[row]];
   }
   D.values.forEach((v, j) => {
     const x = v.values[row];

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from kinepoly.errors import OutputError
-from kinepoly.motion.frames import PANEL_MM, Frames, PolygonFrames
+from kinepoly.motion.frames import NO_POLYGON, PANEL_MM, Frames, PolygonFrames
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -72,7 +72,7 @@ class _Polygon:
         self.ax = ax
         self.color: str = color or "#000000"
         self.letters: list[tuple[Any, float, float, str, str]] = []
-        self.marker = ax.text(0, 0, "singular: no polygon", fontsize=8, color="#888888", ha="center",
+        self.marker = ax.text(c.real, c.imag - 0.8 * half, NO_POLYGON[2], fontsize=8, color="#888888", ha="center",
                               va="center", visible=False)
 
     def show(self, k: int) -> None:
@@ -207,6 +207,7 @@ class _Scene:
                 self.letters.append((self.ax, z.real, z.imag, center.name, "#8e44ad"))
         for polygon in self.polygons:
             polygon.show(k)
+            polygon.marker.set_text(NO_POLYGON[int(f.status[row])])
             self.letters += polygon.letters
         if self.cursor is not None:
             self.cursor.set_xdata([f.inputs[row], f.inputs[row]])
