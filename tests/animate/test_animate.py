@@ -219,3 +219,9 @@ def test_the_scale_fits_the_ok_frames_and_near_singular_ones_beyond_it_are_left_
         assert list(poly.valid) == list(ok)
         # the largest ok polygon fills its panel to within the round scale's step (at most 2.5 times)
         assert 45.0 / 2.5 - 6.0 < np.abs(poly.tips[poly.valid] - poly.center).max() <= 45.0
+    chosen, window = frames.functions()  # the functions panel: a window on the ok rows, the ends run off it
+    assert [v.name for v in chosen] == ["omega_1", "omega_2", "omega_3", "omega_4"] and window is not None
+    rates = np.concatenate([v.values for v in chosen])
+    inside = np.concatenate([v.values[ok] for v in chosen])
+    assert window[0] <= inside.min() and inside.max() <= window[1] and np.abs(rates).max() > 5 * max(np.abs(window))
+    assert _frames("four-bar", 36)[1].functions()[1] is None  # nothing runs off: the whole range

@@ -27,6 +27,7 @@ from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_d
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.scene.spec import LinkInput
+from kinepoly.sweep.plots import robust_window
 from kinepoly.sweep.run import PreparedSweep, SweepResult
 
 __all__ = ["NO_POLYGON", "PANEL_MM", "PARTS", "Frames", "LinkFrames", "PolygonFrames", "SliderFrames", "Trace", "Value",
@@ -149,6 +150,13 @@ class Frames:
 
     def value(self, name: str) -> Value:
         return next(v for v in self.values if v.name == name)
+
+    def functions(self) -> tuple[tuple[Value, ...], tuple[float, float] | None]:
+        """The transmission functions a ``functions`` panel draws (the omegas, else the first order, four at
+        most) and its value window where flagged rows run off the ok ones (``sweep.plots.robust_window``)."""
+        chosen = tuple([v for v in self.values if v.unit == "rad/s"] or [v for v in self.values if v.order == 1])[:4]
+        ok = self.status == _OK
+        return chosen, robust_window([v.values[v.valid] for v in chosen], [v.values[v.valid & ok] for v in chosen])
 
 
 def _polygon_frames(polygon: Polygon, idx: npt.NDArray[np.intp], valid: Bools, ok: Bools, unit: str,

@@ -48,12 +48,14 @@ def _polygon(poly: PolygonFrames) -> dict[str, Any]:
 def frames_data(frames: Frames) -> dict[str, Any]:
     """The page's data: JSON-ready."""
     rows = [int(r) for r in frames.rows]
+    chosen, window = frames.functions()
     return {
         "title": frames.title, "input": {"name": frames.input_name, "unit": frames.input_unit},
         "length": frames.length_unit, "rows": rows, "count": len(frames.inputs), "skipped": list(frames.skipped),
         "inputs": [float(x) for x in frames.inputs],
         "status": [STATUS[int(s)] for s in frames.status],
         "noPolygon": dict(zip(STATUS, NO_POLYGON)),
+        "functions": {"names": [v.name for v in chosen], "window": window},
         "box": list(frames.box), "parts": list(frames.parts),
         "links": [{"name": link.name, "ground": link.ground, "points": list(link.points),
                    "xy": [_xy(row) for row in link.xy]} for link in frames.links],
@@ -168,11 +170,10 @@ const polys = D.polygons.map(p => {
 let cursor = null;
 if (D.parts.includes("functions")) {
   // the transmission functions of order 1 over the sweep, and a cursor at the position shown
-  let chosen = D.values.filter(v => v.unit === "rad/s");
-  if (!chosen.length) chosen = D.values.filter(v => v.order === 1);
-  chosen = chosen.slice(0, 4);
+  const chosen = D.values.filter(v => D.functions.names.includes(v.name));
   const xs = D.inputs, ys = chosen.flatMap(v => v.values.filter(x => x !== null));
-  const x0 = Math.min(...xs), x1 = Math.max(...xs), y0 = Math.min(0, ...ys), y1 = Math.max(0, ...ys);
+  const x0 = Math.min(...xs), x1 = Math.max(...xs);
+  const [y0, y1] = D.functions.window || [Math.min(0, ...ys), Math.max(0, ...ys)];  // a window: the rest cut off
   const w = 200, h = 60, sx = w / (x1 - x0 || 1), sy = h / (y1 - y0 || 1);
   const svg = panel(`${chosen.map(v => v.name).join(", ")} (${chosen.length ? chosen[0].unit : ""}) ` +
                     `against ${D.input.name}`, [-5, -5, w + 5, h + 5], 600);

@@ -164,10 +164,12 @@ class _Scene:
 
     def _functions(self, ax: Axes) -> Any:
         f = self.frames
-        chosen = [v for v in f.values if v.unit == "rad/s"] or [v for v in f.values if v.order == 1]
+        chosen, window = f.functions()
         x = f.inputs
-        for v in chosen[:4]:
+        for v in chosen:
             ax.plot(x, np.ma.masked_array(v.values, mask=~v.valid), lw=1.0, label=f"{v.name} ({v.unit})")
+        if window is not None:
+            ax.set_ylim(*window)
         for row in f.skipped:
             ax.axvspan(x[row] - 0.5 * _step(x), x[row] + 0.5 * _step(x), color="#dddddd", lw=0)
         ax.set_xlabel(f"{f.input_name} ({f.input_unit})", fontsize=7)

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["plot_figure", "plot_png"]
+__all__ = ["plot_figure", "plot_png", "robust_window"]
 
 _OK, _SINGULAR, _CANNOT = 0, 2, 3
 _REACH = 3.0
@@ -53,26 +53,31 @@ def _finite(values: list[np.ndarray]) -> np.ndarray:
     return np.concatenate([v[np.isfinite(v)] for v in values if v.size]) if values else np.zeros(0)
 
 
-def _robust_limits(ax: Axes, values: list[np.ndarray], axis: str, bulk: list[np.ndarray]) -> bool:
-    """Near a dead point rates run off to infinity; keep the rest of the cycle readable.
+def robust_window(values: list[np.ndarray], bulk: list[np.ndarray]) -> tuple[float, float] | None:
+    """Near a dead point rates run off to infinity: the window that keeps the rest of the cycle readable.
 
-    The window is judged on ``bulk``, the values of the rows that are ``ok`` (all values where fewer
-    than 20 are): when the extremes exceed five times its 95th percentile of |value|, the axis is
-    limited to its 1st..99th percentiles with a margin, and the label says so.
+    It is judged on ``bulk``, the values of the rows that are ``ok`` (all values where fewer than 20
+    are): when the extremes exceed five times its 95th percentile of |value|, the window is its
+    1st..99th percentiles with a margin; else None (the whole range fits).
     """
     data, core = _finite(values), _finite(bulk)
     core = core if core.size >= 20 else data
     if core.size < 20:
-        return False
+        return None
     typical = float(np.percentile(np.abs(core), 95))
     if typical <= 0.0 or float(np.abs(data).max()) <= 5.0 * typical:
-        return False
+        return None
     low, high = (float(x) for x in np.percentile(core, [1, 99]))
     margin = 0.15 * max(high - low, typical)
-    (ax.set_ylim if axis == "y" else ax.set_xlim)(low - margin, high + margin)
-    label = ax.get_ylabel() if axis == "y" else ax.get_xlabel()
-    (ax.set_ylabel if axis == "y" else ax.set_xlabel)(f"{label}, clipped")
-    return True
+    return low - margin, high + margin
+
+
+def _robust_limits(ax: Axes, values: list[np.ndarray], bulk: list[np.ndarray]) -> None:
+    """The y axis limited to ``robust_window``, where there is one, and its label saying so."""
+    window = robust_window(values, bulk)
+    if window is not None:
+        ax.set_ylim(*window)
+        ax.set_ylabel(f"{ax.get_ylabel()}, clipped")
 
 
 def _mark_rows(ax: Axes, result: SweepResult) -> None:
@@ -114,7 +119,7 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
     ax.set_title(title, fontsize=9)
     ax.set_xlabel(_input_label(result))
     ax.set_ylabel(unit if lines else slider_unit)
-    _robust_limits(ax, shown, "y", bulk)
+    _robust_limits(ax, shown, bulk)
     ax.grid(True, lw=0.3)
     if lines or sliders:
         ax.legend(loc="upper right", fontsize=7)
