@@ -35,7 +35,7 @@ import numpy as np
 
 from kinepoly.engine.cam_contact import centre_label, face_direction
 from kinepoly.engine.plan import NewtonGroup
-from kinepoly.engine.polygon import Line, LineCrossing, Polygon
+from kinepoly.engine.polygon import LineCrossing, Polygon
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, cross_lines
@@ -293,8 +293,9 @@ def velocity_by_assur_point(polygon: Polygon, triad: Triad, sliding: dict[str, P
 
 
 def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built, s_world: Points,
-            order: tuple[int, int, int]) -> None:
-    """Register the tips and rates the construction found, and record its steps (row 0)."""
+            order: tuple[int, int, int], normal_t: Callable[[Points], Points] | None = None) -> None:
+    """Register the tips and rates the construction found, and record its steps (row 0); ``normal_t`` is
+    T's normal term for a segment (accelerations; None for velocities)."""
     from kinepoly.engine.velocity import read_rate
 
     t = triad.ternary
@@ -304,7 +305,7 @@ def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
     for leg, tip in zip(triad.legs, built.tips, strict=True):
         labels.append(polygon.add_tip(t, leg.point, tip))
     if polygon.record:
-        _record(polygon, triad, legs, built, order, labels)
+        _record(polygon, triad, legs, built, order, labels, s_world, normal_t)
     read_rate(polygon, t, triad.assur, labels[order[2]], built.rate)
     for leg, along in zip(triad.legs, built.along, strict=True):
         if leg.kind == "pin" and not leg.equivalent:
@@ -313,16 +314,20 @@ def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
 
 
 def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built, order: tuple[int, int, int],
-            labels: list[str]) -> None:
+            labels: list[str], s_world: Points, normal_t: Callable[[Points], Points] | None) -> None:
+    """The steps: the Assur point on the mechanism, its tip, then the third leg's point and the other two.
+    For accelerations each tangential term's line starts at the end of the normal terms laid before it (the
+    legs' own, and T's toward S, or toward the point found before), and a step lays those normal terms."""
     a, b, m = order
     s = triad.assur
     sym = polygon.symbol
     t = triad.ternary
+    accelerating = polygon.kind == "acceleration" and normal_t is not None
+    laid: set[str] = set()  # the normal terms laid in this group so far
 
-    def leg_direction(k: int, term: str) -> Direction:
+    def leg_direction(k: int, term: str, after: str) -> Direction:
         leg = triad.legs[k]
         through = polygon.label(leg.known, leg.pin if leg.kind == "pin" and leg.pin else leg.point).lower()
-        after = legs[k].vectors[-1].label if legs[k].vectors else ""
         if leg.kind == "pin":
             return Direction(term, "perpendicular", f"{leg.pin}{leg.point}", through, after=after)
         if leg.kind == "face":
@@ -330,8 +335,15 @@ def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
         assert leg.slider is not None
         return Direction(term, "parallel", leg.slider.name, through, after=after)
 
-    def line(k: int, label: str) -> Line:
-        return (legs[k].through, legs[k].direction, None)
+    def line_label(k: int, term: str) -> str:
+        """What the line carries and how it runs (as a dyad's lines say it: the renderer tells terms by it)."""
+        leg = triad.legs[k]
+        if leg.kind == "pin":
+            return f"{term} perpendicular to {leg.pin}{leg.point}"
+        if leg.kind == "face":
+            return f"{term} parallel to the flat face of {t}"
+        assert leg.slider is not None
+        return f"{term} parallel to slider {leg.slider.name}"
 
     def leg_term(k: int) -> str:
         leg = triad.legs[k]
@@ -343,45 +355,87 @@ def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
         leg = triad.legs[k]
         return f"{sym}_{polygon.label(leg.known, leg.pin if leg.kind == 'pin' and leg.pin else leg.point)}"
 
+    def ternary_normal(point: str, reference: str, start: Points, r: Points) -> tuple[Points, DrawnVector | None]:
+        """T's normal term of ``point`` about ``reference`` (r from reference to point) laid from ``start``."""
+        if not accelerating:
+            return start, None
+        assert normal_t is not None
+        end = np.asarray(start + normal_t(r))
+        return end, DrawnVector(f"a^n_{point}/{reference}", polygon.vec(start), polygon.vec(end), "normal")
+
+    def lay_normals(vectors: tuple[DrawnVector, ...]) -> None:
+        """The step that lays the normal terms not laid before (a dyad's normals step)."""
+        fresh = tuple(v for v in vectors if v.term == "normal" and v.label not in laid and not _equivalent_normal(v))
+        laid.update(v.label for v in vectors if v.term == "normal")
+        if accelerating and fresh:
+            polygon.step(Step(polygon="acceleration", kind="known", equation=" and ".join(v.label for v in fresh),
+                              result=", ".join(v.label for v in fresh),
+                              known=tuple((v.label, "magnitude and direction") for v in fresh), vectors=fresh,
+                              topic="normals"))
+
+    def _equivalent_normal(vector: DrawnVector) -> bool:
+        """A normal term of a spline cam pair's equivalent link (its omega is the pair's, not a link's)."""
+        return any(leg.equivalent and vector in legs[k].vectors for k, leg in enumerate(triad.legs))
+
     la, lb = triad.legs[a], triad.legs[b]
     polygon.step(Step(polygon=polygon.kind, kind="known", equation=f"{s} = line of leg {la.link} x line of "
                       f"leg {lb.link}", result=s, topic="assur-point",
                       params=(("point", s), ("ternary", t), ("first", la.link), ("second", lb.link),
                               *_leg_line("first", la, t), *_leg_line("second", lb, t), ("third", triad.legs[m].link))))
-    vectors = tuple(v for k in (a, b) for v in legs[k].vectors)
+    # the tip of S: from each leg's known tip its known terms and T's normal term toward S, then the line along
+    # the leg's direction, which carries the leg's term and T's tangential term about S (parallel)
+    vectors: tuple[DrawnVector, ...] = ()
+    lines = []
+    directions = []
+    sides = []
+    for k in (a, b):
+        end, normal = ternary_normal(s, labels[k], legs[k].through, np.asarray(s_world - legs[k].at))
+        own = legs[k].vectors + ((normal,) if normal is not None else ())
+        vectors += own
+        term = f"{leg_term(k)} + {sym}{'^t' if accelerating else ''}_{s}/{labels[k]}"
+        after = own[-1].label if own else ""
+        lines.append(polygon.step_line((end, legs[k].direction, None), line_label(k, term)))
+        directions.append(leg_direction(k, term, after))
+        sides.append(" + ".join([leg_known(k), *(v.label for v in own), term]))
+    lay_normals(vectors)
     polygon.step(Step(
-        polygon=polygon.kind, kind="intersection",
-        equation=f"{sym}_{s} = {sym}_{labels[a]} + {sym}_{s}/{labels[a]} = {sym}_{labels[b]} + {sym}_{s}/{labels[b]}",
+        polygon=polygon.kind, kind="intersection", equation=f"{sym}_{s} = {sides[0]} = {sides[1]}",
         result=s.lower(),
-        known=tuple((v.label, "magnitude and direction") for v in vectors) + ((leg_term(a), "direction"),
-                                                                              (leg_term(b), "direction")),
-        vectors=vectors,
-        lines=(polygon.step_line(line(a, ""), ""), polygon.step_line(line(b, ""), "")),
-        value=polygon.vec(built.s), topic="assur-tip",
+        known=tuple((v.label, "magnitude and direction") for v in vectors) + tuple((d.term, "direction")
+                                                                                  for d in directions),
+        vectors=vectors, lines=(lines[0], lines[1]), value=polygon.vec(built.s), topic="assur-tip",
         params=(("point", s), ("ternary", t), ("first", la.link), ("second", lb.link)),
-        directions=(leg_direction(a, f"{leg_term(a)} + {sym}_{s}/{labels[a]}"),
-                    leg_direction(b, f"{leg_term(b)} + {sym}_{s}/{labels[b]}"))))
+        directions=(directions[0], directions[1])))
+    # the third leg's point from S, then the other two from it: T's normal term, then its tangential line
     for k, from_k in ((m, -1), (a, m), (b, m)):
         ref = s if from_k < 0 else labels[from_k]
         ref_point = s if from_k < 0 else triad.legs[from_k].point
         point = triad.legs[k].point
         start = built.s if from_k < 0 else built.tips[from_k]
-        first_term = f"{sym}{'^t' if polygon.kind == 'acceleration' else ''}_{labels[k]}/{ref}"
-        normal = f" + a^n_{labels[k]}/{ref}" if polygon.kind == "acceleration" else ""
-        laid = "".join(f" + {v.label}" for v in legs[k].vectors)
+        r = np.asarray(polygon.world(point) - polygon.world(ref_point))
+        end, normal = ternary_normal(labels[k], ref, start, r)
+        first_term = f"{sym}{'^t' if accelerating else ''}_{labels[k]}/{ref}"
+        own = ((normal,) if normal is not None else ()) + legs[k].vectors
+        lay_normals(own)
+        normal_text = f" + {normal.label}" if normal is not None else ""
+        leg_laid = "".join(f" + {v.label}" for v in legs[k].vectors)
         polygon.step(Step(
             polygon=polygon.kind, kind="intersection",
-            equation=f"{sym}_{labels[k]} = {sym}_{ref}{normal} + {first_term} = {leg_known(k)}{laid} + {leg_term(k)}",
+            equation=f"{sym}_{labels[k]} = {sym}_{ref}{normal_text} + {first_term} = {leg_known(k)}{leg_laid} + "
+                     f"{leg_term(k)}",
             result=labels[k].lower(),
-            known=((f"{sym}_{ref}", "magnitude and direction"), (first_term, "direction"),
-                   (leg_term(k), "direction")),
-            vectors=legs[k].vectors,
-            lines=(polygon.step_line((start, np.asarray(1j * (polygon.world(point) - polygon.world(ref_point))), None),
-                                     ""), polygon.step_line(line(k, ""), "")),
+            known=((f"{sym}_{ref}", "magnitude and direction"),
+                   *((v.label, "magnitude and direction") for v in own),
+                   (first_term, "direction"), (leg_term(k), "direction")),
+            vectors=own,
+            lines=(polygon.step_line((end, np.asarray(1j * r), None),
+                                     f"{first_term} perpendicular to {ref_point}{point}"),
+                   polygon.step_line((legs[k].through, legs[k].direction, None), line_label(k, leg_term(k)))),
             value=polygon.vec(built.tips[k]), topic="intersection", params=(("point", labels[k]),
                                                                             ("triad", _name(triad))),
-            directions=(Direction(first_term, "perpendicular", f"{ref_point}{point}", ref.lower()),
-                        leg_direction(k, leg_term(k)))))
+            directions=(Direction(first_term, "perpendicular", f"{ref_point}{point}", ref.lower(),
+                                  after=normal.label if normal is not None else ""),
+                        leg_direction(k, leg_term(k), legs[k].vectors[-1].label if legs[k].vectors else ""))))
 
 
 def _leg_line(which: str, leg: Leg, ternary: str) -> tuple[tuple[str, str], ...]:
@@ -432,8 +486,11 @@ def acceleration_by_assur_point(ctx: _Context, triad: Triad) -> None:
     legs = [_acceleration_leg(ctx, triad, leg) for leg in triad.legs]
     w = b.omega_of(triad.ternary)
     w2 = w * w
-    built, s_world, order = _construct(b, triad, legs, lambda r: np.asarray(b.normal_sign * w2 * r))
-    _finish(b, triad, legs, built, s_world, order)
+    def normal_t(r: Points) -> Points:
+        return np.asarray(b.normal_sign * w2 * r)
+
+    built, s_world, order = _construct(b, triad, legs, normal_t)
+    _finish(b, triad, legs, built, s_world, order, normal_t)
     for leg in triad.legs:
         if leg.slider is not None:
             ctx.slide_values(leg.slider, leg.link, leg.point)

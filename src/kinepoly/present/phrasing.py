@@ -241,12 +241,17 @@ class Words:
         mechanism = self.solution.mechanism
         omega = self.solution.velocity.omega if self.solution.velocity is not None else {}
         (p, _, p_on), (r, _, r_on) = (label.partition("@") for label in (point, reference))
+        members = self.solution.velocity.members if self.solution.velocity is not None else {}
+
+        def carries(link: str, name: str) -> bool:  # a point of the link, or one the construction found on it (S)
+            return mechanism.has_point(link, name) or any(label == name for label, _ in members.get(link, ()))
+
         # the link turning: the one the term names (B@4), else one that carries both points, else (a
         # point that slides on a link, A@4 of a slot) one that carries the reference, else the point
         tiers = ([k for k in omega if k in (p_on, r_on)],
-                 [k for k in omega if mechanism.has_point(k, p) and mechanism.has_point(k, r)],
-                 [k for k in omega if mechanism.has_point(k, r)],
-                 [k for k in omega if mechanism.has_point(k, p)])
+                 [k for k in omega if carries(k, p) and carries(k, r)],
+                 [k for k in omega if carries(k, r)],
+                 [k for k in omega if carries(k, p)])
         links = next((tier for tier in tiers if tier), None)
         if links is None:
             raise KeyError(f"{vector.label}: no link of known ω carries {point} or {reference}")
@@ -459,12 +464,18 @@ class _Phrase:
         text = self.say.say(key, first_line=self._line(step.directions[0]), second_line=self._line(step.directions[1]),
                             tip=tip_name(point, self.polygon), term=f"{self.w.symbol(self.polygon)}_{point}",
                             **self.common())
+        return text, f"{self.found_tip()} {self._terms_found()}"
+
+    def _terms_found(self) -> str:
+        """The magnitude of each term along a direction line: from where the line starts (the end of the terms
+        laid before it) to the tip found."""
+        step = self.step
         parts = []
         for direction, line in zip(step.directions, step.lines, strict=True):
             size = norm(sub((step.value[0], step.value[1]), line.through))
             parts.append(self.say.say("result.term", term=direction.term, magnitude=self.w.n(size, self.w.size_kind(self.polygon)),
                                       unit=self.w.unit_of(self.polygon)))
-        return text, f"{self.found_tip()} {self.say.say('result.terms', terms='; '.join(parts))}"
+        return self.say.say("result.terms", terms="; ".join(parts))
 
     def _rolling(self) -> tuple[str, str]:
         """A gear's pitch-point tip: the rolling condition's line crossed with the gear's own line."""
@@ -514,7 +525,7 @@ class _Phrase:
                             second=str(self.p["second"]), first_line=self._line(step.directions[0]),
                             second_line=self._line(step.directions[1]), tip=tip_name(point, self.polygon),
                             term=f"{self.w.symbol(self.polygon)}_{point}", **self.common())
-        return text, self.found_tip()
+        return text, f"{self.found_tip()} {self._terms_found()}"
 
     def _read(self) -> tuple[str, str]:
         p = self.p
@@ -557,12 +568,34 @@ class _Phrase:
             point, reference = _ends(v.label)
             size = norm(sub(v.end, v.start))
             key = "step.normal_item_zero" if self.w.is_zero(size, "acceleration") else "step.normal_item"
+            after = self._laid_after(v)
+            if after and key == "step.normal_item":
+                key = "step.normal_item_after"
             items.append(self.say.say(key, term=v.label, magnitude=self.w.n(size, "acceleration"),
                                       unit=self.w.unit_of(self.polygon), point=point.partition("@")[0],
                                       reference=reference.partition("@")[0], from_tip=self._normal_start(v),
-                                      paper=self.w.paper(self.polygon, size), **self.w.normal_fields(v)))
+                                      after=after, paper=self.w.paper(self.polygon, size), **self.w.normal_fields(v)))
         text = self.say.say("step.normals", items="; ".join(items))
         return text, self.say.say("result.laid", terms=", ".join(v.label for v in self.step.vectors))
+
+    def _laid_after(self, vector: DrawnVector) -> str:
+        """The term a normal term is laid after, where it starts at no tip but at the end of another term (a
+        triad's normal term toward its Assur point, after the leg's own normal or Coriolis term); else ""."""
+        tips = self.w.tips(self.polygon)
+        _point, reference = _ends(vector.label)
+        size = max([norm(t) for t in tips.values()] + [1.0])
+
+        def at(point: Vec, other: Vec) -> bool:
+            return norm(sub(point, other)) <= 1e-12 * size
+
+        if reference in tips and at(tips[reference], vector.start):
+            return ""
+        earlier = list(self.step.vectors[:self.step.vectors.index(vector)])
+        earlier += [v for s in self.w.solution.steps if s.polygon == self.polygon for v in s.vectors]
+        before = next((v for v in earlier if v != vector and at(v.end, vector.start) and not at(v.start, v.end)), None)
+        if before is not None and not any(at(tip, vector.start) for tip in tips.values()):
+            return before.label
+        return ""
 
     def _normal_start(self, vector: DrawnVector) -> str:
         """The tip a normal term is laid from: its reference point's, else the tip that is where it starts."""

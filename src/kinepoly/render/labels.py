@@ -625,8 +625,9 @@ _WRAP_SHARE = 0.35
 _LINE_GAP_MM = 0.4
 
 
-_BREAKS = (", ", " = ")
-"""The runs a long label may be broken after: between the names of coinciding tips, of equal vectors."""
+_BREAKS = (", ", " = ", " + ")
+"""The runs a long label may be broken after: between the names of coinciding tips, of equal vectors, of the
+terms of a sum."""
 
 
 def wrapped(runs: tuple[Run, ...], width: float) -> tuple[Run, ...]:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import bisect
 import functools
 import math
+import re
 from dataclasses import dataclass
 from typing import Literal
 
@@ -93,7 +94,10 @@ def _terms(equation: str) -> list[list[str]]:
 
 
 def _line_term_name(step: Step, index: int, symbol: str) -> str:
-    """The name of the unknown term along the step's ``index``-th direction line, from its equation."""
+    """The name of the unknown term along the step's ``index``-th direction line: its direction's term where the
+    step says its lines as data (a triad's line toward its Assur point carries two terms), else from its equation."""
+    if len(step.directions) == len(step.lines) and step.directions[index].term:
+        return step.directions[index].term
     sides = _terms(step.equation)
     result = sides[0][0].partition("_")[2]
     if len(sides) > index + 1:
@@ -203,14 +207,16 @@ def figure_box(figure: Figure) -> tuple[float, float, float, float]:
 
 
 def _labelled_runs(label: str, size: float) -> tuple[Run, ...]:
-    """Runs of a vector name, or of ``a_A = a^n_A/A0`` (two names joined by =)."""
-    parts = label.split(" = ")
+    """Runs of a vector name, or of ``a_A = a^n_A/A0`` (two names joined by =), or of a sum of two terms along
+    one line (``a^t_B/E + a^t_S/B``)."""
+    parts = re.split(r"( = | \+ )", label)
     runs: list[Run] = []
     x = 0.0
     for k, part in enumerate(parts):
-        if k:
-            runs.append(Run(" = ", x, 0.0, size))
-            x += text_width(" = ", size)
+        if k % 2:
+            runs.append(Run(part, x, 0.0, size))
+            x += text_width(part, size)
+            continue
         piece = vector_runs(part, size)
         runs += [Run(r.text, r.dx + x, r.dy, r.size) for r in piece]
         x = max(r.dx + text_width(r.text, r.size) for r in runs)
