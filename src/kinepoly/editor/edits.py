@@ -1,0 +1,226 @@
+"""Edits of a scene's TOML text, made through tomlkit so that the user's comments, order and formatting stay.
+
+An edit is a small JSON object (docs/editor.md lists them). Those that come from the mouse give a
+place in the frame; the place is turned into what the scene writes by the solved pose of the
+current text (``model.pose.LinkPose.to_local``, the input's angle, the slide's stroke):
+
+- ``move-point``: the point's coordinates in every solved link that carries it become those of
+  the place in that link's frame at the current pose (a frame pivot moves; a link's point moves
+  and the link's lengths change with it);
+- ``drive``: the input follows the place: a crank turns to point at it, a driven slider's stroke
+  runs to the place's foot on its line;
+- ``guess``: the ``[guess]`` of a point, which picks the assembly nearest it;
+- ``set``: a value at a key path (``["input", "omega"]``);
+- ``length``: a link's point moved along the line from the link's first point to it, to that distance.
+
+Before an edit that moves something, every ``[guess]`` the scene has is set to where its point is now
+(``follow_guesses``), so that the mechanism keeps its assembly as it is dragged.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import tomlkit
+from tomlkit.items import Array, InlineTable, Table
+
+if TYPE_CHECKING:
+    from tomlkit.toml_document import TOMLDocument
+
+    from kinepoly.solution import Solution
+
+__all__ = ["EditError", "apply_edit", "follow_guesses"]
+
+_DECIMALS = {"mm": 2, "cm": 3, "in": 3, "m": 5}
+"""The decimals a length is written to from the mouse: a hundredth of a millimetre, whatever the unit."""
+
+
+class EditError(ValueError):
+    """An edit that cannot be made on this text: an unknown point or key, a value of the wrong kind."""
+
+
+def apply_edit(text: str, edit: dict[str, Any], solution: Solution | None) -> str:
+    """``text`` with ``edit`` made; ``solution`` the current text's (needed by the edits that come from the mouse)."""
+    doc = tomlkit.parse(text)
+    op = edit.get("op")
+    if op == "set":
+        _set(doc, _key(edit.get("key")), _value(edit.get("value")))
+    elif op in ("move-point", "drive", "guess", "length"):
+        if solution is None:
+            raise EditError(f"{op}: the scene has no solved position to edit from; correct it first")
+        if op == "move-point":
+            _move_point(doc, solution, _name(edit.get("point")), _place(edit.get("to")))
+        elif op == "drive":
+            _drive(doc, solution, _place(edit.get("to")))
+        elif op == "guess":
+            _set(doc, ["guess", _name(edit.get("point"))], _pair(solution, _place(edit.get("to"))))
+        else:
+            _length(doc, solution, _name(edit.get("link")), _name(edit.get("point")), edit.get("value"))
+    else:
+        raise EditError(f"unknown edit {op!r}; expected set, move-point, drive, guess or length")
+    return tomlkit.dumps(doc)
+
+
+def follow_guesses(text: str, solution: Solution) -> str:
+    """``text`` with each ``[guess]`` point put where ``solution`` has it (its assembly kept as things move)."""
+    doc = tomlkit.parse(text)
+    guess = doc.get("guess")
+    if not isinstance(guess, (Table, InlineTable)):
+        return text
+    changed = False
+    for name in list(guess.keys()):
+        try:
+            at = solution.position(str(name))
+        except (KeyError, StopIteration):
+            continue
+        new = _pair(solution, at)
+        if _numbers(guess[name]) != new:
+            _store(guess, str(name), new)
+            changed = True
+    return tomlkit.dumps(doc) if changed else text
+
+
+def _decimals(solution: Solution) -> int:
+    return _DECIMALS.get(solution.scene.units.length, 4)
+
+
+def _pair(solution: Solution, at: Sequence[float]) -> list[float]:
+    d = _decimals(solution)
+    return [_tidy(round(at[0], d)), _tidy(round(at[1], d))]
+
+
+def _tidy(x: float) -> float:
+    return 0.0 if x == 0 else x
+
+
+def _move_point(doc: TOMLDocument, solution: Solution, point: str, to: tuple[float, float]) -> None:
+    links = [link for link in solution.scene.links if any(p.name == point for p in link.points)]
+    moved = [link.name for link in links if link.name in solution.pose.links]
+    if not moved:
+        raise EditError(f"move-point: no solved link has a point {point!r}")
+    for name in moved:
+        local = solution.pose.links[name].to_local(to)
+        _set(doc, ["links", name, "points", point], _pair(solution, local))
+
+
+def _drive(doc: TOMLDocument, solution: Solution, to: tuple[float, float]) -> None:
+    from kinepoly.editor.evaluate import input_handle
+    from kinepoly.scene.spec import LinkInput, SliderInput
+
+    handle = input_handle(solution)
+    given = solution.scene.input
+    if handle is None:
+        raise EditError("drive: this scene's input cannot be dragged (several inputs, a relative or a given one); "
+                        "use its fields")
+    at = handle["at"]
+    if isinstance(given, LinkInput):
+        link = solution.scene.link(given.link)
+        frame = {p.name for p in solution.scene.link(str(solution.scene.ground)).points}
+        pivot = solution.position(next(p.name for p in link.points if p.name in frame))
+        turn = math.atan2(to[1] - pivot[1], to[0] - pivot[0]) - math.atan2(at[1] - pivot[1], at[0] - pivot[0])
+        theta = math.remainder(given.angle_rad + turn, 2 * math.pi)
+        value = round(math.degrees(theta), 2) if solution.scene.units.angle == "deg" else round(theta, 5)
+        _set(doc, ["input", "angle"], _tidy(value))
+    elif isinstance(given, SliderInput):
+        slider = next(s for s in solution.scene.sliders if s.name == given.slider)
+        direction = solution.pose.links[slider.guide].theta + slider.angle_rad
+        s = given.s + (to[0] - at[0]) * math.cos(direction) + (to[1] - at[1]) * math.sin(direction)
+        _set(doc, ["input", "s"], _tidy(round(s, _decimals(solution))))
+
+
+def _length(doc: TOMLDocument, solution: Solution, link_name: str, point: str, value: object) -> None:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+        raise EditError(f"length: {value!r} is not a length; expected a positive number")
+    try:
+        link = solution.scene.link(link_name)
+    except KeyError:
+        raise EditError(f"length: no link {link_name!r}") from None
+    first, rest = link.points[0], {p.name: p for p in link.points[1:]}
+    if point not in rest:
+        raise EditError(f"length: link {link_name} has no point {point!r} other than its first, {first.name}")
+    dx, dy = rest[point].local[0] - first.local[0], rest[point].local[1] - first.local[1]
+    size = math.hypot(dx, dy)
+    if size == 0.0:
+        raise EditError(f"length: {point} lies on {first.name}; move it first")
+    k = float(value) / size
+    _set(doc, ["links", link_name, "points", point], _pair(solution, (first.local[0] + k * dx, first.local[1] + k * dy)))
+
+
+def _set(doc: TOMLDocument, key: list[str | int], value: Any) -> None:
+    """Store ``value`` at ``key``: an existing pair of numbers changed in place (its formatting kept), a missing
+    table made."""
+    node: Any = doc
+    for part in key[:-1]:
+        if isinstance(part, int):
+            if not isinstance(node, list) or not -len(node) <= part < len(node):
+                raise EditError(f"set: {'.'.join(map(str, key))}: no item {part}")
+            node = node[part]
+            continue
+        if not isinstance(node, (dict, Table, InlineTable)):
+            raise EditError(f"set: {'.'.join(map(str, key))}: {part!r} is not in a table")
+        if part not in node:
+            node[part] = tomlkit.table()
+        node = node[part]
+    last = key[-1]
+    if not isinstance(node, (dict, Table, InlineTable)) or isinstance(last, int):
+        raise EditError(f"set: {'.'.join(map(str, key))}: not a key of a table")
+    _store(node, last, value)
+
+
+def _store(table: Any, key: str, value: Any) -> None:
+    old = table.get(key)
+    if isinstance(old, Array) and isinstance(value, list) and len(old) == len(value) and \
+            all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in old):
+        for i, x in enumerate(value):
+            old[i] = _number(x)
+        return
+    table[key] = [_number(x) for x in value] if isinstance(value, list) else _number(value)
+
+
+def _number(x: Any) -> Any:
+    if isinstance(x, float) and x.is_integer() and abs(x) < 1e15:
+        return int(x)  # written as the user would: 40, not 40.0
+    return x
+
+
+def _numbers(item: Any) -> list[float] | None:
+    if isinstance(item, list) and all(isinstance(x, (int, float)) for x in item):
+        return [float(x) for x in item]
+    return None
+
+
+def _key(key: object) -> list[str | int]:
+    if not isinstance(key, list) or not key or not all(isinstance(k, (str, int)) and not isinstance(k, bool)
+                                                         for k in key):
+        raise EditError(f"set: key {key!r}; expected a list of table keys, such as [\"input\", \"omega\"]")
+    return list(key)
+
+
+def _value(value: object) -> Any:
+    if isinstance(value, bool) or value is None:
+        raise EditError(f"set: value {value!r}; expected a number, a string or a list of numbers")
+    if isinstance(value, (int, float)):
+        if not math.isfinite(value):
+            raise EditError(f"set: value {value!r}; expected a finite number")
+        return value
+    if isinstance(value, str):
+        return value
+    if isinstance(value, list) and value and all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                                                 and math.isfinite(x) for x in value):
+        return list(value)
+    raise EditError(f"set: value {value!r}; expected a number, a string or a list of numbers")
+
+
+def _name(name: object) -> str:
+    if not isinstance(name, str) or not name:
+        raise EditError(f"{name!r} is not a name; expected a point's or a link's name")
+    return name
+
+
+def _place(to: object) -> tuple[float, float]:
+    if not (isinstance(to, list) and len(to) == 2 and all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                                                          and math.isfinite(x) for x in to)):
+        raise EditError(f"{to!r} is not a place; expected [x, y] in the scene's length unit")
+    return float(to[0]), float(to[1])
