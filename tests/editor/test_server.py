@@ -218,3 +218,23 @@ def test_the_edit_command_refuses_what_it_cannot_do(argv: list[str], message: st
                                                     capsys: pytest.CaptureFixture[str]) -> None:
     code, _, err = run(capsys, *(a.replace("{tmp}", str(tmp_path)) for a in argv))
     assert code == 2 and message in err and "Traceback" not in err
+
+
+def test_a_cam_is_driven_by_its_profile_centre_which_cannot_be_moved_as_a_point(tmp_path: Path,
+                                                                              capsys: pytest.CaptureFixture[str]) -> None:
+    from tests.editor.server import serving
+
+    from kinepoly.editor.document import Document
+
+    path = tmp_path / "cam.toml"
+    with serving(Document(str(path), template_text("cam"))) as served:
+        first, driven, refused = _live(served, {"op": "state"},
+                                       {"op": "edit", "edit": {"op": "drive", "to": [0, 15]}},
+                                       {"op": "edit", "edit": {"op": "move-point", "point": "K23", "to": [0, 20]}})
+        assert first["handles"]["input"]["point"] == "K23"  # type: ignore[index]
+        assert not first["handles"]["points"]["K23"]["written"]  # type: ignore[index]
+        assert {x["link"] for x in first["handles"]["lengths"]} == {"1", "3"}  # type: ignore[index, union-attr]
+        assert driven["ok"] and "angle = 90" in driven["text"]  # type: ignore[operator]
+        assert "K23" in refused["refused"] and refused["text"] == driven["text"]  # type: ignore[operator]
+        assert httpx.post(served.url + "api/save", json={}).status_code == 200
+    assert _without_timing(driven["result"]) == _solve_json(capsys, path)  # type: ignore[arg-type]

@@ -97,12 +97,20 @@ def _tidy(x: float) -> float:
 
 def _move_point(doc: TOMLDocument, solution: Solution, point: str, to: tuple[float, float]) -> None:
     links = [link for link in solution.scene.links if any(p.name == point for p in link.points)]
-    moved = [link.name for link in links if link.name in solution.pose.links]
+    moved = [link.name for link in links if link.name in solution.pose.links and _written(doc, link.name, point)]
     if not moved:
-        raise EditError(f"move-point: no solved link has a point {point!r}")
+        raise EditError(f"move-point: no solved link has a point {point!r} written in [links]")
     for name in moved:
         local = solution.pose.links[name].to_local(to)
         _set(doc, ["links", name, "points", point], _pair(solution, local))
+
+
+def _written(doc: TOMLDocument, link: str, point: str) -> bool:
+    """Whether the scene's text writes ``point`` in link ``link``'s points (not one the loader made)."""
+    links = doc.get("links")
+    table = links.get(link) if isinstance(links, (Table, InlineTable)) else None
+    points = table.get("points") if isinstance(table, (Table, InlineTable)) else None
+    return isinstance(points, (Table, InlineTable)) and point in points
 
 
 def _drive(doc: TOMLDocument, solution: Solution, to: tuple[float, float]) -> None:

@@ -107,14 +107,16 @@ def handles(solution: Solution) -> dict[str, Any]:
     """Every named point of a solved link: where it is and on which links; the input's point and how it drives."""
     scene, pose = solution.scene, solution.pose
     points: dict[str, dict[str, Any]] = {}
+    made = {cam.center_point for cam in scene.cams}  # a cam's profile centre: the scene writes no such point
     for link in scene.links:
-        if link.name not in pose.links:
+        if link.name not in pose.links or link.name in scene.equivalent_links:
             continue
         for point in link.points:
             entry = points.setdefault(point.name, {"at": list(pose.links[link.name].world(point.local)), "links": []})
             entry["links"].append(link.name)
-    for entry in points.values():
+    for name, entry in points.items():
         entry["frame"] = scene.ground in entry["links"]
+        entry["written"] = name not in made
     guesses = {name: list(at) for name, at in scene.guess}
     return {"points": points, "input": input_handle(solution), "guess": guesses, "fields": input_fields(solution),
             "lengths": lengths(solution)}
@@ -138,10 +140,15 @@ def input_fields(solution: Solution) -> dict[str, float] | None:
 def lengths(solution: Solution) -> list[dict[str, Any]]:
     """Each link's distances from its first point to its other points, in the scene's length unit."""
     out: list[dict[str, Any]] = []
-    for link in solution.scene.links:
-        first = link.points[0] if link.points else None
+    scene = solution.scene
+    made = {cam.center_point for cam in scene.cams}
+    for link in scene.links:
+        if link.name in scene.equivalent_links or not link.points or link.points[0].name in made:
+            continue
+        first = link.points[0]
         for point in link.points[1:]:
-            assert first is not None
+            if point.name in made:
+                continue
             size = math.hypot(point.local[0] - first.local[0], point.local[1] - first.local[1])
             out.append({"link": link.name, "from": first.name, "point": point.name, "length": size})
     return out

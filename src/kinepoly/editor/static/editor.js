@@ -43,9 +43,12 @@ function receive(state) {
   editor.inFlight = null;
   render(state);
   if (flight && flight.drag && state.seq === flight.seq) {
-    requestAnimationFrame(() => {
-      editor.timings.push({ms: performance.now() - flight.started, server: state.timing_ms, ok: state.ok});
-    });
+    const received = performance.now();
+    // the frame that shows the new sheet is painted before a task queued from its animation callback runs
+    requestAnimationFrame(() => setTimeout(() => {
+      editor.timings.push({ms: performance.now() - flight.started, received: received - flight.started,
+        server: state.timing_ms, ok: state.ok});
+    }, 0));
   }
   if (editor.pending) {
     const {message, started} = editor.pending;
@@ -89,6 +92,7 @@ function drawSheet(state) {
   const input = h.input;
   for (const [name, point] of Object.entries(h.points)) {
     const isInput = input && input.point === name;
+    if (!point.written && !isInput) continue;  // a point the loader made (a cam's profile centre): not the scene's
     addHandle(layer, state.view, point.at, name, isInput ? "input" : point.frame ? "frame" : "point", 2.0);
   }
   for (const [name, at] of Object.entries(h.guess)) addHandle(layer, state.view, at, name, "guess", 3.2);
