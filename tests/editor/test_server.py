@@ -238,3 +238,17 @@ def test_a_cam_is_driven_by_its_profile_centre_which_cannot_be_moved_as_a_point(
         assert "K23" in refused["refused"] and refused["text"] == driven["text"]  # type: ignore[operator]
         assert httpx.post(served.url + "api/save", json={}).status_code == 200
     assert _without_timing(driven["result"]) == _solve_json(capsys, path)  # type: ignore[arg-type]
+
+
+def test_the_answers_are_those_of_solve_on_the_editors_paper(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from tests.editor.server import serving
+
+    from kinepoly.editor.document import Document
+
+    path = tmp_path / "slotted-lever.toml"
+    path.write_text(template_text("slotted-lever"), encoding="utf-8")
+    with serving(Document(str(path), paper=(420.0, 297.0))) as served:
+        answer = httpx.get(served.url + "api/solution").json()
+    code, out, err = run(capsys, "solve", str(path), "--json", "--paper", "A3")
+    assert code == 0, err
+    assert _without_timing(answer) == _without_timing(json.loads(out))

@@ -1,4 +1,4 @@
-"""``kinepoly edit SCENE [--template NAME] [--no-browser] [--port N]``: edit a scene in the browser, live.
+"""``kinepoly edit SCENE [--template NAME] [--no-browser] [--port N] [--paper A4]``: edit a scene in the browser, live.
 
 Starts the editor's server (``kinepoly.editor.server``) on 127.0.0.1 only, at an address with a
 random token, and opens it in the browser (``--no-browser`` prints it only). A SCENE that does not
@@ -12,6 +12,7 @@ import socket
 import sys
 from pathlib import Path
 
+from kinepoly.cli.files import PAPER_HELP, paper_of
 from kinepoly.editor import TEMPLATES
 from kinepoly.errors import OutputError, SceneError
 
@@ -25,6 +26,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the scene a new file starts from: " + ", ".join(TEMPLATES))
     parser.add_argument("--no-browser", action="store_true", help="print the address only; do not open a browser")
     parser.add_argument("--port", type=int, default=0, help="the local port to listen on; 0 picks a free one")
+    parser.add_argument("--paper", default="A4", help="the drawing's paper, kept while you drag (its polygon scales "
+                        "are those solve --paper reports): " + PAPER_HELP)
 
 
 def listen(port: int) -> socket.socket:
@@ -49,12 +52,13 @@ def run(args: argparse.Namespace) -> int:
     from kinepoly.editor.document import Document, template_text
     from kinepoly.editor.server import make_app, new_token
 
+    paper = paper_of(args.paper)
     path = Path(args.scene)
     if path.is_dir():
         raise OutputError(f"{args.scene}: is a folder; expected a scene file (TOML)")
     if path.exists():
         try:
-            document = Document(args.scene)
+            document = Document(args.scene, paper=paper)
         except UnicodeDecodeError:
             raise SceneError(f"{args.scene}: (file): not UTF-8 text; expected a TOML scene") from None
         except OSError as error:
@@ -63,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
         if not path.parent.is_dir():
             raise OutputError(f"{args.scene}: the folder {str(path.parent)!r} does not exist; create it or choose "
                               "another")
-        document = Document(args.scene, template_text(args.template))
+        document = Document(args.scene, template_text(args.template), paper)
     sock = listen(args.port)
     port = sock.getsockname()[1]
     token = new_token()

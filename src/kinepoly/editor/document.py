@@ -17,7 +17,7 @@ from typing import IO, Any
 
 from kinepoly.editor import TEMPLATES
 from kinepoly.editor.edits import apply_edit, follow_guesses
-from kinepoly.editor.evaluate import Evaluation, evaluate, step_svg
+from kinepoly.editor.evaluate import PAPER, Evaluation, evaluate, step_svg
 
 __all__ = ["TEMPLATES", "ChangedOnDisk", "Document", "template_text"]
 
@@ -54,10 +54,12 @@ class _History:
 
 
 class Document:
-    """The text of ``path`` (or ``text`` when given: a new file from a template), edited and evaluated."""
+    """The text of ``path`` (or ``text`` when given: a new file from a template), edited and evaluated, drawn on
+    ``paper``."""
 
-    def __init__(self, path: str, text: str | None = None) -> None:
+    def __init__(self, path: str, text: str | None = None, paper: tuple[float, float] = PAPER) -> None:
         self.path = Path(path)
+        self.paper = paper
         self.source = path
         self._disk = _stamp(self.path)
         self._saved_text = self.path.read_text(encoding="utf-8") if text is None else None
@@ -65,7 +67,7 @@ class Document:
         assert first is not None
         self._history = _History([first])
         self._lock = threading.Lock()
-        self.current = evaluate(first, self.source)
+        self.current = evaluate(first, self.source, paper=paper)
         self.good: Evaluation | None = self.current if self.current.ok else None
 
     @property
@@ -84,7 +86,7 @@ class Document:
         return self._evaluate()
 
     def _evaluate(self) -> Evaluation:
-        self.current = evaluate(self.text, self.source)
+        self.current = evaluate(self.text, self.source, paper=self.paper)
         if self.current.ok:
             self.good = self.current
         return self.current

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 __all__ = ["PAPER", "Evaluation", "evaluate", "step_svg"]
 
 PAPER = (297.0, 210.0)
-"""The editor's sheet: A4 landscape, ``kinepoly draw``'s default paper (its polygon scales are those of ``solve``)."""
+"""The editor's default sheet: A4 landscape, ``kinepoly draw``'s and ``solve``'s default paper."""
 
 EXIT_INTERNAL = 70
 
@@ -48,8 +48,9 @@ class Evaluation:
         return self.result is not None
 
 
-def evaluate(text: str, source: str, *, draw: bool = True) -> Evaluation:
-    """``text`` loaded, solved and (with ``draw``) drawn; a user's error or an internal one as the CLI prints it."""
+def evaluate(text: str, source: str, *, paper: tuple[float, float] = PAPER, draw: bool = True) -> Evaluation:
+    """``text`` loaded, solved and (with ``draw``) drawn on ``paper`` (the polygon scales of ``solve --paper``);
+    a user's error or an internal one as the CLI prints it."""
     from kinepoly.cli import error_text, internal_error_text
     from kinepoly.cli.solve import solved
     from kinepoly.scene.loader import loads_scene
@@ -58,7 +59,7 @@ def evaluate(text: str, source: str, *, draw: bool = True) -> Evaluation:
     try:
         scene = loads_scene(text, source)
         t1 = time.perf_counter()
-        solution, result = solved(scene, PAPER, t1 - t0)
+        solution, result = solved(scene, paper, t1 - t0)
     except KinepolyError as error:
         lines = error.problems if isinstance(error, SceneError) else [str(error)]
         message = error_text(error)
@@ -74,9 +75,9 @@ def evaluate(text: str, source: str, *, draw: bool = True) -> Evaluation:
     from kinepoly.render.sheet import build_sheet, layout_sheet
     from kinepoly.render.svg import svg_text
 
-    layout = layout_sheet(solution, PAPER, grow=False)
+    layout = layout_sheet(solution, paper, grow=False)
     t3 = time.perf_counter()
-    sheet = build_sheet(solution, PAPER, layout=layout)
+    sheet = build_sheet(solution, paper, layout=layout)
     t4 = time.perf_counter()
     svg = svg_text(sheet)
     t5 = time.perf_counter()
@@ -93,7 +94,7 @@ def step_svg(evaluation: Evaluation, number: int) -> str | None:
     solution, layout = evaluation.solution, evaluation.layout
     if solution is None or layout is None or not 1 <= number <= len(solution.steps):
         return None
-    return svg_text(build_sheet(solution, PAPER, step=number, layout=layout))
+    return svg_text(build_sheet(solution, (layout.width, layout.height), step=number, layout=layout))
 
 
 def _view(layout: Layout) -> dict[str, Any]:
