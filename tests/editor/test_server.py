@@ -252,3 +252,11 @@ def test_the_answers_are_those_of_solve_on_the_editors_paper(tmp_path: Path, cap
     code, out, err = run(capsys, "solve", str(path), "--json", "--paper", "A3")
     assert code == 0, err
     assert _without_timing(answer) == _without_timing(json.loads(out))
+
+
+def test_the_guess_follows_its_point_as_the_mechanism_is_dragged(served: Served) -> None:
+    first, second = _live(served, {"op": "edit", "edit": {"op": "drive", "to": [-20, 30]}},
+                          {"op": "edit", "edit": {"op": "drive", "to": [-30, 10]}, "merge": True})
+    b = first["handles"]["points"]["B"]["at"]  # type: ignore[index]
+    assert f"B = [{round(b[0], 2):g}, {round(b[1], 2):g}]" in second["text"]  # type: ignore[operator]
+    assert "B = [133.88, 72.47]" in first["text"]  # type: ignore[operator]  # where the file's solve has B

@@ -16,12 +16,10 @@ from pathlib import Path
 from typing import IO, Any
 
 from kinepoly.editor import TEMPLATES
-from kinepoly.editor.edits import apply_edit, follow_guesses
+from kinepoly.editor.edits import apply_edit
 from kinepoly.editor.evaluate import PAPER, Evaluation, evaluate, step_svg
 
 __all__ = ["TEMPLATES", "ChangedOnDisk", "Document", "template_text"]
-
-_MOVING = ("move-point", "drive", "length")
 
 
 class ChangedOnDisk(Exception):
@@ -101,10 +99,7 @@ class Document:
         cannot be made. ``merge``: a move of the same drag as the change before (one step to undo)."""
         with self._lock:
             solution = self.good.solution if self.good is not None else None
-            text = self.text
-            if edit.get("op") in _MOVING and solution is not None:
-                text = follow_guesses(text, solution)
-            return self._set(apply_edit(text, edit, solution), merge, mergeable=True)
+            return self._set(apply_edit(self.text, edit, solution), merge, mergeable=True)
 
     def undo(self) -> Evaluation:
         with self._lock:

@@ -13,8 +13,8 @@ current text (``model.pose.LinkPose.to_local``, the input's angle, the slide's s
 - ``set``: a value at a key path (``["input", "omega"]``);
 - ``length``: a link's point moved along the line from the link's first point to it, to that distance.
 
-Before an edit that moves something, every ``[guess]`` the scene has is set to where its point is now
-(``follow_guesses``), so that the mechanism keeps its assembly as it is dragged.
+Before an edit that moves something, every ``[guess]`` the scene has is set to where its point is now,
+so that the mechanism keeps its assembly as it is dragged.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 
     from kinepoly.solution import Solution
 
-__all__ = ["EditError", "apply_edit", "follow_guesses"]
+__all__ = ["MOVING", "EditError", "apply_edit"]
 
 _DECIMALS = {"mm": 2, "cm": 3, "in": 3, "m": 5}
 """The decimals a length is written to from the mouse: a hundredth of a millimetre, whatever the unit."""
@@ -41,10 +41,17 @@ class EditError(ValueError):
     """An edit that cannot be made on this text: an unknown point or key, a value of the wrong kind."""
 
 
+MOVING = ("move-point", "drive", "length")
+"""The edits that move the mechanism: before them, the guesses follow their points."""
+
+
 def apply_edit(text: str, edit: dict[str, Any], solution: Solution | None) -> str:
-    """``text`` with ``edit`` made; ``solution`` the current text's (needed by the edits that come from the mouse)."""
+    """``text`` with ``edit`` made; ``solution`` the current text's (needed by the edits that come from the mouse).
+    Before an edit that moves the mechanism, the guesses follow their points in ``solution``."""
     doc = tomlkit.parse(text)
     op = edit.get("op")
+    if op in MOVING and solution is not None:
+        _follow(doc, solution)
     if op == "set":
         _set(doc, _key(edit.get("key")), _value(edit.get("value")))
     elif op in ("move-point", "drive", "guess", "length"):
@@ -63,12 +70,11 @@ def apply_edit(text: str, edit: dict[str, Any], solution: Solution | None) -> st
     return tomlkit.dumps(doc)
 
 
-def follow_guesses(text: str, solution: Solution) -> str:
-    """``text`` with each ``[guess]`` point put where ``solution`` has it (its assembly kept as things move)."""
-    doc = tomlkit.parse(text)
+def _follow(doc: TOMLDocument, solution: Solution) -> bool:
+    """Each ``[guess]`` point of ``doc`` put where ``solution`` has it; whether any moved."""
     guess = doc.get("guess")
     if not isinstance(guess, (Table, InlineTable)):
-        return text
+        return False
     changed = False
     for name in list(guess.keys()):
         try:
@@ -79,7 +85,7 @@ def follow_guesses(text: str, solution: Solution) -> str:
         if _numbers(guess[name]) != new:
             _store(guess, str(name), new)
             changed = True
-    return tomlkit.dumps(doc) if changed else text
+    return changed
 
 
 def _decimals(solution: Solution) -> int:
