@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 
     from kinepoly.solution import Solution
 
-__all__ = ["MOVING", "EditError", "apply_edit"]
+__all__ = ["MOVING", "EditError", "apply_edit", "number", "pair", "place", "store"]
 
 _DECIMALS = {"mm": 2, "cm": 3, "in": 3, "m": 5}
 """The decimals a length is written to from the mouse: a hundredth of a millimetre, whatever the unit."""
@@ -58,15 +58,24 @@ def apply_edit(text: str, edit: dict[str, Any], solution: Solution | None) -> st
         if solution is None:
             raise EditError(f"{op}: the scene has no solved position to edit from; correct it first")
         if op == "move-point":
-            _move_point(doc, solution, _name(edit.get("point")), _place(edit.get("to")))
+            _move_point(doc, solution, _name(edit.get("point")), place(edit.get("to")))
         elif op == "drive":
-            _drive(doc, solution, _place(edit.get("to")))
+            _drive(doc, solution, place(edit.get("to")))
         elif op == "guess":
-            _set(doc, ["guess", _name(edit.get("point"))], _pair(solution, _place(edit.get("to"))))
+            _set(doc, ["guess", _name(edit.get("point"))], pair(solution, place(edit.get("to"))))
         else:
             _length(doc, solution, _name(edit.get("link")), _name(edit.get("point")), edit.get("value"))
+    elif op in ("add-dyad", "remove-link"):
+        from kinepoly.editor.structure import add_dyad, remove_link
+
+        if solution is None:
+            raise EditError(f"{op}: the scene has no solved position to edit from; correct it first")
+        if op == "add-dyad":
+            add_dyad(doc, solution, edit)
+        else:
+            remove_link(doc, solution, edit.get("link"))
     else:
-        raise EditError(f"unknown edit {op!r}; expected set, move-point, drive, guess or length")
+        raise EditError(f"unknown edit {op!r}; expected set, move-point, drive, guess, length, add-dyad or remove-link")
     return tomlkit.dumps(doc)
 
 
@@ -81,9 +90,9 @@ def _follow(doc: TOMLDocument, solution: Solution) -> bool:
             at = solution.position(str(name))
         except (KeyError, StopIteration):
             continue
-        new = _pair(solution, at)
+        new = pair(solution, at)
         if _numbers(guess[name]) != new:
-            _store(guess, str(name), new)
+            store(guess, str(name), new)
             changed = True
     return changed
 
@@ -92,7 +101,8 @@ def _decimals(solution: Solution) -> int:
     return _DECIMALS.get(solution.scene.units.length, 4)
 
 
-def _pair(solution: Solution, at: Sequence[float]) -> list[float]:
+def pair(solution: Solution, at: Sequence[float]) -> list[float]:
+    """A place or coordinates as the scene writes them from the mouse (``_DECIMALS``)."""
     d = _decimals(solution)
     return [_tidy(round(at[0], d)), _tidy(round(at[1], d))]
 
@@ -108,7 +118,7 @@ def _move_point(doc: TOMLDocument, solution: Solution, point: str, to: tuple[flo
         raise EditError(f"move-point: no solved link has a point {point!r} written in [links]")
     for name in moved:
         local = solution.pose.links[name].to_local(to)
-        _set(doc, ["links", name, "points", point], _pair(solution, local))
+        _set(doc, ["links", name, "points", point], pair(solution, local))
 
 
 def _written(doc: TOMLDocument, link: str, point: str) -> bool:
@@ -159,7 +169,7 @@ def _length(doc: TOMLDocument, solution: Solution, link_name: str, point: str, v
     if size == 0.0:
         raise EditError(f"length: {point} lies on {first.name}; move it first")
     k = float(value) / size
-    _set(doc, ["links", link_name, "points", point], _pair(solution, (first.local[0] + k * dx, first.local[1] + k * dy)))
+    _set(doc, ["links", link_name, "points", point], pair(solution, (first.local[0] + k * dx, first.local[1] + k * dy)))
 
 
 def _set(doc: TOMLDocument, key: list[str | int], value: Any) -> None:
@@ -180,20 +190,22 @@ def _set(doc: TOMLDocument, key: list[str | int], value: Any) -> None:
     last = key[-1]
     if not isinstance(node, (dict, Table, InlineTable)) or isinstance(last, int):
         raise EditError(f"set: {'.'.join(map(str, key))}: not a key of a table")
-    _store(node, last, value)
+    store(node, last, value)
 
 
-def _store(table: Any, key: str, value: Any) -> None:
+def store(table: Any, key: str, value: Any) -> None:
+    """``table[key] = value``, an existing list of numbers changed in place (its formatting kept)."""
     old = table.get(key)
     if isinstance(old, Array) and isinstance(value, list) and len(old) == len(value) and \
             all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in old):
         for i, x in enumerate(value):
-            old[i] = _number(x)
+            old[i] = number(x)
         return
-    table[key] = [_number(x) for x in value] if isinstance(value, list) else _number(value)
+    table[key] = [number(x) for x in value] if isinstance(value, list) else number(value)
 
 
-def _number(x: Any) -> Any:
+def number(x: Any) -> Any:
+    """A number as the user writes it: a whole float as an integer."""
     if isinstance(x, float) and x.is_integer() and abs(x) < 1e15:
         return int(x)  # written as the user would: 40, not 40.0
     return x
@@ -233,7 +245,8 @@ def _name(name: object) -> str:
     return name
 
 
-def _place(to: object) -> tuple[float, float]:
+def place(to: object) -> tuple[float, float]:
+    """An edit's place ``[x, y]``; EditError when it is not one."""
     if not (isinstance(to, list) and len(to) == 2 and all(isinstance(x, (int, float)) and not isinstance(x, bool)
                                                           and math.isfinite(x) for x in to)):
         raise EditError(f"{to!r} is not a place; expected [x, y] in the scene's length unit")

@@ -119,8 +119,12 @@ def handles(solution: Solution) -> dict[str, Any]:
         entry["frame"] = scene.ground in entry["links"]
         entry["written"] = name not in made
     guesses = {name: list(at) for name, at in scene.guess}
+    from kinepoly.editor.structure import removable
+
+    links = [{"name": link.name, "points": [p.name for p in link.points if p.name not in made]}
+             for link in scene.links if link.name not in scene.equivalent_links]
     return {"points": points, "input": input_handle(solution), "guess": guesses, "fields": input_fields(solution),
-            "lengths": lengths(solution)}
+            "lengths": lengths(solution), "links": links, "removable": removable(solution)}
 
 
 def input_fields(solution: Solution) -> dict[str, float] | None:

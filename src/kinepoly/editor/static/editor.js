@@ -15,6 +15,7 @@ const editor = {
   pending: null,      // the latest edit made while one was in flight (older ones are superseded)
   drag: null,         // {kind, name, first}
   timings: [],        // per answered drag move: milliseconds from the pointer event to the redrawn sheet
+  adding: null,       // {slider, clicks}: a dyad being added by clicks
 };
 window.kinepolyEditor = editor;
 
@@ -75,6 +76,7 @@ function render(state) {
     editor.good = state;
     drawSheet(state);
     fields(state.handles);
+    linksList(state.handles);
     values(state.ok ? state.result : state.good_result);
   }
   $("sheet").classList.toggle("stale", !state.ok);
@@ -134,7 +136,67 @@ function editFor(kind, name, at, shift) {
   return {op: "move-point", point: name, to: at};
 }
 
+const ADD_PROMPTS = [
+  "click the point of the mechanism the new dyad starts from",
+  "click where the new joint goes",
+  "click the point it pins to, or an empty place for a new frame pivot (Esc cancels)",
+];
+const SLIDER_PROMPT = "click a place along the slide on the frame, from the new joint (Esc cancels)";
+
+function startAdding(slider) {
+  editor.adding = {slider, clicks: []};
+  $("add-pin").classList.toggle("active", !slider);
+  $("add-slider").classList.toggle("active", slider);
+  status(ADD_PROMPTS[0]);
+}
+
+function stopAdding(text) {
+  editor.adding = null;
+  $("add-pin").classList.remove("active");
+  $("add-slider").classList.remove("active");
+  document.querySelectorAll(".click-mark").forEach((mark) => mark.remove());
+  status(text);
+}
+
+function addClick(event) {
+  const adding = editor.adding;
+  const handle = event.target.closest(".handle");
+  const name = handle && handle.dataset.kind !== "guess" ? handle.dataset.name : null;
+  const svg = $("sheet").querySelector("svg");
+  const at = toScene(editor.good.view, svg, event);
+  const step = adding.clicks.length;
+  if (step === 0 && !name) { status(`${ADD_PROMPTS[0]}: that place is no point`); return; }
+  adding.clicks.push(step === 0 ? {point: name} : step === 1 ? {at} : name && !adding.slider ? {point: name} : {at});
+  const mark = document.createElementNS(SVG_NS, "circle");
+  const [x, y] = toSheet(editor.good.view, at);
+  Object.entries({cx: x, cy: y, r: 1.0, class: "click-mark"}).forEach(([k, v]) => mark.setAttribute(k, v));
+  svg.querySelector("#handles").appendChild(mark);
+  if (adding.clicks.length < 3) { status(adding.slider && step === 1 ? SLIDER_PROMPT : ADD_PROMPTS[step + 1]); return; }
+  const [from, joint, to] = adding.clicks;
+  stopAdding("");
+  send({op: "edit", edit: {op: "add-dyad", from: from.point, joint: joint.at, to, slider: adding.slider}});
+}
+
+function linksList(handles) {
+  const list = $("links");
+  list.replaceChildren();
+  for (const link of handles.links) {
+    const li = document.createElement("li");
+    li.textContent = `link ${link.name}: ${link.points.join(", ")}`;
+    if (handles.removable.includes(link.name)) {
+      const button = document.createElement("button");
+      button.type = "button";
+      button.textContent = "remove";
+      button.dataset.link = link.name;
+      button.addEventListener("click", () => send({op: "edit", edit: {op: "remove-link", link: link.name}}));
+      li.appendChild(button);
+    }
+    list.appendChild(li);
+  }
+}
+
 function onPointerDown(event) {
+  if (editor.adding && editor.good) { event.preventDefault(); addClick(event); return; }
   const handle = event.target.closest(".handle");
   if (!handle || !editor.good) return;
   event.preventDefault();
@@ -288,7 +350,10 @@ function start() {
   $("redo").addEventListener("click", () => send({op: "redo"}));
   $("save").addEventListener("click", () => save(false));
   $("apply").addEventListener("click", () => send({op: "text", text: $("text").value}));
+  $("add-pin").addEventListener("click", () => startAdding(false));
+  $("add-slider").addEventListener("click", () => startAdding(true));
   document.addEventListener("keydown", (event) => {
+    if (event.key === "Escape" && editor.adding) { stopAdding("adding cancelled"); return; }
     if (!(event.ctrlKey || event.metaKey) || event.target === $("text")) return;
     const key = event.key.toLowerCase();
     if (key === "z" && !event.shiftKey) { event.preventDefault(); send({op: "undo"}); }
