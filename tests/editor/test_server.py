@@ -260,3 +260,16 @@ def test_the_guess_follows_its_point_as_the_mechanism_is_dragged(served: Served)
     b = first["handles"]["points"]["B"]["at"]  # type: ignore[index]
     assert f"B = [{round(b[0], 2):g}, {round(b[1], 2):g}]" in second["text"]  # type: ignore[operator]
     assert "B = [133.88, 72.47]" in first["text"]  # type: ignore[operator]  # where the file's solve has B
+
+
+def test_the_page_and_the_templates_are_package_data_and_the_server_a_dependency() -> None:
+    import tomllib
+
+    root = Path(__file__).resolve().parents[2]
+    project = tomllib.loads((root / "pyproject.toml").read_text(encoding="utf-8"))
+    globs = project["tool"]["setuptools"]["package-data"]["kinepoly.editor"]
+    folder = root / "src" / "kinepoly" / "editor"
+    shipped = {p for glob in globs for p in folder.glob(glob)}
+    assert shipped == {*folder.glob("static/*"), *folder.glob("templates/*")} and len(shipped) == 3 + len(TEMPLATES)
+    needed = {d.split(">")[0].split("=")[0].strip() for d in project["project"]["dependencies"]}
+    assert {"starlette", "uvicorn", "websockets", "tomlkit"} <= needed  # the README's plain install runs the editor
