@@ -273,3 +273,20 @@ def test_the_page_and_the_templates_are_package_data_and_the_server_a_dependency
     assert shipped == {*folder.glob("static/*"), *folder.glob("templates/*")} and len(shipped) == 3 + len(TEMPLATES)
     needed = {d.split(">")[0].split("=")[0].strip() for d in project["project"]["dependencies"]}
     assert {"starlette", "uvicorn", "websockets", "tomlkit"} <= needed  # the README's plain install runs the editor
+
+
+def test_a_text_that_is_not_toml_is_kept_and_a_drag_on_it_is_refused_with_the_reason(served: Served) -> None:
+    text = httpx.get(served.url + "api/scene").json()["text"]
+    broken, dragged, undone = _live(served, {"op": "text", "text": text + "[input\n"},
+                                    {"op": "edit", "edit": {"op": "drive", "to": [0, 40]}}, {"op": "undo"})
+    assert not broken["ok"] and broken["text"] == text + "[input\n" and "TOML" in broken["errors"][0]  # type: ignore[index]
+    assert "not TOML" in dragged["refused"] and dragged["text"] == broken["text"]  # type: ignore[operator]
+    assert undone["ok"] and undone["text"] == text
+    answer = httpx.post(served.url + "api/change", json={"op": "edit", "edit": {"op": "fly"}})
+    assert answer.status_code == 400 and "unknown edit 'fly'" in answer.json()["error"]
+
+
+def test_a_scene_with_a_byte_order_mark_keeps_it(served: Served) -> None:
+    text = "\ufeff" + httpx.get(served.url + "api/scene").json()["text"]
+    _, driven = _live(served, {"op": "text", "text": text}, {"op": "edit", "edit": {"op": "drive", "to": [0, 40]}})
+    assert driven["ok"] and driven["text"].startswith("\ufeff# Four-bar")  # type: ignore[union-attr]

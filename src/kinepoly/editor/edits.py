@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import tomlkit
+from tomlkit.exceptions import TOMLKitError
 from tomlkit.items import Array, InlineTable, Table
 
 if TYPE_CHECKING:
@@ -48,7 +49,11 @@ MOVING = ("move-point", "drive", "length")
 def apply_edit(text: str, edit: dict[str, Any], solution: Solution | None) -> str:
     """``text`` with ``edit`` made; ``solution`` the current text's (needed by the edits that come from the mouse).
     Before an edit that moves the mechanism, the guesses follow their points in ``solution``."""
-    doc = tomlkit.parse(text)
+    bom = "\ufeff" if text.startswith("\ufeff") else ""
+    try:
+        doc = tomlkit.parse(text.removeprefix(bom))
+    except TOMLKitError as error:
+        raise EditError(f"the scene's text is not TOML ({error}); correct it (or undo) first") from None
     op = edit.get("op")
     if op in MOVING and solution is not None:
         _follow(doc, solution)
@@ -76,7 +81,7 @@ def apply_edit(text: str, edit: dict[str, Any], solution: Solution | None) -> st
             remove_link(doc, solution, edit.get("link"))
     else:
         raise EditError(f"unknown edit {op!r}; expected set, move-point, drive, guess, length, add-dyad or remove-link")
-    return tomlkit.dumps(doc)
+    return bom + tomlkit.dumps(doc)
 
 
 def _follow(doc: TOMLDocument, solution: Solution) -> bool:

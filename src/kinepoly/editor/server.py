@@ -24,6 +24,7 @@ from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
+from kinepoly.cli import internal_error_text
 from kinepoly.editor.document import ChangedOnDisk, Document
 from kinepoly.editor.edits import EditError
 from kinepoly.editor.evaluate import Evaluation
@@ -146,6 +147,8 @@ def make_app(document: Document, token: str, port: int) -> ASGIApp:
             await to_thread.run_sync(_change, document, body)
         except EditError as error:
             return JSONResponse({"error": str(error)}, status_code=400)
+        except Exception as error:  # noqa: BLE001 - a message, never a traceback
+            return JSONResponse({"error": internal_error_text(error)}, status_code=500)
         return JSONResponse(document.state())
 
     async def save(request: Request) -> Response:
@@ -173,6 +176,8 @@ def make_app(document: Document, token: str, port: int) -> ASGIApp:
                     reply = document.state()
                 except EditError as error:
                     reply = {**document.state(), "refused": str(error)}
+                except Exception as error:  # noqa: BLE001 - the page stays connected and says what happened
+                    reply = {**document.state(), "refused": internal_error_text(error)}
                 await websocket.send_text(json.dumps({**reply, "seq": seq}, allow_nan=False))
         except WebSocketDisconnect:
             return
