@@ -149,3 +149,30 @@ def test_save_does_not_overwrite_a_file_changed_on_disk_without_asking(browser: 
         assert asked and "changed on disk" in asked[0]
         assert path.read_text(encoding="utf-8").startswith("# someone else's\n")
     assert [e for e in browser.errors if "status of 409" not in e] == []  # the browser logs the refused save
+
+
+def _mirror(p: tuple[float, float], a: tuple[float, float], b: tuple[float, float]) -> tuple[float, float]:
+    """``p`` reflected in the line ``ab`` (the test's own arithmetic, to know where the other assembly is)."""
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    t = ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)
+    foot = (a[0] + t * dx, a[1] + t * dy)
+    return 2 * foot[0] - p[0], 2 * foot[1] - p[1]
+
+
+def test_the_other_assembly_is_taken_by_dragging_the_guess_across(browser: Any,
+                                                                  new_four_bar: tuple[Served, Path]) -> None:
+    served, _ = new_four_bar
+    _open(browser, served)
+    browser.fill("#text", template_text("four-bar").replace("[guess]\nB = [110, 80]\n", ""))
+    browser.click("#apply")
+    wait_settled(browser)
+    assert _state(browser)["ok"] and not _state(browser)["handles"]["guess"]
+    browser.click("#guesses button[data-guess=B]")  # a guess where B is: its ring appears on B
+    wait_settled(browser)
+    b = handle(browser, "B")
+    assert _state(browser)["handles"]["guess"]["B"] == pytest.approx(list(b), abs=0.01)
+    other = _mirror(b, handle(browser, "A"), handle(browser, "B0"))
+    ring = 3.2 / _state(browser)["view"]["scale"]  # the ring's radius on the paper, in the scene
+    drag(browser, (b[0] + ring, b[1]), [((b[0] + other[0]) / 2 + ring, (b[1] + other[1]) / 2), (other[0] + ring, other[1])])
+    assert handle(browser, "B") == pytest.approx(other, abs=0.5)
+    assert _state(browser)["ok"] and browser.errors == []

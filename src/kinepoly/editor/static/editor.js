@@ -123,10 +123,15 @@ function addHandle(layer, view, at, name, kind, radius) {
   c.setAttribute("cx", x);
   c.setAttribute("cy", y);
   c.setAttribute("r", radius);
+  if (kind === "guess") {  // grabbed by its ring: inside it lies the point's own handle
+    const grip = document.createElementNS(SVG_NS, "circle");
+    Object.entries({cx: x, cy: y, r: radius, class: "grip"}).forEach(([k, v]) => grip.setAttribute(k, v));
+    g.appendChild(grip);
+  }
   const title = document.createElementNS(SVG_NS, "title");
   title.textContent = kind === "guess" ? `[guess] ${name}: drag to pick the assembly nearest it`
     : kind === "input" ? `${name}: drag to move the input (Shift: change the link)` : `${name}: drag to move`;
-  g.append(title, c);
+  g.prepend(title, c);
   layer.appendChild(g);
 }
 
@@ -201,14 +206,20 @@ function onPointerDown(event) {
   if (!handle || !editor.good) return;
   event.preventDefault();
   handle.ownerSVGElement.setPointerCapture?.(event.pointerId);
-  editor.drag = {kind: handle.dataset.kind, name: handle.dataset.name, shift: event.shiftKey, first: true};
+  const svg = $("sheet").querySelector("svg");
+  const at = toScene(editor.good.view, svg, event);
+  const h = editor.good.handles;
+  const center = handle.dataset.kind === "guess" ? h.guess[handle.dataset.name] : h.points[handle.dataset.name].at;
+  editor.drag = {kind: handle.dataset.kind, name: handle.dataset.name, shift: event.shiftKey, first: true,
+    offset: [center[0] - at[0], center[1] - at[1]]};  // the handle's centre follows, not the pointer's place on it
 }
 
 function onPointerMove(event) {
   const drag = editor.drag;
   if (!drag) return;
   const svg = $("sheet").querySelector("svg");
-  const at = toScene(editor.good.view, svg, event);
+  const pointer = toScene(editor.good.view, svg, event);
+  const at = [pointer[0] + drag.offset[0], pointer[1] + drag.offset[1]];
   const started = event.timeStamp || performance.now();  // the event's time, on performance.now()'s clock
   send({op: "edit", edit: editFor(drag.kind, drag.name, at, drag.shift), merge: !drag.first}, started);
   drag.first = false;
@@ -286,6 +297,18 @@ function fields(handles) {
     ? "The assembly nearest the [guess]: " + names.map(([n, at]) => `${n} (${number(at[0])}, ${number(at[1])})`).join(", ")
       + "; drag its dashed ring to the other side to take the other assembly."
     : "No [guess]: the default assembly (see the warnings).";
+  // a joint of moving links with no guess: give it one where it is, then drag its ring
+  const joints = Object.entries(handles.points).filter(([n, p]) => p.written && !p.frame && p.links.length > 1
+    && !(n in handles.guess));
+  for (const [name, point] of joints) {
+    const button = document.createElement("button");
+    button.type = "button";
+    button.textContent = `guess ${name}`;
+    button.title = `add [guess] ${name} where it is now: its ring then picks the assembly`;
+    button.dataset.guess = name;
+    button.addEventListener("click", () => send({op: "edit", edit: {op: "guess", point: name, to: point.at}}));
+    guesses.append(" ", button);
+  }
 }
 
 function values(result) {
