@@ -290,3 +290,29 @@ def test_a_scene_with_a_byte_order_mark_keeps_it(served: Served) -> None:
     text = "\ufeff" + httpx.get(served.url + "api/scene").json()["text"]
     _, driven = _live(served, {"op": "text", "text": text}, {"op": "edit", "edit": {"op": "drive", "to": [0, 40]}})
     assert driven["ok"] and driven["text"].startswith("\ufeff# Four-bar")  # type: ignore[union-attr]
+
+
+def test_a_driven_slider_runs_to_the_pointers_foot_on_its_line(tmp_path: Path,
+                                                               capsys: pytest.CaptureFixture[str]) -> None:
+    import math
+
+    from tests.editor.server import serving
+
+    from kinepoly.editor.document import Document
+
+    path = tmp_path / "dump-body.toml"
+    path.write_text((EXAMPLES / "dump-body.toml").read_text(encoding="utf-8"), encoding="utf-8")
+    with serving(Document(str(path))) as served:
+        (first,) = _live(served, {"op": "state"})
+        handles = first["handles"]
+        assert handles["input"]["kind"] == "stroke" and handles["input"]["point"] == "D"  # type: ignore[index]
+        assert handles["fields"] == {"s": 520, "s_dot": 40, "s_ddot": 0}  # type: ignore[index]
+        d, c0 = handles["points"]["D"]["at"], handles["points"]["C0"]["at"]  # type: ignore[index]
+        size = math.dist(d, c0)
+        along = ((d[0] - c0[0]) / size, (d[1] - c0[1]) / size)  # the barrel's axis runs from C0 through D
+        off = (d[0] + 30 * along[0] - 50 * along[1], d[1] + 30 * along[1] + 50 * along[0])  # 30 along, 50 aside
+        (driven,) = _live(served, {"op": "edit", "edit": {"op": "drive", "to": list(off)}})
+        assert driven["ok"] and "s = 550" in driven["text"]  # type: ignore[operator]
+        assert httpx.post(served.url + "api/save", json={}).status_code == 200
+    assert _without_timing(driven["result"]) == _solve_json(capsys, path)  # type: ignore[arg-type]
+    assert driven["result"]["sliders"]["34"]["s"] == pytest.approx(550)  # type: ignore[index]
