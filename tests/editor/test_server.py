@@ -204,7 +204,12 @@ def test_the_edit_command_serves_a_new_file_from_a_template_and_stops_on_interru
             assert scene.read_text(encoding="utf-8") == template_text("slider-crank")
         finally:
             process.send_signal(signal.SIGINT)
-            _, err = process.communicate(timeout=30)
+            try:
+                _, err = process.communicate(timeout=30)
+            except subprocess.TimeoutExpired:  # never left running
+                process.kill()
+                _, err = process.communicate()
+                pytest.fail(f"kinepoly edit did not stop on Ctrl-C: {err}")
     assert process.returncode == 0, err
     assert "stopped" in err and "Traceback" not in err
 
