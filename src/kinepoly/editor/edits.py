@@ -27,6 +27,8 @@ import tomlkit
 from tomlkit.exceptions import TOMLKitError
 from tomlkit.items import Array, InlineTable, Table
 
+from kinepoly.scene.spec import LinkInput, SliderInput
+
 if TYPE_CHECKING:
     from tomlkit.toml_document import TOMLDocument
 
@@ -123,7 +125,62 @@ def _move_point(doc: TOMLDocument, solution: Solution, point: str, to: tuple[flo
         raise EditError(f"move-point: no solved link has a point {point!r} written in [links]")
     for name in moved:
         local = solution.pose.links[name].to_local(to)
-        _set(doc, ["links", name, "points", point], pair(solution, local))
+        turn = _textbook_turn(solution, name, point, local)
+        if turn is None:
+            _set(doc, ["links", name, "points", point], pair(solution, local))
+            continue
+        origin, phi = turn  # the link's frame kept the textbook one: its first joint, its second on the x-axis
+        c, s = math.cos(phi), math.sin(phi)
+        for p in solution.scene.link(name).points:
+            if not _written(doc, name, p.name):
+                continue
+            x, y = (local if p.name == point else p.local)
+            x, y = x - origin[0], y - origin[1]
+            _set_point(doc, solution, name, p.name, (c * x + s * y, -s * x + c * y))
+        given = solution.scene.input
+        if isinstance(given, LinkInput) and given.link == name and given.relative_to is None:
+            theta = math.remainder(given.angle_rad + phi, 2 * math.pi)  # the crank stays where it is
+            value = round(math.degrees(theta), 2) if solution.scene.units.angle == "deg" else round(theta, 5)
+            _set(doc, ["input", "angle"], _tidy(value))
+
+
+def _textbook_turn(solution: Solution, link: str, point: str,
+                   local: tuple[float, float]) -> tuple[tuple[float, float], float] | None:
+    """Where link ``link``'s frame goes when ``point`` moves to ``local`` (its origin, and the turn of its x-axis) so
+    that the frame stays the textbook one: the first joint at the origin, the second on the x-axis. None when the
+    link is not written so, or its frame means more (the frame link, a slider's block or guide, a gear's or a
+    cam's link, a link of a second input or of a relative one)."""
+    scene = solution.scene
+    points = scene.link(link).points
+    if len(points) < 2 or points[0].local != (0.0, 0.0) or points[1].local[1] != 0.0 or points[1].local[0] <= 0.0:
+        return None
+    fixed = {scene.ground} | {n for s in scene.sliders for n in (s.block, s.guide)}
+    fixed |= {n for g in scene.gears for n in g.links} | {n for c in scene.cams for n in (c.cam, c.follower)}
+    fixed |= {n for i in scene.more_inputs if isinstance(i, LinkInput) for n in (i.link, i.relative_to)}
+    given = scene.input
+    if isinstance(given, LinkInput) and given.relative_to is not None:
+        fixed |= {given.link, given.relative_to}
+    if link in fixed:
+        return None
+    first = local if points[0].name == point else points[0].local
+    second = local if points[1].name == point else points[1].local
+    dx, dy = second[0] - first[0], second[1] - first[1]
+    if math.hypot(dx, dy) == 0.0:
+        return None
+    return first, math.atan2(dy, dx)
+
+
+def _set_point(doc: TOMLDocument, solution: Solution, link: str, point: str, local: tuple[float, float]) -> None:
+    """A point's local coordinates written as the scene has them: ``[x, y]``, or ``{ polar = [r, angle] }``."""
+    points = doc["links"][link]["points"]
+    old = points.get(point)
+    if isinstance(old, (Table, InlineTable)) and "polar" in old:
+        d = _decimals(solution)
+        angle = math.atan2(local[1], local[0])
+        shown = round(math.degrees(angle), 2) if solution.scene.units.angle == "deg" else round(angle, 5)
+        store(old, "polar", [_tidy(round(math.hypot(*local), d)), _tidy(shown)])
+    else:
+        _set(doc, ["links", link, "points", point], pair(solution, local))
 
 
 def _written(doc: TOMLDocument, link: str, point: str) -> bool:
@@ -136,7 +193,6 @@ def _written(doc: TOMLDocument, link: str, point: str) -> bool:
 
 def _drive(doc: TOMLDocument, solution: Solution, to: tuple[float, float]) -> None:
     from kinepoly.editor.evaluate import input_handle
-    from kinepoly.scene.spec import LinkInput, SliderInput
 
     handle = input_handle(solution)
     given = solution.scene.input

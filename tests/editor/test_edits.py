@@ -1,0 +1,42 @@
+"""Edits from the mouse: a moved point keeps every other point where it was, and each link its textbook frame."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+import tomllib
+
+from kinepoly.editor.document import template_text
+from kinepoly.editor.edits import apply_edit
+from kinepoly.editor.evaluate import evaluate
+
+
+def _points(text: str) -> dict[str, list[float]]:
+    evaluation = evaluate(text, "scene.toml", draw=False)
+    assert evaluation.ok, evaluation.errors
+    from kinepoly.editor.evaluate import handles
+
+    assert evaluation.solution is not None
+    return {name: p["at"] for name, p in handles(evaluation.solution)["points"].items()}
+
+
+@pytest.mark.parametrize(("point", "to"), [("B0", (112.0, -8.0)), ("A", (30.0, 50.0)), ("B", (140.0, 60.0)),
+                                           ("C", (70.0, 90.0)), ("A0", (-5.0, 3.0))])
+def test_a_moved_point_moves_alone_and_each_link_keeps_its_first_joint_at_its_origin(
+        point: str, to: tuple[float, float]) -> None:
+    text = template_text("four-bar")
+    before = evaluate(text, "scene.toml", draw=False)
+    after_text = apply_edit(text, {"op": "move-point", "point": point, "to": list(to)}, before.solution)
+    after, was = _points(after_text), _points(text)
+    for name, at in after.items():
+        assert at == pytest.approx(list(to) if name == point else was[name], abs=0.02), name
+    links = tomllib.loads(after_text)["links"]
+    for name in ("2", "3", "4"):  # the moving links' first joint at the origin, the second on the x-axis
+        first, second = list(links[name]["points"].values())[:2]
+        assert first == [0, 0] and second[1] == 0 and second[0] > 0, (name, links[name])
+    assert isinstance(links["3"]["points"]["C"], dict)  # the coupler point still written in polar form
+    scene = tomllib.loads(after_text)
+    a = after["A"]
+    assert scene["input"]["angle"] == pytest.approx(math.degrees(math.atan2(a[1] - after["A0"][1],
+                                                                            a[0] - after["A0"][0])), abs=0.01)
