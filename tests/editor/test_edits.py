@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import math
+import tomllib
 
 import pytest
-import tomllib
 
 from kinepoly.editor.document import template_text
 from kinepoly.editor.edits import apply_edit
