@@ -40,3 +40,12 @@ def test_a_moved_point_moves_alone_and_each_link_keeps_its_first_joint_at_its_or
     a = after["A"]
     assert scene["input"]["angle"] == pytest.approx(math.degrees(math.atan2(a[1] - after["A0"][1],
                                                                             a[0] - after["A0"][0])), abs=0.01)
+
+
+def test_a_length_typed_scales_the_point_from_the_links_first_joint_and_keeps_a_polar_point_polar() -> None:
+    text = template_text("four-bar")
+    solution = evaluate(text, "scene.toml", draw=False).solution
+    changed = apply_edit(text, {"op": "length", "link": "3", "point": "C", "value": 75}, solution)
+    assert "C = { polar = [75, 30] }" in changed
+    changed = apply_edit(changed, {"op": "length", "link": "4", "point": "B", "value": 85.5}, solution)
+    assert "4 = { points = { B0 = [0, 0], B = [85.5, 0] } }" in changed

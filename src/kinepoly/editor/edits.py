@@ -230,7 +230,7 @@ def _length(doc: TOMLDocument, solution: Solution, link_name: str, point: str, v
     if size == 0.0:
         raise EditError(f"length: {point} lies on {first.name}; move it first")
     k = float(value) / size
-    _set(doc, ["links", link_name, "points", point], pair(solution, (first.local[0] + k * dx, first.local[1] + k * dy)))
+    _set_point(doc, solution, link_name, point, (first.local[0] + k * dx, first.local[1] + k * dy))
 
 
 def _set(doc: TOMLDocument, key: list[str | int], value: Any) -> None:

@@ -367,8 +367,8 @@ function start() {
   const sheet = $("sheet");
   sheet.addEventListener("pointerdown", onPointerDown);
   sheet.addEventListener("pointermove", onPointerMove);
-  sheet.addEventListener("pointerup", onPointerUp);
-  sheet.addEventListener("pointercancel", onPointerUp);
+  window.addEventListener("pointerup", onPointerUp);  // released anywhere, even off the drawing
+  window.addEventListener("pointercancel", onPointerUp);
   $("undo").addEventListener("click", () => send({op: "undo"}));
   $("redo").addEventListener("click", () => send({op: "redo"}));
   $("save").addEventListener("click", () => save(false));
