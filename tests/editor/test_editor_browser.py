@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 from tests.cli_support import run
-from tests.editor.drive import drag, handle, wait_settled
+from tests.editor.drive import drag, handle, screen, wait_settled
 from tests.editor.server import Served, serving
 
 from kinepoly.editor.document import Document, template_text
@@ -88,7 +88,11 @@ def test_an_impossible_position_keeps_the_last_drawing_and_dragging_back_loses_n
     lengths = {(x["link"], x["point"]): x["length"] for x in state["handles"]["lengths"]}
     assert lengths["2", "A"] == pytest.approx(100, abs=0.5) and state["ok"]
     good_svg, good_text = browser.inner_html("#sheet"), state["text"]
-    drag(browser, _turn(60, 100), [_turn(a, 100) for a in (80, 100, 120, 140)])
+    browser.mouse.move(*screen(browser, _turn(60, 100)))
+    browser.mouse.down()  # one drag: out to 140 degrees, where it cannot close, and back
+    for a in (80, 100, 120, 140):
+        browser.mouse.move(*screen(browser, _turn(a, 100)))
+        wait_settled(browser)
     state = _state(browser)
     assert not state["ok"] and state["exit"] == 3
     message = browser.inner_text("#message")
@@ -96,7 +100,11 @@ def test_an_impossible_position_keeps_the_last_drawing_and_dragging_back_loses_n
     assert "stale" in (browser.get_attribute("#sheet", "class") or "")
     assert state["good_result"] is not None and state["svg"] != good_svg
     shown = browser.inner_html("#sheet")
-    drag(browser, _turn(140, 100), [_turn(a, 100) for a in (120, 100, 80, 60)])  # and back
+    for a in (120, 100, 80, 60):
+        browser.mouse.move(*screen(browser, _turn(a, 100)))
+        wait_settled(browser)
+    browser.mouse.up()
+    assert browser.evaluate("() => window.kinepolyEditor.drag") is None  # released: the drawing was replaced meanwhile
     state = _state(browser)
     assert state["ok"] and not browser.is_visible("#message") and browser.inner_html("#sheet") != shown
     assert "stale" not in (browser.get_attribute("#sheet", "class") or "")

@@ -205,7 +205,7 @@ function onPointerDown(event) {
   const handle = event.target.closest(".handle");
   if (!handle || !editor.good) return;
   event.preventDefault();
-  handle.ownerSVGElement.setPointerCapture?.(event.pointerId);
+  $("sheet").setPointerCapture?.(event.pointerId);  // the sheet, not its drawing: that is replaced at each answer
   const svg = $("sheet").querySelector("svg");
   const at = toScene(editor.good.view, svg, event);
   const h = editor.good.handles;
