@@ -49,3 +49,17 @@ def test_a_length_typed_scales_the_point_from_the_links_first_joint_and_keeps_a_
     assert "C = { polar = [75, 30] }" in changed
     changed = apply_edit(changed, {"op": "length", "link": "4", "point": "B", "value": 85.5}, solution)
     assert "4 = { points = { B0 = [0, 0], B = [85.5, 0] } }" in changed
+
+
+def test_a_guess_is_offered_for_a_dyads_inner_joint_where_no_guess_tells_its_assemblies() -> None:
+    from kinepoly.editor.evaluate import handles
+
+    def offered(text: str) -> list[str]:
+        evaluation = evaluate(text, "scene.toml", draw=False)
+        assert evaluation.solution is not None
+        return list(handles(evaluation.solution)["assembly"])
+
+    four_bar = template_text("four-bar")
+    assert offered(four_bar) == []
+    assert offered(four_bar.replace("[guess]\nB = [110, 80]\n", "")) == ["B"]
+    assert offered(template_text("six-bar").replace("E = [200, 20]\n", "")) == ["E"]

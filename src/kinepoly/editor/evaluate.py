@@ -124,7 +124,19 @@ def handles(solution: Solution) -> dict[str, Any]:
     links = [{"name": link.name, "points": [p.name for p in link.points if p.name not in made]}
              for link in scene.links if link.name not in scene.equivalent_links]
     return {"points": points, "input": input_handle(solution), "guess": guesses, "fields": input_fields(solution),
-            "lengths": lengths(solution), "links": links, "removable": removable(solution)}
+            "lengths": lengths(solution), "links": links, "removable": removable(solution),
+            "assembly": assembly_joints(solution)}
+
+
+def assembly_joints(solution: Solution) -> list[str]:
+    """The inner joint of each dyad of the plan none of whose links has a ``[guess]``: where its two assemblies
+    differ, the point a guess would pick them by."""
+    from kinepoly.engine.plan import Dyad
+
+    scene = solution.scene
+    guessed = {name for name, _ in scene.guess}
+    return [group.inner.point for group in solution.plan.groups if isinstance(group, Dyad)
+            and not any(p.name in guessed for link in group.links for p in scene.link(link).points)]
 
 
 def input_fields(solution: Solution) -> dict[str, float] | None:

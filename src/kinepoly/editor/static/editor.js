@@ -297,9 +297,8 @@ function fields(handles) {
     ? "The assembly nearest the [guess]: " + names.map(([n, at]) => `${n} (${number(at[0])}, ${number(at[1])})`).join(", ")
       + "; drag its dashed ring to the other side to take the other assembly."
     : "No [guess]: the default assembly (see the warnings).";
-  // a joint of moving links with no guess: give it one where it is, then drag its ring
-  const joints = Object.entries(handles.points).filter(([n, p]) => p.written && !p.frame && p.links.length > 1
-    && !(n in handles.guess));
+  // a dyad's inner joint with no guess: give it one where it is, then drag its ring
+  const joints = Object.entries(handles.points).filter(([n, p]) => p.written && handles.assembly.includes(n));
   for (const [name, point] of joints) {
     const button = document.createElement("button");
     button.type = "button";
