@@ -131,9 +131,8 @@ class Document:
 
     def step(self, number: int) -> str | None:
         """Step ``number``'s sheet of the last text that solved."""
-        with self._lock:
-            good = self.good
-        return step_svg(good, number) if good is not None else None
+        with self._lock:  # the sheets of one layout share its labels' cache: one built at a time
+            return step_svg(self.good, number) if self.good is not None else None
 
     def state(self) -> dict[str, Any]:
         """What the page shows: the current answer (or its errors), the last good drawing, the text, the history."""
