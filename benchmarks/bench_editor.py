@@ -8,7 +8,8 @@ and when the server's answer arrived. Printed: the median and 95th percentile of
 the server spent (its own timing of the solve, the layout, the labels' placement and the SVG);
 what was left for the websocket, the JSON and the browser's parsing and painting of the SVG; and,
 as the reference measured in the same run on the same machine, ``evaluate`` called in-process
-(the solve and drawing the server makes for each move, with no browser), as a ratio.
+(the solve and drawing the server makes for each move, with no browser), as a ratio, with its
+processor time (what the move costs on an idle machine, nearly whatever else runs).
 
     python benchmarks/bench_editor.py [--moves 60] [--scenes four-bar centers-six-bar]
 """
@@ -43,23 +44,25 @@ def _percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, max(0, math.ceil(q * len(ordered)) - 1))]
 
 
-def _in_process(path: Path, moves: int) -> list[float]:
-    """The reference: the server's work for each move (the edit, the solve, the drawing), with no browser."""
+def _in_process(path: Path, moves: int) -> tuple[list[float], list[float]]:
+    """The reference: the server's work for each move (the edit, the solve, the drawing), with no browser: its
+    wall-clock and its processor milliseconds (the latter hardly moved by other processes on the machine)."""
     text = path.read_text(encoding="utf-8")
     current = evaluate(text, str(path))
-    times = []
+    times, cpu = [], []
     pivot = current.handles["points"][current.handles["input"]["point"]]["at"]
     radius = math.hypot(*pivot) or 1.0
     for k in range(moves):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         angle = math.radians(60 + 90 * k / moves)
         assert current.solution is not None
         text = apply_edit(text, {"op": "drive", "to": [radius * math.cos(angle), radius * math.sin(angle)]},
                           current.solution)
         new = evaluate(text, str(path))
         times.append(1e3 * (time.perf_counter() - t0))
+        cpu.append(1e3 * (time.process_time() - c0))
         current = new if new.ok else current
-    return times
+    return times, cpu
 
 
 def _crank(page: Any) -> tuple[tuple[float, float], float]:
@@ -96,8 +99,8 @@ def bench(page: Any, example: str, moves: int) -> dict[str, Any]:
             timings = page.evaluate("() => window.kinepolyEditor.timings")
     finally:
         shutil.rmtree(folder, ignore_errors=True)
-    reference = _in_process(ROOT / "examples" / f"{example}.toml", moves)
-    return {"timings": timings, "reference": reference}
+    reference, cpu = _in_process(ROOT / "examples" / f"{example}.toml", moves)
+    return {"timings": timings, "reference": reference, "cpu": cpu}
 
 
 def report(example: str, data: dict[str, Any]) -> None:
@@ -114,8 +117,9 @@ def report(example: str, data: dict[str, Any]) -> None:
     print("  of the median move: server " + ", ".join(f"{k} {statistics.median(v):.1f}" for k, v in parts.items())
           + f" (sum {statistics.median(server):.1f} ms); websocket and JSON {statistics.median(transport):.1f} ms;"
           f" browser parsing and painting the SVG {statistics.median(browser):.1f} ms")
-    print(f"  reference, the same work in-process (edit, solve, draw): median {reference:.1f} ms; "
-          f"the page takes {median / reference:.2f} times that")
+    print(f"  reference, the same work in-process (edit, solve, draw): median {reference:.1f} ms "
+          f"({statistics.median(data['cpu']):.1f} ms of processor time); the page takes {median / reference:.2f} "
+          "times that")
 
 
 def main(argv: list[str]) -> int:
