@@ -46,6 +46,7 @@ def test_replace_answers_the_solve_json_of_that_text(served: Served, four_bar: P
     (lambda t: t.replace("angle = 60", "angle = 60\nangle = 61"), 2),               # a TOML error
     (lambda t: t.replace('link = "2"', 'link = "9"'), 2),                            # a scene error
     (lambda t: t.replace("B0 = [100, 0]", "B0 = [400, 0]"), 3),                       # cannot assemble
+    (lambda t: t.replace('link = "2"', 'link = "9"').replace("omega = 10", 'omega = "ten"'), 2),  # two problems
 ])
 def test_a_wrong_scene_is_answered_with_the_cli_messages(served: Served, four_bar: Path, change: object,
                                                          exit_code: int, capsys: pytest.CaptureFixture[str]) -> None:

@@ -14,19 +14,17 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from kinepoly.errors import EXIT_SCENE, KinepolyError, SceneError
+from kinepoly.errors import KinepolyError
 
 if TYPE_CHECKING:
     from kinepoly.render.sheet import Layout
     from kinepoly.solution import Solution
 
-__all__ = ["PAPER", "Evaluation", "evaluate", "step_svg"]
+__all__ = ["PAPER", "Evaluation", "assembly_joints", "evaluate", "handles", "input_fields", "input_handle", "lengths",
+           "step_svg"]
 
 PAPER = (297.0, 210.0)
 """The editor's default sheet: A4 landscape, ``kinepoly draw``'s and ``solve``'s default paper."""
-
-EXIT_INTERNAL = 70
-
 
 @dataclass(frozen=True)
 class Evaluation:
@@ -51,7 +49,7 @@ class Evaluation:
 def evaluate(text: str, source: str, *, paper: tuple[float, float] = PAPER, draw: bool = True) -> Evaluation:
     """``text`` loaded, solved and (with ``draw``) drawn on ``paper`` (the polygon scales of ``solve --paper``);
     a user's error or an internal one as the CLI prints it."""
-    from kinepoly.cli import error_text, internal_error_text
+    from kinepoly.cli import EXIT_INTERNAL, error_text, internal_error_text
     from kinepoly.cli.solve import solved
     from kinepoly.scene.loader import loads_scene
 
@@ -60,14 +58,10 @@ def evaluate(text: str, source: str, *, paper: tuple[float, float] = PAPER, draw
         scene = loads_scene(text, source)
         t1 = time.perf_counter()
         solution, result = solved(scene, paper, t1 - t0)
-    except KinepolyError as error:
-        lines = error.problems if isinstance(error, SceneError) else [str(error)]
-        message = error_text(error)
-        return Evaluation(text, None, (message, *lines[1:]) if len(lines) > 1 else (message,), error.exit_code)
-    except RecursionError as error:  # a scene nested too deep for the parser is the user's, as for the CLI
-        return Evaluation(text, None, (error_text(SceneError(f"{source}: {error}")),), EXIT_SCENE)
+    except KinepolyError as error:  # the lines the command line prints, and its exit status
+        return Evaluation(text, None, tuple(error_text(error).split("\n")), error.exit_code)
     except Exception as error:  # noqa: BLE001 - never a traceback: the page shows the message
-        return Evaluation(text, None, (internal_error_text(error),), EXIT_INTERNAL)
+        return Evaluation(text, None, tuple(internal_error_text(error).split("\n")), EXIT_INTERNAL)
     t2 = time.perf_counter()
     timing = {"solve": 1e3 * (t2 - t0)}
     if not draw:
