@@ -135,7 +135,12 @@ class Document:
             return step_svg(self.good, number) if self.good is not None else None
 
     def state(self) -> dict[str, Any]:
-        """What the page shows: the current answer (or its errors), the last good drawing, the text, the history."""
+        """What the page shows: the current answer (or its errors), the last good drawing, the text, the history.
+        Taken under the lock (a change in another thread is seen whole or not at all); call it from a worker."""
+        with self._lock:
+            return self._state()
+
+    def _state(self) -> dict[str, Any]:
         current, good = self.current, self.good
         out: dict[str, Any] = {
             "ok": current.ok, "result": current.result, "errors": list(current.errors), "exit": current.exit,

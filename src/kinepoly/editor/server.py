@@ -139,7 +139,7 @@ def make_app(document: Document, token: str, port: int) -> ASGIApp:
         return Response(svg, media_type="image/svg+xml")
 
     async def state(request: Request) -> Response:
-        return JSONResponse(document.state())
+        return JSONResponse(await to_thread.run_sync(document.state))
 
     async def change(request: Request) -> Response:
         try:
@@ -149,7 +149,7 @@ def make_app(document: Document, token: str, port: int) -> ASGIApp:
             return JSONResponse({"error": str(error)}, status_code=400)
         except Exception as error:  # noqa: BLE001 - a message, never a traceback
             return JSONResponse({"error": internal_error_text(error)}, status_code=500)
-        return JSONResponse(document.state())
+        return JSONResponse(await to_thread.run_sync(document.state))
 
     async def save(request: Request) -> Response:
         try:
@@ -171,13 +171,16 @@ def make_app(document: Document, token: str, port: int) -> ASGIApp:
             while True:
                 message = await websocket.receive_json()
                 seq = message.get("seq") if isinstance(message, dict) else None
+                refused: str | None = None
                 try:
                     await to_thread.run_sync(_change, document, message if isinstance(message, dict) else {})
-                    reply = document.state()
                 except EditError as error:
-                    reply = {**document.state(), "refused": str(error)}
+                    refused = str(error)
                 except Exception as error:  # noqa: BLE001 - the page stays connected and says what happened
-                    reply = {**document.state(), "refused": internal_error_text(error)}
+                    refused = internal_error_text(error)
+                reply = await to_thread.run_sync(document.state)
+                if refused is not None:
+                    reply["refused"] = refused
                 await websocket.send_text(json.dumps({**reply, "seq": seq}, allow_nan=False))
         except WebSocketDisconnect:
             return
