@@ -322,3 +322,19 @@ def test_a_driven_slider_runs_to_the_pointers_foot_on_its_line(tmp_path: Path,
         assert httpx.post(served.url + "api/save", json={}).status_code == 200
     assert _without_timing(driven["result"]) == _solve_json(capsys, path)  # type: ignore[arg-type]
     assert driven["result"]["sliders"]["34"]["s"] == pytest.approx(550)  # type: ignore[index]
+
+
+def test_a_file_that_does_not_solve_opens_with_its_errors_and_is_mended_through_the_api(tmp_path: Path) -> None:
+    from tests.editor.server import serving
+
+    from kinepoly.editor.document import Document
+
+    path = tmp_path / "broken.toml"
+    good = template_text("four-bar")
+    path.write_text(good.replace("angle = 60", "angle = ?"), encoding="utf-8")
+    with serving(Document(str(path))) as served:
+        state = httpx.get(served.url + "api/state").json()
+        assert not state["ok"] and "svg" not in state and state["errors"][0].startswith(f"kinepoly: error: {path}:")
+        assert httpx.get(served.url + "api/drawing.svg").status_code == 404
+        assert httpx.put(served.url + "api/scene", json={"text": good}).status_code == 200
+        assert httpx.get(served.url + "api/drawing.svg").status_code == 200
