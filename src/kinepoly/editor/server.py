@@ -171,16 +171,7 @@ def make_app(document: Document, token: str, port: int) -> ASGIApp:
             while True:
                 message = await websocket.receive_json()
                 seq = message.get("seq") if isinstance(message, dict) else None
-                refused: str | None = None
-                try:
-                    await to_thread.run_sync(_change, document, message if isinstance(message, dict) else {})
-                except EditError as error:
-                    refused = str(error)
-                except Exception as error:  # noqa: BLE001 - the page stays connected and says what happened
-                    refused = internal_error_text(error)
-                reply = await to_thread.run_sync(document.state)
-                if refused is not None:
-                    reply["refused"] = refused
+                reply = await to_thread.run_sync(_answer_change, document, message)  # one worker hop a change
                 await websocket.send_text(json.dumps({**reply, "seq": seq}, allow_nan=False))
         except WebSocketDisconnect:
             return
@@ -200,6 +191,21 @@ def make_app(document: Document, token: str, port: int) -> ASGIApp:
     ]
     app = Starlette(routes=[Mount(f"/{token}", routes=routes)])
     return Guard(app, token, port)
+
+
+def _answer_change(document: Document, message: object) -> dict[str, Any]:
+    """The page's state after the change ``message`` asks, with ``refused`` saying why where it could not be made."""
+    refused: str | None = None
+    try:
+        _change(document, message if isinstance(message, dict) else {})
+    except EditError as error:
+        refused = str(error)
+    except Exception as error:  # noqa: BLE001 - the page stays connected and says what happened
+        refused = internal_error_text(error)
+    state = document.state()
+    if refused is not None:
+        state["refused"] = refused
+    return state
 
 
 def _change(document: Document, message: dict[str, Any]) -> None:
