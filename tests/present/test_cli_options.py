@@ -14,7 +14,7 @@ from kinepoly.cli import parser
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 from tools.cli_options import README, _commands, rewrite
 
-COMMANDS = ("solve", "draw", "check", "variants", "bench", "sweep", "handout", "animate")
+COMMANDS = ("solve", "draw", "check", "variants", "bench", "sweep", "handout", "animate", "edit")
 
 
 def test_version(capsys: pytest.CaptureFixture[str]) -> None:

@@ -1,7 +1,7 @@
 """The command line: the only place that prints or writes files. ``main(argv) -> int`` so tests call it in-process.
 
 One module per command, each with ``add_arguments(parser)`` and ``run(args) -> int`` (the exit
-status): ``solve``, ``draw``, ``check``, ``variants``, ``bench``, ``sweep``, ``handout``, ``animate``. The
+status): ``solve``, ``draw``, ``check``, ``variants``, ``bench``, ``sweep``, ``handout``, ``animate``, ``edit``. The
 modules import their heavy dependencies inside ``run``, so building the parser stays cheap;
 ``files`` writes a file whole or not at all.
 
@@ -16,10 +16,11 @@ import os
 import sys
 from collections.abc import Callable, Sequence
 
-from kinepoly.cli import animate, bench, check, draw, handout, solve, sweep, variants
+from kinepoly.cli import animate, bench, check, draw, edit, handout, solve, sweep, variants
 from kinepoly.errors import EXIT_SCENE, KinepolyError
 
-__all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "HelpFormatter", "main", "main_exit", "parser", "version"]
+__all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "HelpFormatter", "error_text", "internal_error_text", "main", "main_exit",
+           "parser", "version"]
 
 EXIT_INTERNAL = 70
 EXIT_INTERRUPTED = 130
@@ -40,6 +41,8 @@ _COMMANDS: tuple[tuple[str, str, Callable[[argparse.ArgumentParser], None], Call
                  "page; en, tr, ro or your own"), handout.add_arguments, handout.run),
     ("animate", ("the mechanism moving over a sweep with its polygons at fixed scales: GIF, MP4 (ffmpeg) or one "
                  "web page"), animate.add_arguments, animate.run),
+    ("edit", ("edit a scene in the browser: drag its points and its input and see the polygons follow; save keeps "
+              "the file's comments"), edit.add_arguments, edit.run),
 )
 
 
@@ -72,6 +75,16 @@ def version() -> str:
         return installed("kinepoly")
     except PackageNotFoundError:
         return "unknown"
+
+
+def error_text(error: KinepolyError) -> str:
+    """A user's error as the command line prints it (``kinepoly edit`` shows it the same)."""
+    return f"kinepoly: error: {error}"
+
+
+def internal_error_text(error: Exception) -> str:
+    """An error that is not the user's, as the command line prints it: never a traceback."""
+    return f"kinepoly: internal error: {type(error).__name__}: {error}; please report it with the scene"
 
 
 def _usage_exit(message: str) -> int:
@@ -112,7 +125,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         status: int = args.run(args)
         return status
     except KinepolyError as error:
-        print(f"kinepoly: error: {error}", file=sys.stderr)
+        print(error_text(error), file=sys.stderr)
         return error.exit_code
     except KeyboardInterrupt:  # Ctrl-C: no traceback; every file is written whole or not at all, so none is half
         print("kinepoly: interrupted", file=sys.stderr)
@@ -122,8 +135,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         os.dup2(devnull, sys.stdout.fileno())
         return 0
     except Exception as error:  # noqa: BLE001 - the promise is: never a traceback
-        print(f"kinepoly: internal error: {type(error).__name__}: {error}; please report it with the scene",
-              file=sys.stderr)
+        print(internal_error_text(error), file=sys.stderr)
         return EXIT_INTERNAL
 
 

@@ -11,10 +11,15 @@ import argparse
 import json
 import sys
 import time
+from typing import TYPE_CHECKING, Any
 
 from kinepoly.cli.files import PAPER_HELP, paper_of
 
-__all__ = ["add_arguments", "run"]
+if TYPE_CHECKING:
+    from kinepoly.scene.spec import Scene
+    from kinepoly.solution import Solution
+
+__all__ = ["add_arguments", "run", "solved"]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -25,20 +30,29 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "reported (as kinepoly draw and handout use them): " + PAPER_HELP)
 
 
+def solved(scene: Scene, paper: tuple[float, float], load_s: float = 0.0) -> tuple[Solution, dict[str, Any]]:
+    """The solution of ``scene`` and the object ``--json`` prints for it (``kinepoly edit`` answers it too)."""
+    from kinepoly.present.report import to_json
+    from kinepoly.present.scales import decide_scales
+    from kinepoly.solution import solve
+
+    solution = solve(scene, load_s=load_s)
+    return solution, to_json(solution, decide_scales(solution, paper))
+
+
 def run(args: argparse.Namespace) -> int:
     """Load, solve, print; the exit status."""
-    from kinepoly.present.report import steps_text, table_text, to_json
+    from kinepoly.present.report import steps_text, table_text
     from kinepoly.present.scales import decide_scales
     from kinepoly.scene.loader import load_scene
-    from kinepoly.solution import solve
 
     paper = paper_of(args.paper)
     t0 = time.perf_counter()
     scene = load_scene(args.scene)
-    solution = solve(scene, load_s=time.perf_counter() - t0)
+    solution, result = solved(scene, paper, time.perf_counter() - t0)
     scales = decide_scales(solution, paper)
     if args.json:
-        print(json.dumps(to_json(solution, scales), indent=1, allow_nan=False))
+        print(json.dumps(result, indent=1, allow_nan=False))
     elif args.steps:
         print(steps_text(solution, scales))
     else:

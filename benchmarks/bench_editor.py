@@ -1,0 +1,148 @@
+"""How fast does ``kinepoly edit`` follow a drag? From the pointer's move to the polygons redrawn, in chromium.
+
+The editor's page is opened in headless chromium (Debian's, driven by playwright, as the tests do)
+on a copy of an example; the mouse drags the crank's point through a sweep of angles, each move
+waiting for its redraw. The page records, for every move, the milliseconds from the pointer event
+to the first task after the frame that shows the new sheet (``window.kinepolyEditor.timings``),
+and when the server's answer arrived. Printed: the median and 95th percentile of that time; what
+the server spent (its own timing of the solve, the layout, the labels' placement and the SVG);
+what was left for the websocket, the JSON and the browser's parsing and painting of the SVG; and,
+as the reference measured in the same run on the same machine, ``evaluate`` called in-process
+(the solve and drawing the server makes for each move, with no browser), as a ratio, with its
+processor time (what the move costs on an idle machine, nearly whatever else runs).
+
+    python benchmarks/bench_editor.py [--moves 60] [--scenes four-bar centers-six-bar]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import shutil
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "src"))
+sys.path.insert(0, str(ROOT))
+
+from tests.chromium import ARGS, chromium
+from tests.editor.drive import handle, screen, wait_settled
+from tests.editor.server import serving
+
+from kinepoly.editor.document import Document
+from kinepoly.editor.edits import apply_edit
+from kinepoly.editor.evaluate import evaluate
+
+
+def _percentile(values: list[float], q: float) -> float:
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, max(0, math.ceil(q * len(ordered)) - 1))]
+
+
+def _in_process(path: Path, moves: int) -> tuple[list[float], list[float]]:
+    """The reference: the server's work for each move (the edit, the solve, the drawing), with no browser: its
+    wall-clock and its processor milliseconds (the latter hardly moved by other processes on the machine)."""
+    text = path.read_text(encoding="utf-8")
+    current = evaluate(text, str(path))
+    times, cpu = [], []
+    pivot = current.handles["points"][current.handles["input"]["point"]]["at"]
+    radius = math.hypot(*pivot) or 1.0
+    for k in range(moves):
+        t0, c0 = time.perf_counter(), time.process_time()
+        angle = math.radians(60 + 90 * k / moves)
+        assert current.solution is not None
+        text = apply_edit(text, {"op": "drive", "to": [radius * math.cos(angle), radius * math.sin(angle)]},
+                          current.solution)
+        new = evaluate(text, str(path))
+        times.append(1e3 * (time.perf_counter() - t0))
+        cpu.append(1e3 * (time.process_time() - c0))
+        current = new if new.ok else current
+    return times, cpu
+
+
+def _crank(page: Any) -> tuple[tuple[float, float], float]:
+    """The crank's pivot (the frame point of the input link) and the length to its point, in the scene."""
+    handles = page.evaluate("() => window.kinepolyEditor.good.handles")
+    point = handles["input"]["point"]
+    link = handles["input"]["link"]
+    pivot = next(p["at"] for name, p in handles["points"].items() if p["frame"] and link in p["links"])
+    at = handles["points"][point]["at"]
+    return (pivot[0], pivot[1]), math.hypot(at[0] - pivot[0], at[1] - pivot[1])
+
+
+def bench(page: Any, example: str, moves: int) -> dict[str, Any]:
+    folder = Path(tempfile.mkdtemp())
+    path = folder / f"{example}.toml"
+    shutil.copy(ROOT / "examples" / f"{example}.toml", path)
+    try:
+        with serving(Document(str(path))) as served:
+            page.goto(served.url)
+            page.wait_for_selector("#sheet svg #handles")
+            wait_settled(page)
+            (px, py), r = _crank(page)
+            point = page.evaluate("() => window.kinepolyEditor.good.handles.input.point")
+            start = handle(page, point)
+            a0 = math.atan2(start[1] - py, start[0] - px)
+            page.mouse.move(*screen(page, start))
+            page.mouse.down()
+            for k in range(1, moves + 1):  # a quarter turn, each move awaited
+                a = a0 + math.radians(90) * k / moves
+                page.mouse.move(*screen(page, (px + r * math.cos(a), py + r * math.sin(a))))
+                wait_settled(page)
+            page.mouse.up()
+            page.wait_for_function(f"() => window.kinepolyEditor.timings.length >= {moves}")
+            timings = page.evaluate("() => window.kinepolyEditor.timings")
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    reference, cpu = _in_process(ROOT / "examples" / f"{example}.toml", moves)
+    return {"timings": timings, "reference": reference, "cpu": cpu}
+
+
+def report(example: str, data: dict[str, Any]) -> None:
+    timings = [t for t in data["timings"] if t["ok"]]
+    total = [t["ms"] for t in timings]
+    parts = {key: [t["server"][key] for t in timings] for key in ("solve", "layout", "labels", "svg")}
+    server = [sum(t["server"].values()) for t in timings]
+    transport = [t["received"] - s for t, s in zip(timings, server, strict=True)]
+    browser = [t["ms"] - t["received"] for t in timings]
+    reference = statistics.median(data["reference"])
+    median = statistics.median(total)
+    print(f"{example}: {len(total)} drag moves, drag to redrawn polygons: median {median:.1f} ms, "
+          f"95th percentile {_percentile(total, 0.95):.1f} ms")
+    print("  of the median move: server " + ", ".join(f"{k} {statistics.median(v):.1f}" for k, v in parts.items())
+          + f" (sum {statistics.median(server):.1f} ms); websocket and JSON {statistics.median(transport):.1f} ms;"
+          f" browser parsing and painting the SVG {statistics.median(browser):.1f} ms")
+    print(f"  reference, the same work in-process (edit, solve, draw): median {reference:.1f} ms "
+          f"({statistics.median(data['cpu']):.1f} ms of processor time); the page takes {median / reference:.2f} "
+          "times that")
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--moves", type=int, default=60)
+    parser.add_argument("--scenes", nargs="+", default=["four-bar", "centers-six-bar"])
+    args = parser.parse_args(argv)
+    executable = chromium()
+    if executable is None:
+        print("bench_editor: chromium is not installed (apt-get install chromium)", file=sys.stderr)
+        return 2
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as driver:
+        browser = driver.chromium.launch(executable_path=executable, headless=True, args=ARGS)
+        try:
+            page = browser.new_page(viewport={"width": 1400, "height": 1000})
+            for example in args.scenes:
+                report(example, bench(page, example, args.moves))
+        finally:
+            browser.close()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
