@@ -212,20 +212,24 @@ def two_slide_roles(dyad: Dyad, mechanism: Mechanism) -> TwoSlideRoles:
 class NewtonGroup:
     """Links that form no dyad: solved together by damped Newton from the guess. ``drives``: the inputs
     that drive joints of the group (each one more equation); ``cams``: the spline cams whose follower floats
-    in the group on a cam known before it (the contact's parameter one more unknown, ``engine.newton``)."""
+    in the group on a cam known before it (the contact's parameter one more unknown, ``engine.newton``);
+    ``gears``: the gear pairs with a gear in the group (a planet on an arm that no input drives, placed by
+    rolling in ``engine.planet``; one more equation each in the polygons' linear solve, ``engine.group``)."""
 
     links: tuple[str, ...]
     joints: tuple[Joint, ...]
     drives: tuple[Drive, ...] = ()
     cams: tuple[CamSpec, ...] = ()
+    gears: tuple[GearSpec, ...] = ()
 
     @property
     def name(self) -> str:
-        return "-".join(self.links) + " (Newton)"
+        return "-".join(self.links) + (" (planet on its arm)" if self.gears else " (Newton)")
 
     def known_links(self) -> tuple[str, ...]:
         return tuple(sorted({x for j in self.joints for x in joint_links(j) if x not in self.links}
-                            | {cam.cam for cam in self.cams}))
+                            | {cam.cam for cam in self.cams}
+                            | {x for gear in self.gears for x in gear.links if x not in self.links}))
 
 
 Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
@@ -388,7 +392,8 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
     if rest:
         joints = tuple(j for j in mechanism.joints if any(x in rest for x in joint_links(j)))
         drives = tuple(d for d in mechanism.drives if not d.on_frame and (d.moving in rest or d.base in rest))
-        groups.append(NewtonGroup(rest, joints, drives, tuple(floating)))
+        gears = tuple(g for g in mechanism.scene.gears if any(x in rest for x in g.links))
+        groups.append(NewtonGroup(rest, joints, drives, tuple(floating), gears))
     return driven, groups
 
 
