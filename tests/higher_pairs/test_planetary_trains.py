@@ -153,8 +153,7 @@ def test_an_undriven_arm_over_a_sweep_by_willis(roles: dict[str, str]) -> None:
                                     if roles[m] != "free"})
     for link, member in (("3", "arm"), ("4", "planet")):
         angle = np.unwrap(np.radians(result.column(f"theta_{link}").values))
-        assert np.max(np.abs(np.diff(angle))) < 0.05  # continuous
-        turned = angle - angle[0]
+        turned = angle - angle[0]  # continuous: no jump by a tooth
         assert np.max(np.abs(turned - per_turn[member] * (theta - theta[0]))) < 1e-11
         assert np.max(np.abs(result.column(f"omega_{link}").values - rates[member])) < 1e-12 * 30
         assert np.max(np.abs(result.column(f"alpha_{link}").values - accelerations[member])) < 1e-12 * 30
@@ -180,3 +179,36 @@ def test_an_undriven_arms_accelerations_by_finite_differences_in_time(roles: dic
         a, c = b + math.remainder(a - b, math.tau), b + math.remainder(c - b, math.tau)
         assert (c - a) / (2 * h) == pytest.approx(now[link]["omega"], rel=1e-6, abs=1e-6)
         assert (c - 2 * b + a) / (h * h) == pytest.approx(now[link]["alpha"], rel=1e-4, abs=1e-4)
+
+
+def test_the_undriven_arms_velocity_polygon_is_drawn_through_the_pitch_points() -> None:
+    # the planet's tips at both pitch points are the sun's and the ring's there; C (midway between the pitch
+    # points: 20 of 40 mm) lies midway between them in the polygon, and the arm's omega is read from c
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "examples" / "planetary-free-arm.toml"
+    solution = kinepoly.solve(kinepoly.load_scene(path))
+    velocity = [s for s in solution.steps if s.polygon == "velocity"]
+    assert [s.topic for s in velocity].count("pitch-point") == 2
+    assert not any(s.kind == "linear-solve" for s in velocity)
+    assert any(s.kind == "linear-solve" and dict(s.params).get("rolling") == "24 P24, 41 P41"
+               for s in solution.steps if s.polygon == "acceleration")
+    points = kinepoly.to_json(solution)["polygons"]["velocity"]["points"]
+    assert points["p24@4"] == pytest.approx(points["p24@2"], abs=1e-12)
+    assert points["p41@4"] == pytest.approx([0.0, 0.0], abs=1e-12)
+    middle = [(a + b) / 2.0 for a, b in zip(points["p24@4"], points["p41@4"], strict=True)]
+    assert points["c"] == pytest.approx(middle, rel=1e-12, abs=1e-12)
+    # omega_13 = 10 x 30 / 100 (Willis), omega_14 = 3 - 1.5 x 7
+    assert kinepoly.to_json(solution)["links"]["3"]["omega"] == pytest.approx(3.0, rel=1e-14)
+    assert kinepoly.to_json(solution)["links"]["4"]["omega"] == pytest.approx(-7.5, rel=1e-14)
+
+
+def test_a_group_with_gears_that_is_no_planet_on_its_arm_is_refused_clearly() -> None:
+    # the ring's centre 5 mm off the arm's pivot: exit 2 (a SceneError) naming the pairs and what is built
+    text = train(30, 20, 2.0, {"sun": "driven", "arm": "free", "ring": "fixed"}, {"sun": (25.0, 10.0, 2.0)})
+    text = text.replace('1 = { points = { O = [0, 0] } }', '1 = { points = { O = [0, 0], O5 = [5, 0] } }')
+    text = text.replace('{ center = "O", radius = 70.0 }', '{ center = "O5", radius = 70.0 }')
+    assert "O5" in text.split("[[gears]]")[2]
+    with pytest.raises(kinepoly.SceneError, match=r"gears\.24: links 3, 4 hold gears \(24, 41\).*not on the arm's "
+                                                  r"pivot O.*planet on an arm"):
+        kinepoly.solve(kinepoly.loads_scene(text))

@@ -11,6 +11,11 @@ tip of P as a point of the unknown gear lies
   the tip of the point of its guide under P (and the Coriolis term), along the slide.
 
 Their crossing gives the tip; omega (alpha) of the gear is read off as for any link.
+
+A planet on an arm that no input drives (``engine.planet``) meshes two known gears: its velocity tips at
+both pitch points are those of the known gears there (``velocity_of_planet``), so its centre's tip follows
+by Mehmke's theorem (on the line of the two, in the same proportion), its omega is read off, and the arm's
+from its pivot and the centre.
 """
 
 from __future__ import annotations
@@ -19,20 +24,22 @@ import numpy as np
 
 from kinepoly.engine.gears import Mesh, mesh, pitch_label
 from kinepoly.engine.plan import GearGroup
+from kinepoly.engine.planet import Planet
 from kinepoly.engine.polygon import Line, Polygon
 from kinepoly.engine.steps import DrawnVector, Step
 from kinepoly.engine.velocity import read_rate, slide_direction
-from kinepoly.geom.arrays import Crossing, Points
+from kinepoly.geom.arrays import Crossing, Points, Reals
 from kinepoly.model.mechanism import Revolute
-from kinepoly.scene.spec import SliderSpec
+from kinepoly.scene.spec import GearSpec, SliderSpec
 
-__all__ = ["acceleration_by_rolling", "mark_pitch_point", "velocity_by_rolling"]
+__all__ = ["acceleration_by_rolling", "mark_pitch_point", "velocity_by_rolling", "velocity_of_planet"]
 
 
-def mark_pitch_point(polygon: Polygon, group: GearGroup) -> Mesh:
+def mark_pitch_point(polygon: Polygon, group: GearGroup | GearSpec) -> Mesh:
     """The pair's mesh, its pitch point marked on the mechanism as ``P<pair>``."""
-    found = mesh(polygon.mechanism, group.gear, polygon.positions.poses)
-    label = pitch_label(group.gear)
+    gear = group.gear if isinstance(group, GearGroup) else group
+    found = mesh(polygon.mechanism, gear, polygon.positions.poses)
+    label = pitch_label(gear)
     if label not in polygon.positions.marks:
         polygon.positions.add_point(label, found.point)
     return found
@@ -113,3 +120,35 @@ def acceleration_by_rolling(ctx: object, group: GearGroup) -> None:
     b.add_tip(group.link, point, crossing.point)
     _record(b, group, tip, known_label, line, second, crossing, tuple(coriolis))
     ctx.slide_values(slider, group.link, point)  # type: ignore[attr-defined]
+
+
+def _rate_from(polygon: Polygon, link: str, first: str, second: str) -> Reals:
+    """omega of ``link`` from the tips of two of its points: the relative velocity along k x (first -> second)."""
+    r = np.asarray(polygon.world(second) - polygon.world(first))
+    rel = polygon.tip(link, second) - polygon.tip(link, first)
+    return np.asarray((np.conj(r) * rel).imag / (r.real * r.real + r.imag * r.imag))
+
+
+def velocity_of_planet(polygon: Polygon, planet: Planet) -> None:
+    """The planet's tips at its pitch points (the known gears' there), its centre's by Mehmke's theorem, then
+    omega of the planet and of the arm."""
+    for gear in planet.meshes:
+        mark_pitch_point(polygon, gear)
+        point = pitch_label(gear)
+        known = gear.links[1 - gear.links.index(planet.planet)]
+        value = polygon.tip(known, point)
+        label = polygon.add_tip(planet.planet, point, value)
+        if polygon.record:
+            known_label = polygon.label(known, point)
+            polygon.step(Step(polygon="velocity", kind="known", equation=f"v_{label} = v_{known_label}",
+                              result=label.lower(), value=polygon.vec(value), topic="pitch-point",
+                              params=(("pair", gear.name), ("pitch", point), ("point", label),
+                                      ("known_point", known_label), ("link", planet.planet), ("known", known))))
+    centre = planet.pin.point
+    polygon.tip(planet.planet, centre)  # on the line of the two pitch tips: Mehmke's image
+    pitch = pitch_label(planet.meshes[0])
+    read_rate(polygon, planet.planet, centre, polygon.label(planet.planet, pitch),
+              _rate_from(polygon, planet.planet, centre, pitch))
+    pivot = planet.pivot.point
+    polygon.tip(planet.base, pivot)
+    read_rate(polygon, planet.arm, pivot, centre, _rate_from(polygon, planet.arm, pivot, centre))

@@ -70,6 +70,8 @@ class Step:
     - ``coriolis``: term, guide, ground, omega, relative, speed, magnitude, sense, start
     - ``normals``: none (the vectors are the normal terms; their ω and segment length are the solution's)
     - ``given-normal``: point, reference, magnitude
+    - ``pitch-point``: pair, pitch, point, known_point, link, known (a planet's tip at a pitch point is the
+      known gear's there)
     Steps of kind ``linear-solve`` have no topic: their ``result`` lists the tips found; their
     params are group, links (the group's, comma-separated) and tips.
     """

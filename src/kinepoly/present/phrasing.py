@@ -480,6 +480,16 @@ class _Phrase:
                             through_tip=through_tip, how=how, tip=tip_name(point, self.polygon), **self.common())
         return text, self.found_tip()
 
+    def _pitch_point(self) -> tuple[str, str]:
+        """A planet's tip at a pitch point: the known gear's tip there (rolling, the centre distance kept)."""
+        p = self.p
+        known = str(p["known_point"])
+        text = self.say.say("higher_pairs.pitch_point_velocity", pair=str(p["pair"]), pitch=str(p["pitch"]),
+                            point=str(p["point"]), known_point=known, link=str(p["link"]), known=str(p["known"]),
+                            known_tip=self.w.tip_or_pole(self.polygon, known),
+                            tip=tip_name(str(p["point"]), self.polygon), **self.common())
+        return text, self.found_tip()
+
     def _equivalent_link(self) -> tuple[str, str]:
         p = self.p
         spline = "_spline" if p.get("spline") == "yes" else ""
