@@ -42,6 +42,12 @@ def test_the_geared_five_bar_sweeps_two_turns_and_its_coupler_curve_closes() -> 
         assert values[8] == pytest.approx(values[0], rel=1e-9, abs=1e-9)
 
 
+def test_a_fine_default_sweep_covers_the_cycle_too() -> None:
+    # 3600 rows or more take a quicker way to a full turn when the mechanism turns fully: not with gears
+    result = sweep(kinepoly.load_scene(EXAMPLES / "geared-five-bar.toml"), steps=3600)
+    assert result.input.values[-1] == pytest.approx(720.0 - 0.2)
+
+
 def test_the_default_sweep_of_the_five_bar_meets_the_explicit_one() -> None:
     # the default rows of the cycle are the rows of --from 0 --to 720 (both ends; the end left out by default)
     scene = kinepoly.load_scene(EXAMPLES / "geared-five-bar.toml")

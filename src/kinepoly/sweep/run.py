@@ -383,7 +383,8 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
     mechanism, plan = prepared.mechanism, prepared.plan
     with np.errstate(all="ignore"):
         grid, positions = None, None
-        trial = full_turn_grid(mechanism, steps) if start is None and steps >= FULL_TURN_CHECK_ROWS else None
+        quick = start is None and steps >= FULL_TURN_CHECK_ROWS and not mechanism.scene.gears  # gears: their cycle
+        trial = full_turn_grid(mechanism, steps) if quick else None
         if trial is not None and not any(isinstance(g, NewtonGroup) for g in plan.groups):
             policy = Continuity(trial.seed_row, lambda: prepared.seed, True, progress, dict(mechanism.scene.guess))
             positions = solve_positions(mechanism, plan, trial.internal, policy)
