@@ -100,3 +100,21 @@ def test_a_rack_never_comes_back_and_a_linkage_without_gears_sweeps_one_turn() -
     assert rack.input.values[-1] == pytest.approx(350.0) and "no-cycle" in _codes(rack)
     plain = sweep(kinepoly.load_scene(EXAMPLES / "four-bar.toml"), steps=36)
     assert plain.input.values[-1] == pytest.approx(350.0) and not plain.notices
+
+
+def test_the_commands_take_their_default_positions_per_turn_of_the_cycle(
+        capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    from tests.cli_support import run
+
+    from kinepoly.sweep import cycle_turns, prepare_sweep
+
+    five_bar = kinepoly.load_scene(EXAMPLES / "geared-five-bar.toml")
+    assert cycle_turns(prepare_sweep(five_bar)) == 2
+    assert cycle_turns(prepare_sweep(kinepoly.load_scene(EXAMPLES / "four-bar.toml"))) == 1
+    out = tmp_path / "five.csv"
+    code, _, err = run(capsys, "sweep", str(EXAMPLES / "geared-five-bar.toml"), "-o", str(out))
+    assert code == 0 and "[cycle]" in err
+    rows = out.read_text().splitlines()[1:]
+    assert len(rows) == 720 and rows[-1].startswith("719,")  # 1 degree apart over both turns
+    made = kinepoly.animate(five_bar, format="html")
+    assert len(made.frames.inputs) == 144  # 72 per turn

@@ -20,7 +20,8 @@ from kinepoly.errors import SceneError
 __all__ = ["DEFAULT_POSITIONS", "add_arguments", "run"]
 
 DEFAULT_POSITIONS = 360
-"""Intervals of a sweep without --positions: a full turn in 1 degree steps."""
+"""Intervals of a sweep without --positions: a full turn in 1 degree steps (each turn of a geared mechanism's
+cycle so)."""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -28,10 +29,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--from", dest="start", type=float, metavar="A",
                         help="first input (the scene's angle unit, or length for a slider input)")
     parser.add_argument("--to", dest="stop", type=float, metavar="B", help="last input (with --from)")
-    parser.add_argument("--positions", type=int, default=DEFAULT_POSITIONS, metavar="N",
+    parser.add_argument("--positions", type=int, default=None, metavar="N",
                         help="how many equal intervals: N + 1 rows from A to B, both ends included; N rows over a "
                              "full turn, or over a geared mechanism's whole cycle of turns (its end would repeat its "
-                             "start)")
+                             f"start); default {DEFAULT_POSITIONS} per turn")
     parser.add_argument("--steps", dest="positions", type=int, help=argparse.SUPPRESS)  # the old name, still taken
     parser.add_argument("-o", "--output", metavar="FILE.csv", help="write the CSV here ('-' for standard output)")
     parser.add_argument("--plot", metavar="FILE.png", help="write the plots (PNG) here")
@@ -102,15 +103,18 @@ def _summary(result: object) -> str:
 def run(args: argparse.Namespace) -> int:
     """Load, sweep, write the CSV and the plots, print the CSV or a summary; the exit status."""
     from kinepoly.scene.loader import load_scene
-    from kinepoly.sweep.run import sweep
+    from kinepoly.sweep.run import cycle_turns, prepare_sweep, run_sweep
     from kinepoly.sweep.table import csv_text
 
     _check(args)
     scene = load_scene(args.scene)
     bar = _ProgressBar(sys.stderr) if sys.stderr.isatty() else None
     try:
-        result = sweep(scene, steps=args.positions, start=args.start, stop=args.stop, centrode=args.centrode,
-                       progress=bar)
+        prepared = prepare_sweep(scene, args.centrode)
+        steps = args.positions
+        if steps is None:
+            steps = DEFAULT_POSITIONS * (cycle_turns(prepared) if args.start is None else 1)
+        result = run_sweep(prepared, steps=steps, start=args.start, stop=args.stop, progress=bar)
     finally:
         if bar is not None:
             bar.close()

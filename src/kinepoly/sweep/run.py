@@ -51,7 +51,7 @@ from kinepoly.solution import Asked, needed_links, what_is_asked
 from kinepoly.sweep.higher_pairs import Follower, higher_pair_columns
 from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
 
-__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]
+__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "cycle_turns", "prepare_sweep", "run_sweep", "sweep"]
 
 STATUS = ("ok", "near-singular", "singular", "cannot-assemble")
 """Row status by level: a row's level is the worst thing that happened to it."""
@@ -372,6 +372,21 @@ def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
     asked = what_is_asked(mechanism)
     plan = make_plan(mechanism, needed_links(mechanism, asked) | ({centrode} if centrode else set()))
     return PreparedSweep(mechanism, asked, plan, centrode, time.perf_counter() - t0)
+
+
+def cycle_turns(prepared: PreparedSweep) -> int:
+    """How many turns of the input the default sweep covers: a geared mechanism's whole cycle, else 1 (the
+    commands' default positions are so many per turn)."""
+    mechanism = prepared.mechanism
+    if not mechanism.scene.gears or not isinstance(mechanism.scene.input, LinkInput):
+        return 1
+    with np.errstate(all="ignore"):
+        grid = input_grid(mechanism, prepared.plan, prepared.seed, 2, None, None)
+    if not grid.periodic:
+        return 1
+    shown = grid.values[grid.shown]
+    full = 360.0 if mechanism.scene.units.angle == "deg" else 2.0 * math.pi
+    return max(1, round(2.0 * float(shown[1] - shown[0]) / full))
 
 
 def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None, stop: float | None = None,
