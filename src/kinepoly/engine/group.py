@@ -11,10 +11,7 @@ of curvature, a point of the cam; ``engine.cam_polygons``), whose length does no
 normal term; the link's own omega and alpha drop out of these two rows). A flat face: a block pinned to the
 cam at K slides along the face, so the follower's point under K moves relative to K only along the face:
 (v_K@f - v_K) . m = 0, m the face's normal, and (a_K@f - a_K) . m = -a^c . m (a^c = 2 omega_f x the block's
-velocity over the face). A gear pair with a gear in the group (a planet on an arm no input drives): its
-pitch curves roll without slipping, so the two gears' points at the pitch point P have the same velocity
-along the common tangent t, (v_P@a - v_P@b) . t = 0, and accelerations that differ only along the common
-normal, (a_P@a - a_P@b) . t = 0 (each tip with its link's normal term, as at a pin).
+velocity over the face).
 All rows are solved by one stacked ``numpy.linalg.solve``; a row whose equations (made
 dimensionless) have a condition number above ``SINGULAR_CONDITION`` is singular.
 """
@@ -26,7 +23,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from kinepoly.engine.cam_contact import centre_label, face_direction
-from kinepoly.engine.gears import mesh, pitch_label
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import JointSolve, Polygon
 from kinepoly.engine.position import describe_input
@@ -34,7 +30,7 @@ from kinepoly.engine.steps import Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, turn
 from kinepoly.model.mechanism import Revolute
-from kinepoly.scene.spec import CamSpec, GearSpec, SliderSpec
+from kinepoly.scene.spec import CamSpec, SliderSpec
 
 if TYPE_CHECKING:
     from kinepoly.engine.acceleration import _Context
@@ -111,12 +107,6 @@ def _system(polygon: Polygon, group: NewtonGroup, extra: dict[tuple[str, str], P
         known = term(cam.follower, w, 1.0, row_x, row_y) - polygon.tip(cam.cam, k)
         rows.append(e.real[:, None] * row_x + e.imag[:, None] * row_y)
         rhs.append(extra.get(("contact", cam.name), polygon.zero).real - (e.real * known.real + e.imag * known.imag))
-    for gear in group.gears:  # rolling at the pitch point: no relative motion along the common tangent
-        row_x, row_y = np.zeros((n, size)), np.zeros((n, size))
-        point, tangent = _pitch_point(polygon, gear)
-        known = term(gear.links[0], point, 1.0, row_x, row_y) + term(gear.links[1], point, -1.0, row_x, row_y)
-        rows.append(tangent.real[:, None] * row_x + tangent.imag[:, None] * row_y)
-        rhs.append(-(tangent.real * known.real + tangent.imag * known.imag))
     order = 1 if polygon.kind == "velocity" else 2
     for drive in group.drives:  # one more equation each: the input's rate
         if isinstance(drive.joint, Revolute):  # omega_moving - omega_base = omega of the motor
@@ -174,16 +164,6 @@ def _solve(polygon: Polygon, group: NewtonGroup, matrix: Reals, rhs: Reals) -> R
     return np.asarray(np.linalg.solve(matrix, rhs[:, :, None])[:, :, 0])
 
 
-def _pitch_point(polygon: Polygon, gear: GearSpec) -> tuple[str, Points]:
-    """A pair's pitch point, marked on the mechanism as ``P<pair>`` (``engine.gears``), and the common tangent
-    there: the two gears' points at P move alike along it, and (the pitch curves rolling) accelerate alike."""
-    found = mesh(polygon.mechanism, gear, polygon.positions.poses)
-    label = pitch_label(gear)
-    if label not in polygon.positions.marks:
-        polygon.positions.add_point(label, found.point)
-    return label, found.t[0]
-
-
 def _follower_point(cam: CamSpec) -> str:
     """The follower's point the pair's equation is written for: W, or under K for a flat face."""
     return centre_label(cam) if cam.kind == "flat" else cam.point or ""
@@ -192,8 +172,7 @@ def _follower_point(cam: CamSpec) -> str:
 def _group_points(group: NewtonGroup) -> list[tuple[str, str]]:
     """(link, point) of the group's joints and of its floating followers' contact points (W, or K under a face)."""
     return [*((link, joint.point) for joint in group.joints for link in _joint_links(joint)),
-            *((cam.follower, _follower_point(cam)) for cam in group.cams),
-            *((link, pitch_label(gear)) for gear in group.gears for link in gear.links)]
+            *((cam.follower, _follower_point(cam)) for cam in group.cams)]
 
 
 def _store(polygon: Polygon, group: NewtonGroup, u: Reals, extra: dict[tuple[str, str], Points]) -> list[str]:
@@ -217,17 +196,13 @@ def _record(polygon: Polygon, group: NewtonGroup, found: list[str]) -> None:
         equivalent = ", ".join(f"{cam.name} {centre_label(cam)}{cam.point} {centre_label(cam)} {cam.point}"
                                for cam in links)  # pair, link, K, W
         face = ", ".join(f"{cam.name} {centre_label(cam)} {cam.follower}" for cam in faces)  # pair, K, follower
-        rolling = ", ".join(f"{gear.name} {pitch_label(gear)}" for gear in group.gears)  # pair, pitch point
         polygon.step(Step(polygon=polygon.kind, kind="linear-solve", equation=f"joint equations of group {group.name}"
                           + "".join(f" with the equivalent link {centre_label(c)}{c.point}" for c in links)
                           + "".join(f" with the block pinned at {centre_label(c)} on the face of {c.follower}"
-                                    for c in faces)
-                          + (" with gears " + ", ".join(f"{g.name} rolling at {pitch_label(g)}" for g in group.gears)
-                             if group.gears else ""),
+                                    for c in faces),
                           result=tips, params=(("group", group.name), ("links", ", ".join(group.links)),
                                                ("tips", tips), *((("equivalent", equivalent),) if links else ()),
-                                               *((("face", face),) if faces else ()),
-                                               *((("rolling", rolling),) if group.gears else ()))))
+                                               *((("face", face),) if faces else ()))))
 
 
 def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict[str, Points]) -> None:
@@ -241,8 +216,6 @@ def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict
 
 def acceleration_by_linear_solve(ctx: _Context, group: NewtonGroup) -> None:
     polygon = ctx.b
-    for gear in group.gears:
-        _pitch_point(polygon, gear)
     extra: dict[tuple[str, str], Points] = {}
     for link, point in _group_points(group):
         if link in group.links:

@@ -213,8 +213,8 @@ class NewtonGroup:
     """Links that form no dyad: solved together by damped Newton from the guess. ``drives``: the inputs
     that drive joints of the group (each one more equation); ``cams``: the spline cams whose follower floats
     in the group on a cam known before it (the contact's parameter one more unknown, ``engine.newton``);
-    ``gears``: the gear pairs with a gear in the group (a planet on an arm that no input drives, placed by
-    rolling in ``engine.planet``; one more equation each in the polygons' linear solve, ``engine.group``)."""
+    ``gears``: the gear pairs with a gear in the group (a planet on an arm that no input drives: placed by
+    rolling in ``engine.planet``, its polygons constructed in ``engine.rolling``)."""
 
     links: tuple[str, ...]
     joints: tuple[Joint, ...]

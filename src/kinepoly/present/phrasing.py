@@ -643,9 +643,6 @@ class _Phrase:
         if "face" in self.p:  # a floating flat face: the block pinned at K sliding along it
             for pair, centre, follower in (part.split(" ") for part in str(self.p["face"]).split(", ")):
                 text += " " + self.say.say("step.linear_solve_face", pair=pair, centre=centre, follower=follower)
-        if "rolling" in self.p:  # a gear pair with a gear in the group (a planet on an arm no input drives)
-            for pair, point in (part.split(" ") for part in str(self.p["rolling"]).split(", ")):
-                text += " " + self.say.say("step.linear_solve_rolling", pair=pair, point=point)
         items = []
         for label in labels:
             fields = self.tip_fields(label, tips.get(label, (0.0, 0.0)))
