@@ -224,3 +224,39 @@ def test_a_group_with_gears_that_is_no_planet_on_its_arm_is_refused_clearly() ->
     with pytest.raises(kinepoly.SceneError, match=r"gears\.24: links 3, 4 hold gears \(24, 41\).*not on the arm's "
                                                   r"pivot O.*planet on an arm"):
         kinepoly.solve(kinepoly.loads_scene(text))
+
+
+def test_a_stepped_planet_between_two_suns_by_willis() -> None:
+    # the planet has two pitch circles on its pin: 20 on the driven sun (30), 10 on a fixed second sun (40).
+    # Relative to the arm two external meshes: (w_B - w_a) / (w_A - w_a) = (30 / 20) (10 / 40) = 3/8, w_B = 0,
+    # so w_a = -3/5 w_A and w_p = w_a - (30 / 20) (w_A - w_a); the same for alpha; C lies beyond both pitch points
+    text = """title = "stepped planet"
+[links]
+1 = { points = { O = [0, 0] } }
+2 = { points = { O = [0, 0] } }
+3 = { points = { O = [0, 0], C = [50, 0] } }
+4 = { points = { C = [0, 0], Q = [12, 0] } }
+[[gears]]
+links = ["2", "4"]
+pitch = [{ center = "O", radius = 30 }, { center = "C", radius = 20 }]
+phase = [0, 180]
+[[gears]]
+links = ["4", "1"]
+pitch = [{ center = "C", radius = 10 }, { center = "O", radius = 40 }]
+phase = [180, 0]
+[input]
+link = "2"
+angle = 20
+omega = 10
+alpha = 4
+"""
+    solution = kinepoly.solve(kinepoly.loads_scene(text))
+    data = kinepoly.to_json(solution)
+    for key, sun in (("omega", 10.0), ("alpha", 4.0)):
+        arm = -0.6 * sun
+        assert data["links"]["3"][key] == pytest.approx(arm, rel=1e-13)
+        assert data["links"]["4"][key] == pytest.approx(arm - 1.5 * (sun - arm), rel=1e-13)
+    assert data["links"]["3"]["angle"] == pytest.approx(-12.0, rel=1e-13)  # -3/5 of 20 degrees
+    (centre,) = [s for s in solution.steps if s.topic == "planet-centre"]
+    assert dict(centre.params)["ratio"] == pytest.approx(2.0, rel=1e-14)  # |P24 C| = 20 = 2 |P24 P41|
+    assert data["check"]["max_rel_error"] < 1e-13
