@@ -8,6 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import kinepoly
 from kinepoly.sweep import sweep
@@ -118,3 +120,18 @@ def test_the_commands_take_their_default_positions_per_turn_of_the_cycle(
     assert len(rows) == 720 and rows[-1].startswith("719,")  # 1 degree apart over both turns
     made = kinepoly.animate(five_bar, format="html")
     assert len(made.frames.inputs) == 144  # 72 per turn
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(8, 80), st.integers(8, 80))
+def test_a_random_gear_pairs_cycle_is_its_teeth_over_their_gcd(z2: int, z3: int) -> None:
+    # link 3 turns -z2/z3 per turn of link 2: back after z3 / gcd(z2, z3) turns (module 1: radii z / 2)
+    turns = z3 // math.gcd(z2, z3)
+    result = sweep(kinepoly.loads_scene(_pair(z2 / 2.0, z3 / 2.0)), steps=8 * turns)  # 45 degrees apart
+    x = result.input.values
+    assert x[-1] + (x[1] - x[0]) == pytest.approx(360.0 * turns)
+    assert ("cycle" in _codes(result)) == (turns > 1)
+    # phases 0 and 0: at the reference mesh link 3 is at 180 degrees (its x-axis away from the pitch point),
+    # and it turns -z2/z3 of the input from there; derived here
+    theta3 = result.column("theta_3").values
+    assert np.max(np.abs(np.remainder(theta3 + z2 / z3 * x, 360.0) - 180.0)) < 1e-9
