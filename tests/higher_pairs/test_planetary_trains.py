@@ -260,3 +260,33 @@ alpha = 4
     (centre,) = [s for s in solution.steps if s.topic == "planet-centre"]
     assert dict(centre.params)["ratio"] == pytest.approx(2.0, rel=1e-14)  # |P24 C| = 20 = 2 |P24 P41|
     assert data["check"]["max_rel_error"] < 1e-13
+
+
+def test_a_planet_on_a_free_arm_drives_further_links() -> None:
+    # an epicyclic crank: the ring fixed, the sun driven, a rod from the planet's pin Q to a slider on y = 10.
+    # The planet and its arm are placed first (Willis), then the rod and the block as a dyad: the arm at
+    # 0.3 theta_s, the planet at -0.75 theta_s (both 0 at the reference mesh), B derived here from Q
+    text = train(30, 20, 2.0, {"sun": "driven", "arm": "free", "ring": "fixed"}, {"sun": (30.0, 10.0, 2.0)})
+    text = text.replace('[[gears]]', '''5 = { points = { Q = [0, 0], B = [120, 0] } }
+6 = { points = { B = [0, 0] } }
+
+[[sliders]]
+block = "6"
+guide = "1"
+point = "B"
+line = { through = [0, 10], angle = 0 }
+
+[[gears]]''', 1).replace('velocity = ["Q", "C"]', 'velocity = ["Q", "C", "B"]')
+    text += "\n[guess]\nB = [170, 10]\n"
+    scene = kinepoly.loads_scene(text)
+    solution = kinepoly.solve(scene)
+    assert [line for line in solution.plan.describe() if "planet" in line] == ["group 3-4 (planet on its arm)"]
+    data = kinepoly.to_json(solution)
+    arm, planet = math.radians(0.3 * 30.0), math.radians(-0.75 * 30.0)
+    q = 50.0 * complex(math.cos(arm), math.sin(arm)) + 10.0 * complex(math.cos(planet), math.sin(planet))
+    assert data["points"]["Q"]["position"] == pytest.approx([q.real, q.imag], rel=1e-13)
+    b = q.real + math.sqrt(120.0**2 - (10.0 - q.imag) ** 2)
+    assert data["points"]["B"]["position"] == pytest.approx([b, 10.0], rel=1e-13)
+    assert data["check"]["max_rel_error"] < 1e-12
+    result = sweep(scene, steps=720)
+    assert (result.status == 0).all()
