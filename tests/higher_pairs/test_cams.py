@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import kinepoly
+from kinepoly.errors import SceneError
 from kinepoly.sweep import sweep
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -109,3 +110,20 @@ def test_roller_solve_matches_the_sweep_row_and_the_check() -> None:
     assert abs(((i23 - k) * n.conjugate()).imag) < 1e-9 * 100.0
     assert data["check"]["max_rel_error"] < 1e-12
 
+
+
+def test_a_circle_cams_centre_takes_polar_like_every_point() -> None:
+    # the disc's centre 15 from the pivot at 30 degrees, written both ways; the bad form named by its key
+    text = (EXAMPLES / "cam-roller-rocker.toml").read_text(encoding="utf-8")
+    assert "center = [15, 0]" in text
+    x, y = 15.0 * math.cos(math.radians(30.0)), 15.0 * math.sin(math.radians(30.0))
+    as_pair = kinepoly.loads_scene(text.replace("center = [15, 0]", f"center = [{x!r}, {y!r}]"))
+    as_polar = kinepoly.loads_scene(text.replace("center = [15, 0]", "center = { polar = [15, 30] }"))
+    assert as_polar.cams[0].center == pytest.approx(as_pair.cams[0].center, rel=1e-15, abs=1e-15)
+    one, two = (kinepoly.to_json(kinepoly.solve(scene)) for scene in (as_pair, as_polar))
+    assert one["links"]["3"]["angle"] != pytest.approx(
+        kinepoly.to_json(kinepoly.solve(kinepoly.loads_scene(text)))["links"]["3"]["angle"])
+    for name, link in one["links"].items():
+        assert two["links"][name] == pytest.approx(link, rel=1e-13, abs=1e-12)
+    with pytest.raises(SceneError, match=r"cams\.1\.profile\.circle\.center\.polar: expected \[r, angle\]"):
+        kinepoly.loads_scene(text.replace("center = [15, 0]", "center = { polar = [15] }"), "cam.toml")

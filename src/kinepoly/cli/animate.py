@@ -28,8 +28,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--from", dest="start", type=float, metavar="A",
                         help="first input (the scene's angle unit, or length for a slider input)")
     parser.add_argument("--to", dest="stop", type=float, metavar="B", help="last input (with --from)")
-    parser.add_argument("--positions", type=int, default=72, metavar="N",
-                        help="how many positions (frames; a full turn in N equal steps), default 72")
+    parser.add_argument("--positions", type=int, default=None, metavar="N",
+                        help="how many positions (frames; a full turn in N equal steps), default 72 per turn "
+                             "(a geared mechanism's whole cycle: up to 720)")
     parser.add_argument("--fps", type=float, default=24.0, metavar="F", help="frames per second, default 24")
     parser.add_argument("--parts", nargs="+", metavar="PART", default=None,
                         help=f"what each frame shows, some of: {', '.join(_PARTS)} "

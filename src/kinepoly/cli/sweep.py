@@ -20,7 +20,8 @@ from kinepoly.errors import SceneError
 __all__ = ["DEFAULT_POSITIONS", "add_arguments", "run"]
 
 DEFAULT_POSITIONS = 360
-"""Intervals of a sweep without --positions: a full turn in 1 degree steps."""
+"""Intervals of a sweep without --positions: a full turn in 1 degree steps (each turn of a geared mechanism's
+cycle so)."""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -28,9 +29,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--from", dest="start", type=float, metavar="A",
                         help="first input (the scene's angle unit, or length for a slider input)")
     parser.add_argument("--to", dest="stop", type=float, metavar="B", help="last input (with --from)")
-    parser.add_argument("--positions", type=int, default=DEFAULT_POSITIONS, metavar="N",
+    parser.add_argument("--positions", type=int, default=None, metavar="N",
                         help="how many equal intervals: N + 1 rows from A to B, both ends included; N rows over a "
-                             "full turn (its end would repeat its start)")
+                             "full turn, or over a geared mechanism's whole cycle of turns (its end would repeat its "
+                             f"start); default {DEFAULT_POSITIONS} per turn")
     parser.add_argument("--steps", dest="positions", type=int, help=argparse.SUPPRESS)  # the old name, still taken
     parser.add_argument("-o", "--output", metavar="FILE.csv", help="write the CSV here ('-' for standard output)")
     parser.add_argument("--plot", metavar="FILE.png", help="write the plots (PNG) here")
@@ -88,23 +90,31 @@ def _summary(result: object) -> str:
     x = result.input.values
     unit = result.scene.units.angle if result.input.name.startswith("theta") else result.scene.units.length
     marked = ", ".join(f"{n} {name}" for name, n in counts.items() if n and name != "ok") or "none marked"
+    span = ""
+    if result.periodic:
+        full = 360.0 if unit == "deg" else 2.0 * math.pi
+        turns = round((float(x[-1] - x[0]) * len(x) / max(len(x) - 1, 1)) / full) if len(x) > 1 else 1
+        span = " (a full turn)" if turns <= 1 else f" ({turns} full turns, the gears' whole cycle)"
     return (f"{result.scene.title}: {result.rows} positions of {result.input.name} from {x[0]:.6g} to {x[-1]:.6g} "
-            f"{unit}{' (a full turn)' if result.periodic else ''}; {counts['ok']} ok, {marked}; "
+            f"{unit}{span}; {counts['ok']} ok, {marked}; "
             f"{len(result.columns)} quantities; {1e3 * result.timing.get('total_s', 0.0):.3g} ms")
 
 
 def run(args: argparse.Namespace) -> int:
     """Load, sweep, write the CSV and the plots, print the CSV or a summary; the exit status."""
     from kinepoly.scene.loader import load_scene
-    from kinepoly.sweep.run import sweep
+    from kinepoly.sweep.run import cycle_turns, prepare_sweep, run_sweep
     from kinepoly.sweep.table import csv_text
 
     _check(args)
     scene = load_scene(args.scene)
     bar = _ProgressBar(sys.stderr) if sys.stderr.isatty() else None
     try:
-        result = sweep(scene, steps=args.positions, start=args.start, stop=args.stop, centrode=args.centrode,
-                       progress=bar)
+        prepared = prepare_sweep(scene, args.centrode)
+        steps = args.positions
+        if steps is None:
+            steps = DEFAULT_POSITIONS * (cycle_turns(prepared) if args.start is None else 1)
+        result = run_sweep(prepared, steps=steps, start=args.start, stop=args.stop, progress=bar)
     finally:
         if bar is not None:
             bar.close()

@@ -431,13 +431,16 @@ def _other_group(ctx: _Context, group: GearGroup | CamGroup | NewtonGroup) -> No
     modules that build on this one (imported here, where such a group is met)."""
     from kinepoly.engine.cam_polygons import acceleration_by_cam
     from kinepoly.engine.group import acceleration_by_linear_solve
-    from kinepoly.engine.rolling import acceleration_by_rolling
+    from kinepoly.engine.planet import planet_of
+    from kinepoly.engine.rolling import acceleration_by_rolling, acceleration_of_planet
     from kinepoly.engine.triad import acceleration_by_assur_point, triad_of
 
     if isinstance(group, GearGroup):
         acceleration_by_rolling(ctx, group)
     elif isinstance(group, CamGroup):
         acceleration_by_cam(ctx, group)
+    elif isinstance(group, NewtonGroup) and (planet := planet_of(group)) is not None:
+        acceleration_of_planet(ctx, planet)
     elif (triad := triad_of(ctx.b.mechanism, group)) is not None:
         acceleration_by_assur_point(ctx, triad)
     else:

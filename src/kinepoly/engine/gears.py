@@ -26,7 +26,7 @@ from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import GearSpec, PitchCircle, PitchLine
 
-__all__ = ["Mesh", "Rolled", "free_delta", "mesh", "pitch_label", "place_rolling"]
+__all__ = ["Mesh", "Rolled", "anchor_row", "free_delta", "mesh", "pitch_label", "place_rolling"]
 
 _DISTANCE_TOL = 1e-9
 
@@ -132,7 +132,7 @@ def _sigma(gear: GearSpec, side: int, delta: Reals | None, point: Points, pose: 
     return np.asarray(((point - through) * np.conj(d)).real - gear.phase[side])
 
 
-def _anchor(mechanism: Mechanism, values: tuple[Reals, ...]) -> int:
+def anchor_row(mechanism: Mechanism, values: tuple[Reals, ...]) -> int:
     """The row of the scene's own input (the sweep's seed row): where delta is taken the shorter way."""
     if not values or not mechanism.drives:
         return 0
@@ -146,7 +146,7 @@ def _anchor(mechanism: Mechanism, values: tuple[Reals, ...]) -> int:
 def free_delta(mechanism: Mechanism, angle: Reals, values: tuple[Reals, ...]) -> Reals:
     """delta of a gear not placed by rolling: continuous over the rows, in (-pi, pi] at the scene's input."""
     smooth = np.unwrap(angle)
-    k = _anchor(mechanism, values)
+    k = anchor_row(mechanism, values)
     at = float(smooth[k])
     wrapped = math.remainder(at, 2.0 * math.pi)
     wrapped = math.pi if wrapped == -math.pi else wrapped

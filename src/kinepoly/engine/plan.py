@@ -212,20 +212,24 @@ def two_slide_roles(dyad: Dyad, mechanism: Mechanism) -> TwoSlideRoles:
 class NewtonGroup:
     """Links that form no dyad: solved together by damped Newton from the guess. ``drives``: the inputs
     that drive joints of the group (each one more equation); ``cams``: the spline cams whose follower floats
-    in the group on a cam known before it (the contact's parameter one more unknown, ``engine.newton``)."""
+    in the group on a cam known before it (the contact's parameter one more unknown, ``engine.newton``);
+    ``gears``: the gear pairs with a gear in the group (a planet on an arm that no input drives: placed by
+    rolling in ``engine.planet``, its polygons constructed in ``engine.rolling``)."""
 
     links: tuple[str, ...]
     joints: tuple[Joint, ...]
     drives: tuple[Drive, ...] = ()
     cams: tuple[CamSpec, ...] = ()
+    gears: tuple[GearSpec, ...] = ()
 
     @property
     def name(self) -> str:
-        return "-".join(self.links) + " (Newton)"
+        return "-".join(self.links) + (" (planet on its arm)" if self.gears else " (Newton)")
 
     def known_links(self) -> tuple[str, ...]:
         return tuple(sorted({x for j in self.joints for x in joint_links(j) if x not in self.links}
-                            | {cam.cam for cam in self.cams}))
+                            | {cam.cam for cam in self.cams}
+                            | {x for gear in self.gears for x in gear.links if x not in self.links}))
 
 
 Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
@@ -340,6 +344,27 @@ def _find_cam(mechanism: Mechanism, known: set[str]) -> CamGroup | None:
     return None
 
 
+def _find_planet(mechanism: Mechanism, known: set[str]) -> NewtonGroup | None:
+    """A planet and its arm, neither placed: the planet meshes two placed gears and is pinned at its pitch centre
+    to the arm, which one pin holds to a placed link (``engine.planet`` places them together)."""
+    for planet in mechanism.link_names:
+        if planet in known:
+            continue
+        meshes = [g for g in mechanism.scene.gears if planet in g.links
+                  and g.links[1 - g.links.index(planet)] in known
+                  and all(isinstance(c, PitchCircle) for c in g.pitch)]
+        for pin in _free_joints(mechanism, planet):
+            if not isinstance(pin, Revolute) or any(x in known for x in pin.links):
+                continue
+            arm = pin.other(planet)
+            centred = [g for g in meshes if getattr(g.pitch[g.links.index(planet)], "center", None) == pin.point]
+            outer = [jt for jt in _free_joints(mechanism, arm) if any(x in known for x in joint_links(jt))]
+            if len(centred) < 2 or len(outer) != 1 or not isinstance(outer[0], Revolute):
+                continue
+            return NewtonGroup((arm, planet), (outer[0], pin), gears=(centred[0], centred[1]))
+    return None
+
+
 def _find_carried(mechanism: Mechanism, known: set[str]) -> Dyad | None:
     """An RRR dyad whose first side is two unknown links held together by a driven joint."""
     for drive in mechanism.drives:
@@ -369,7 +394,8 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
     groups: list[Group] = []
     while True:
         group: Group | None = (_find_drive(mechanism, known) or _find_gear(mechanism, known)
-                               or _find_cam(mechanism, known) or _find_dyad(mechanism, known) or _find_carried(mechanism, known))
+                               or _find_cam(mechanism, known) or _find_dyad(mechanism, known) or _find_carried(mechanism, known)
+                               or _find_planet(mechanism, known))
         if group is None:
             break
         groups.append(group)
@@ -388,7 +414,8 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
     if rest:
         joints = tuple(j for j in mechanism.joints if any(x in rest for x in joint_links(j)))
         drives = tuple(d for d in mechanism.drives if not d.on_frame and (d.moving in rest or d.base in rest))
-        groups.append(NewtonGroup(rest, joints, drives, tuple(floating)))
+        gears = tuple(g for g in mechanism.scene.gears if any(x in rest for x in g.links))
+        groups.append(NewtonGroup(rest, joints, drives, tuple(floating), gears))
     return driven, groups
 
 

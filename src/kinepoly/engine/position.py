@@ -211,6 +211,11 @@ class Policy(Protocol):
 def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placement, policy: Policy) -> Placement:
     """Place ``groups`` in order on top of ``placed``."""
     for index, group in enumerate(groups):
+        if isinstance(group, NewtonGroup) and group.gears:
+            from kinepoly.engine.planet import place_planet
+
+            placed = place_planet(mechanism, group, placed)
+            continue
         if isinstance(group, NewtonGroup):
             placed = policy.newton(mechanism, group, placed)
             if group.cams:

@@ -70,6 +70,11 @@ class Step:
     - ``coriolis``: term, guide, ground, omega, relative, speed, magnitude, sense, start
     - ``normals``: none (the vectors are the normal terms; their ω and segment length are the solution's)
     - ``given-normal``: point, reference, magnitude
+    - ``pitch-point``: pair, pitch, point, known_point, link, known (a planet's tip at a pitch point is the
+      known gear's there)
+    - ``planet-centre``: planet, arm, centre, pivot, pitch_a, pitch_b, known_a, known_b (the known gears' tip
+      labels), gear_a, gear_b, ratio (where the centre divides the pitch points), side (the physical length
+      of the chord of the two tips), omega (the arm's), length (pivot to centre), normal (the arm's normal term)
     Steps of kind ``linear-solve`` have no topic: their ``result`` lists the tips found; their
     params are group, links (the group's, comma-separated) and tips.
     """

@@ -433,13 +433,16 @@ def _other_group(polygon: Polygon, group: GearGroup | CamGroup | NewtonGroup, sl
     modules that build on this one (imported here, where such a group is met)."""
     from kinepoly.engine.cam_polygons import velocity_by_cam
     from kinepoly.engine.group import velocity_by_linear_solve
-    from kinepoly.engine.rolling import velocity_by_rolling
+    from kinepoly.engine.planet import planet_of
+    from kinepoly.engine.rolling import velocity_by_rolling, velocity_of_planet
     from kinepoly.engine.triad import triad_of, velocity_by_assur_point
 
     if isinstance(group, GearGroup):
         velocity_by_rolling(polygon, group, sliding)
     elif isinstance(group, CamGroup):
         velocity_by_cam(polygon, group, sliding, equivalent)
+    elif isinstance(group, NewtonGroup) and (planet := planet_of(group)) is not None:
+        velocity_of_planet(polygon, planet)
     elif (triad := triad_of(polygon.mechanism, group)) is not None:
         velocity_by_assur_point(polygon, triad, sliding, equivalent)
     else:

@@ -24,9 +24,13 @@ if TYPE_CHECKING:
     from kinepoly.motion.video import Progress
     from kinepoly.solution import Solution
 
-__all__ = ["FORMATS", "PART_LAYERS", "Animation", "animate", "draw", "motion_format"]
+__all__ = ["DEFAULT_POSITIONS", "FORMATS", "MAX_DEFAULT_POSITIONS", "PART_LAYERS", "Animation", "animate", "draw", "motion_format"]
 
 FORMATS = ("gif", "mp4", "html")
+DEFAULT_POSITIONS = 72
+"""Positions of an animation without ``positions``, per turn of the sweep."""
+MAX_DEFAULT_POSITIONS = 720
+"""The most positions a geared mechanism's cycle takes by default."""
 PART_LAYERS = ("mechanism", "velocity-polygon", "acceleration-polygon", "instant-centers")
 """The parts ``draw`` can give alone: a layer of the sheet, cut to its panel."""
 _PANEL = {"mechanism": "mechanism", "velocity-polygon": "velocity", "acceleration-polygon": "acceleration",
@@ -72,21 +76,24 @@ def _check(positions: int, fps: float, dpi: float) -> None:
 
 
 def animate(scene: Scene | str | os.PathLike[str], path: str | os.PathLike[str] | None = None, *,
-            format: str | None = None, positions: int = 72, start: float | None = None, stop: float | None = None,
+            format: str | None = None, positions: int | None = None, start: float | None = None,
+            stop: float | None = None,
             fps: float = 24.0, parts: tuple[str, ...] | None = None, dpi: float = 80.0,
             progress: Progress | None = None) -> Animation:
     """The mechanism moving over a sweep of ``positions`` positions, with its polygons at fixed scales.
+
+    Without ``positions``: 72 per turn of the sweep (a geared mechanism's whole cycle has several), up to 720.
 
     ``scene``: a Scene or a scene file; ``path``: the file to write (its extension gives the
     format), or None to only return the Animation (``format`` then says which, GIF by default).
     """
     from kinepoly.scene.loader import load_scene
-    from kinepoly.sweep.run import prepare_sweep, run_sweep
+    from kinepoly.sweep.run import cycle_turns, prepare_sweep, run_sweep
 
     fmt = motion_format(path) if path is not None else (format or "gif")
     if fmt not in FORMATS:
         raise OutputError(f"format {fmt!r}: expected one of {', '.join(FORMATS)}")
-    _check(positions, fps, dpi)
+    _check(72 if positions is None else positions, fps, dpi)
     if fmt == "mp4":
         from kinepoly.motion.video import ffmpeg
 
@@ -94,6 +101,8 @@ def animate(scene: Scene | str | os.PathLike[str], path: str | os.PathLike[str] 
     t0 = time.perf_counter()
     loaded = scene if isinstance(scene, Scene) else load_scene(str(scene))
     prepared = prepare_sweep(loaded)
+    if positions is None:
+        positions = min(DEFAULT_POSITIONS * (cycle_turns(prepared) if start is None else 1), MAX_DEFAULT_POSITIONS)
     result = run_sweep(prepared, steps=positions, start=start, stop=stop)
     frames = make_frames(result, prepared, parts if parts is not None else DEFAULT_PARTS)
     t1 = time.perf_counter()

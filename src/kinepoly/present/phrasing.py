@@ -491,6 +491,36 @@ class _Phrase:
                             through_tip=through_tip, how=how, tip=tip_name(point, self.polygon), **self.common())
         return text, self.found_tip()
 
+    def _pitch_point(self) -> tuple[str, str]:
+        """A planet's tip at a pitch point: the known gear's tip there (rolling, the centre distance kept)."""
+        p = self.p
+        known = str(p["known_point"])
+        text = self.say.say("higher_pairs.pitch_point_velocity", pair=str(p["pair"]), pitch=str(p["pitch"]),
+                            point=str(p["point"]), known_point=known, link=str(p["link"]), known=str(p["known"]),
+                            known_tip=self.w.tip_or_pole(self.polygon, known),
+                            tip=tip_name(str(p["point"]), self.polygon), **self.common())
+        return text, self.found_tip()
+
+    def _planet_centre(self) -> tuple[str, str]:
+        """A planet's centre on an undriven arm: the line of centres through the point dividing the known gears'
+        tips at the pitch points, crossed with the line of the arm's tangential term."""
+        p, polygon, w = self.p, self.polygon, self.w
+        ratio = float(p["ratio"])
+        side = float(p["side"]) * w.scales.get(polygon, 1.0)  # mm on the paper
+        centre, pivot = str(p["centre"]), str(p["pivot"])
+        text = self.say.say(
+            "higher_pairs.planet_centre_acceleration", planet=str(p["planet"]), arm=str(p["arm"]), centre=centre,
+            pivot=pivot, pitch_a=str(p["pitch_a"]), pitch_b=str(p["pitch_b"]), gear_a=str(p["gear_a"]),
+            gear_b=str(p["gear_b"]), tip_a=w.tip_or_pole(polygon, str(p["known_a"])),
+            tip_b=w.tip_or_pole(polygon, str(p["known_b"])), ratio=w.n(ratio),
+            distance=self.say.number(abs(ratio) * side), side=w.n(float(p["side"]), w.size_kind(polygon)),
+            side_paper=w.paper(polygon, float(p["side"])), pivot_tip=w.tip_or_pole(polygon, pivot),
+            omega_name=w.rate_name("velocity", w.ground, str(p["arm"])), omega=w.n(float(p["omega"]), "omega"),
+            length=w.n(float(p["length"]), "position"), length_unit=w.unit,
+            normal=w.n(float(p["normal"]), w.size_kind(polygon)), normal_paper=w.paper(polygon, float(p["normal"])),
+            tip=tip_name(centre, polygon), star=tip_name(f"{centre}*", polygon), **self.common())
+        return text, self.found_tip()
+
     def _equivalent_link(self) -> tuple[str, str]:
         p = self.p
         spline = "_spline" if p.get("spline") == "yes" else ""

@@ -250,11 +250,12 @@ class HigherPairTables(ReaderState):
         if circle is None:
             return None
         check_keys(self.report, path + ("circle",), circle, _CIRCLE_KEYS)
-        center_value = require(self.report, path + ("circle",), circle, "center", "center = [x, y], in the cam's frame")
+        center_value = require(self.report, path + ("circle",), circle, "center",
+                               "center = [x, y] or { polar = [r, angle] }, in the cam's frame")
         radius_value = require(self.report, path + ("circle",), circle, "radius", "radius = R")
         if center_value is None or radius_value is None:
             return None
-        center = quantity_pair(self.report, path + ("circle", "center"), center_value, self.kinds.length)
+        center = self.read_point_value(path + ("circle", "center"), center_value)
         radius = self._positive(path + ("circle", "radius"), radius_value)
         return None if center is None or radius is None else (center, radius, ())
 

@@ -22,7 +22,6 @@ __all__ = ["MechanismTables"]
 _NOWHERE: Vector = (math.nan, math.nan)  # stands in for a value that failed; never returned
 
 _LINK_KEYS = ("points",)
-_POLAR_KEYS = ("polar",)
 _SLIDER_KEYS = ("block", "guide", "point", "line", "name")
 _LINE_KEYS = ("through", "angle")
 
@@ -93,23 +92,6 @@ class MechanismTables(ReaderState):
             check_showable(self.report, path, name, "the point name")
         local = self.read_point_value(path, value)
         return PointSpec(name, _NOWHERE if local is None else local, line)
-
-    def read_point_value(self, path: KeyPath, value: object) -> Vector | None:
-        if isinstance(value, list) and len(value) == 2:
-            return quantity_pair(self.report, path, value, self.kinds.length)
-        if not isinstance(value, dict):
-            self.report.add(path, f"expected [x, y] or {{ polar = [r, angle] }}, got {show_value(value)}")
-            return None
-        check_keys(self.report, path, value, _POLAR_KEYS)
-        polar = require(self.report, path, value, "polar", "[x, y] or { polar = [r, angle] }")
-        if polar is None:
-            return None
-        if not isinstance(polar, list) or len(polar) != 2:
-            self.report.add(path + ("polar",), f"expected [r, angle], got {show_value(polar)}")
-            return None
-        r = quantity(self.report, path + ("polar", "r"), polar[0], self.kinds.length)
-        angle = quantity(self.report, path + ("polar", "angle"), polar[1], self.kinds.angle)
-        return None if r is None or angle is None else _polar(r, angle)
 
     # -- joints implied by shared point names
 
@@ -218,15 +200,6 @@ class MechanismTables(ReaderState):
                     'expected a different name = "..."',
                 )
             seen.setdefault(slider.name, index)
-
-
-def _polar(r: float, angle: float) -> Vector:
-    """The point at distance r and angle (rad); exact on the axes."""
-    quarter = angle / (math.pi / 2.0)
-    if abs(quarter - round(quarter)) < 1e-15 * max(1.0, abs(quarter)):
-        cos, sin = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[round(quarter) % 4]
-        return (r * cos, r * sin)
-    return (r * math.cos(angle), r * math.sin(angle))
 
 
 def _same_place(first: Vector, second: Vector) -> bool:

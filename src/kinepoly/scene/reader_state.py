@@ -7,13 +7,18 @@ against the names it defines.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
-from kinepoly.scene.problems import ProblemReport
+from kinepoly.scene.lines import KeyPath
+from kinepoly.scene.problems import ProblemReport, show_value
 from kinepoly.scene.spec import LinkSpec, SliderSpec
-from kinepoly.scene.units import Kinds
+from kinepoly.scene.units import Kinds, quantity, quantity_pair
+from kinepoly.scene.values import Vector, check_keys, require
 
 __all__ = ["ReaderState"]
+
+_POLAR_KEYS = ("polar",)
 
 
 @dataclass
@@ -38,3 +43,31 @@ class ReaderState:
     @property
     def slider_names(self) -> list[str]:
         return [slider.name for slider in self.sliders]
+
+    # -- a point: [x, y] or { polar = [r, angle] } (a link's points, a cam circle's centre)
+
+    def read_point_value(self, path: KeyPath, value: object) -> Vector | None:
+        if isinstance(value, list) and len(value) == 2:
+            return quantity_pair(self.report, path, value, self.kinds.length)
+        if not isinstance(value, dict):
+            self.report.add(path, f"expected [x, y] or {{ polar = [r, angle] }}, got {show_value(value)}")
+            return None
+        check_keys(self.report, path, value, _POLAR_KEYS)
+        polar = require(self.report, path, value, "polar", "[x, y] or { polar = [r, angle] }")
+        if polar is None:
+            return None
+        if not isinstance(polar, list) or len(polar) != 2:
+            self.report.add(path + ("polar",), f"expected [r, angle], got {show_value(polar)}")
+            return None
+        r = quantity(self.report, path + ("polar", "r"), polar[0], self.kinds.length)
+        angle = quantity(self.report, path + ("polar", "angle"), polar[1], self.kinds.angle)
+        return None if r is None or angle is None else _polar(r, angle)
+
+
+def _polar(r: float, angle: float) -> Vector:
+    """The point at distance r and angle (rad); exact on the axes."""
+    quarter = angle / (math.pi / 2.0)
+    if abs(quarter - round(quarter)) < 1e-15 * max(1.0, abs(quarter)):
+        cos, sin = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[round(quarter) % 4]
+        return (r * cos, r * sin)
+    return (r * math.cos(angle), r * math.sin(angle))

@@ -6,6 +6,6 @@ input's turn (or range), each row with its status; ``csv_text`` and ``plot_png``
 sweep's assembly.
 """
 
-from kinepoly.sweep.run import STATUS, Column, PreparedSweep, SweepResult, prepare_sweep, run_sweep, sweep
+from kinepoly.sweep.run import STATUS, Column, PreparedSweep, SweepResult, cycle_turns, prepare_sweep, run_sweep, sweep
 
-__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]
+__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "cycle_turns", "prepare_sweep", "run_sweep", "sweep"]

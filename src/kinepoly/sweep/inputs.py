@@ -1,7 +1,8 @@
 """The inputs a sweep visits: the rows shown, the seed row (the scene's own input) and the range.
 
 Without ``--from``/``--to`` the range is a full turn of the input link, 0 to 360 degrees with
-the end left out (it repeats the start), when the mechanism closes all the way round; else it
+the end left out (it repeats the start), when the mechanism closes all the way round (with gears, its whole
+cycle: the turns of the input after which every link is back where it started, ``_cycle``); else it
 is the stretch of input around the scene's own input where it closes (a rocker's swing, a
 slider's stroke), its ends found to about 1e-10 of the step by repeated subdivision (where a group
 is closed by Newton's method, put inside by 1e-7 rad, or 1e-7 of the mechanism's size for a
@@ -26,6 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 import numpy as np
 
@@ -39,15 +41,18 @@ from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
-from kinepoly.scene.spec import LinkInput, SliderInput
+from kinepoly.scene.spec import LinkInput, PitchCircle, SliderInput
 
-__all__ = ["FULL_TURN_CHECK_ROWS", "MAX_STEPS", "InputGrid", "full_turn_grid", "input_grid", "input_name"]
+__all__ = ["CYCLE_TURNS", "FULL_TURN_CHECK_ROWS", "MAX_STEPS", "InputGrid", "full_turn_grid", "input_grid", "input_name"]
 
 MAX_STEPS = 2_000_000
 """The most rows a sweep takes (memory grows with rows times quantities)."""
 
 FULL_TURN_CHECK_ROWS = 3600
 """Whether the input link turns fully is judged on this many rows (or on the sweep's own, if more)."""
+
+CYCLE_TURNS = 100
+"""The most turns of the input a geared mechanism's default sweep covers to come back where it started."""
 
 _BRIDGE_MAX = 100_000
 _ZOOM = 32
@@ -163,6 +168,79 @@ def _reach(mechanism: Mechanism, seed: dict[str, LinkPose], size: float) -> _Rea
     return _Reach(center, 10.0 * size)
 
 
+def _geared_links(mechanism: Mechanism) -> set[str]:
+    """The gears' links and the links that carry a gear on a pin at its pitch centre (a planet's arm)."""
+    out: set[str] = set()
+    for gear in mechanism.scene.gears:
+        out.update(gear.links)
+        for link, curve in zip(gear.links, gear.pitch, strict=True):
+            if isinstance(curve, PitchCircle):
+                out.update(x for x in mechanism.links_of_point(curve.center))
+    return out
+
+
+def _turns_per_turn(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: int,
+                    seed: dict[str, LinkPose], full: float) -> dict[str, float]:
+    """How many turns each geared link (``_geared_links``) makes while the input makes one (over ``values``, a
+    turn from 0, and its end): its gear ratio to the input."""
+    rows = np.append(values, values[0] + full)
+    found = _evaluate(mechanism, plan, rows, seed_row, seed, periodic=False)
+    out = {}
+    geared = _geared_links(mechanism)
+    for link, pose in found.poses.items():
+        if link in geared:
+            angle = np.unwrap(np.angle(np.broadcast_to(pose.rotation, rows.shape)))
+            out[link] = float(angle[-1] - angle[0]) / (2.0 * math.pi)
+    return out
+
+
+def _returns(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: int, seed: dict[str, LinkPose],
+             full: float, turns: int) -> bool:
+    """Whether every link is back at its start pose after ``turns`` turns of the input (``values`` a turn from 0)."""
+    rows = np.concatenate([*(values + k * full for k in range(turns)), [values[0] + turns * full]])
+    found = _evaluate(mechanism, plan, rows, seed_row, seed, periodic=False)
+    size = mechanism_size(mechanism, seed)
+    for pose in found.poses.values():
+        origin = np.broadcast_to(pose.origin, rows.shape)
+        rotation = np.broadcast_to(pose.rotation, rows.shape)
+        if abs(origin[-1] - origin[0]) > 1e-9 * size or abs(rotation[-1] - rotation[0]) > 1e-9:
+            return False
+    return bool(found.ok.all())
+
+
+def _cycle(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: int, seed: dict[str, LinkPose],
+           full: float) -> tuple[int, list[Notice]]:
+    """How many turns of the input bring a geared mechanism back to where it started: each link's turns per
+    turn of the input (its gear ratio to the input) as a fraction p/q, the least common multiple of the q's
+    (1 without gears; with a notice saying so, 1 where there is none within ``CYCLE_TURNS``)."""
+    if not mechanism.scene.gears:
+        return 1, []
+    per_turn = _turns_per_turn(mechanism, plan, values, seed_row, seed, full)
+    turns = 1
+    for link, ratio in sorted(per_turn.items()):
+        fraction = Fraction(ratio).limit_denominator(CYCLE_TURNS)
+        if abs(ratio - float(fraction)) > 1e-9 * max(1.0, abs(ratio)):
+            return 1, [Notice("no-cycle", f"link {link} turns {ratio:.10g} times per turn of the input, no fraction "
+                              f"with a denominator up to {CYCLE_TURNS}: the gears bring the mechanism back after no "
+                              f"whole number of turns up to {CYCLE_TURNS}; the sweep covers one turn (its curves "
+                              "do not close)")]
+        turns = math.lcm(turns, fraction.denominator)
+        if turns > CYCLE_TURNS:
+            return 1, [Notice("no-cycle", f"the gears bring the mechanism back after {turns} turns of the input at "
+                              f"the least, more than {CYCLE_TURNS}; the sweep covers one turn (its curves do not "
+                              "close)")]
+    if not _returns(mechanism, plan, values, seed_row, seed, full, turns):
+        return 1, [Notice("no-cycle", f"after {turns} turn{'s' if turns > 1 else ''} of the input, when every gear has "
+                          "turned a whole number of times, the mechanism is not back where it started (a rack runs "
+                          "on); the sweep covers one turn (its curves do not close)")]
+    if turns == 1:
+        return 1, []
+    ratios = ", ".join(f"link {link} {Fraction(r).limit_denominator(CYCLE_TURNS)}" for link, r in sorted(per_turn.items())
+                       if Fraction(r).limit_denominator(CYCLE_TURNS).denominator > 1)
+    return turns, [Notice("cycle", f"the gears bring the mechanism back after {turns} turns of the input (turns per "
+                          f"turn of the input: {ratios}); the sweep covers them all, its whole cycle")]
+
+
 def _newton_margin(mechanism: Mechanism, size: float) -> float:
     """How far inside the last input where a Newton group closes a range's end is put, in the input's unit.
 
@@ -218,7 +296,8 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
         values, _, seed_row = _with_seed(shown, seed_value, True, full)
         found = _evaluate(mechanism, plan, values, seed_row, seed, periodic=True)
         if found.ok.all():
-            return 0.0, full, True, [], (0.0, 0.0)
+            turns, said = _cycle(mechanism, plan, values, seed_row, seed, full)
+            return 0.0, turns * full, True, said, (0.0, 0.0)
         seed_value = float(values[seed_row])
     else:
         reach = 10.0 * size

@@ -51,7 +51,7 @@ from kinepoly.solution import Asked, needed_links, what_is_asked
 from kinepoly.sweep.higher_pairs import Follower, higher_pair_columns
 from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
 
-__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "prepare_sweep", "run_sweep", "sweep"]
+__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "cycle_turns", "prepare_sweep", "run_sweep", "sweep"]
 
 STATUS = ("ok", "near-singular", "singular", "cannot-assemble")
 """Row status by level: a row's level is the worst thing that happened to it."""
@@ -374,6 +374,21 @@ def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
     return PreparedSweep(mechanism, asked, plan, centrode, time.perf_counter() - t0)
 
 
+def cycle_turns(prepared: PreparedSweep) -> int:
+    """How many turns of the input the default sweep covers: a geared mechanism's whole cycle, else 1 (the
+    commands' default positions are so many per turn)."""
+    mechanism = prepared.mechanism
+    if not mechanism.scene.gears or not isinstance(mechanism.scene.input, LinkInput):
+        return 1
+    with np.errstate(all="ignore"):
+        grid = input_grid(mechanism, prepared.plan, prepared.seed, 2, None, None)
+    if not grid.periodic:
+        return 1
+    shown = grid.values[grid.shown]
+    full = 360.0 if mechanism.scene.units.angle == "deg" else 2.0 * math.pi
+    return max(1, round(2.0 * float(shown[1] - shown[0]) / full))
+
+
 def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None, stop: float | None = None,
               progress: Progress | None = None) -> SweepResult:
     """Execute a prepared sweep over ``steps`` rows from ``start`` to ``stop`` (the input's unit)."""
@@ -383,7 +398,8 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
     mechanism, plan = prepared.mechanism, prepared.plan
     with np.errstate(all="ignore"):
         grid, positions = None, None
-        trial = full_turn_grid(mechanism, steps) if start is None and steps >= FULL_TURN_CHECK_ROWS else None
+        quick = start is None and steps >= FULL_TURN_CHECK_ROWS and not mechanism.scene.gears  # gears: their cycle
+        trial = full_turn_grid(mechanism, steps) if quick else None
         if trial is not None and not any(isinstance(g, NewtonGroup) for g in plan.groups):
             policy = Continuity(trial.seed_row, lambda: prepared.seed, True, progress, dict(mechanism.scene.guess))
             positions = solve_positions(mechanism, plan, trial.internal, policy)
