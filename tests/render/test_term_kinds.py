@@ -1,4 +1,4 @@
-"""Each term a drawing shows is drawn as the kind of term it is (issue 24 section 1, issue 25).
+"""Each term a drawing shows is drawn as the kind of term it is (issue 24 sections 1 and 2, issue 25).
 
 A tangential term (``a^t_...``, also the sum of two along a triad's line toward its Assur point) is drawn
 and listed in the legend as tangential, a sliding term only where a block slides: a mechanism with no
@@ -18,8 +18,6 @@ from kinepoly.render.sheet import _drawn_terms
 from kinepoly.solution import Solution
 
 NAMES = sorted(p.stem for p in EXAMPLES.glob("*.toml"))
-ROLLING = {"gear-pair", "planetary", "rack-pinion"}
-"""Gear trains: the lines of a pitch point belong to the gears' construction (issue 24, section 2), not here."""
 
 
 @cache
@@ -32,7 +30,7 @@ def _slides(solution: Solution) -> bool:
     return bool(scene.sliders) or any(cam.kind == "flat" for cam in scene.cams)
 
 
-@pytest.mark.parametrize("name", [n for n in NAMES if n not in ROLLING])
+@pytest.mark.parametrize("name", NAMES)
 def test_tangential_terms_are_drawn_as_tangential(name: str) -> None:
     solution = _solved(name)
     if solution.acceleration is None:
@@ -44,7 +42,7 @@ def test_tangential_terms_are_drawn_as_tangential(name: str) -> None:
             assert vector.term == "tangential", (vector.label, vector.term)
 
 
-@pytest.mark.parametrize("name", [n for n in NAMES if n not in ROLLING])
+@pytest.mark.parametrize("name", NAMES)
 def test_nothing_is_sliding_where_nothing_slides(name: str) -> None:
     solution = _solved(name)
     if _slides(solution):
@@ -64,3 +62,13 @@ def test_the_triad_sheets_list_no_sliding_term() -> None:
         assert not _slides(solution)
         figures = tuple(polygon_figure(solution, kind) for kind in ("velocity", "acceleration"))
         assert _drawn_terms(figures) == ["absolute", "relative", "normal", "tangential"], name
+
+
+def test_a_rolling_contact_is_drawn_as_relative() -> None:
+    """Gear trains: the relative acceleration of the two gears' points at a pitch point (along the common normal)
+    and of a planet's centre to the point dividing the known gears' tips are relative terms, nothing slides."""
+    for name in ("gear-pair", "planetary", "planetary-free-arm", "differential"):
+        figure = polygon_figure(_solved(name), "acceleration")
+        rolling = [v for v in figure.vectors if v.label.startswith("a_") and "/" in v.label and "=" not in v.label]
+        assert rolling, name
+        assert all(v.term == "relative" for v in rolling), (name, [(v.label, v.term) for v in rolling])

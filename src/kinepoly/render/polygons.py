@@ -109,11 +109,18 @@ def _line_term_name(step: Step, index: int, symbol: str) -> str:
     return f"{symbol}_{result}"
 
 
-def _line_term_kind(kind: Kind, line: Line) -> Term:
+_ROLLING_TOPICS = ("rolling", "planet-centre")
+"""Steps whose second line carries a relative term of two bodies rolling (pitch points, a planet's centre), not
+a block's sliding."""
+
+
+def _line_term_kind(kind: Kind, step: Step, line: Line, name: str) -> Term:
     label = line.label
     if kind == "velocity":
         return "sliding" if "parallel to slider" in label else "relative"
-    return "tangential" if label.startswith("a^t") else "sliding"
+    if name.startswith("a^t") or label.startswith("a^t"):
+        return "tangential"
+    return "relative" if step.topic in _ROLLING_TOPICS else "sliding"
 
 
 def _step_tips(step: Step) -> list[str]:
@@ -154,7 +161,7 @@ def polygon_figure(solution: Solution, kind: Kind) -> Figure:
                 key = (name, line.through, value)
                 if key not in seen:
                     seen.add(key)
-                    vectors.append(FigureVector(name, line.through, value, _line_term_kind(kind, line), number))
+                    vectors.append(FigureVector(name, line.through, value, _line_term_kind(kind, step, line, name), number))
         if step.kind in ("intersection", "image", "proportional"):
             lines += [FigureLine(line, number) for line in step.lines]
     pole_names = tuple(sorted(label for label in polygon.tips if label in ground_points
