@@ -125,7 +125,7 @@ class NearestGuess:
     def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
         known = known_points(mechanism, placed.row_poses(placed.poses, 0))
         points = {**{name: complex(x, y) for name, (x, y) in self.guess.items()}, **known}
-        start, missing = start_poses(mechanism, group, points)
+        start, missing = start_poses(mechanism, group, points, placed.row_values(0))
         if start is None:
             raise AssemblyError(
                 f"group {group.name} is not a dyad and is solved by Newton's method from [guess]; "
@@ -236,7 +236,8 @@ class Continuity:
         points = known_points(mechanism, seed)
         size = group_size(mechanism, group, points)
         seed_known = placed.row_poses(group.known_links(), self.seed_row)
-        start, _ = start_poses(mechanism, group, {**points, **known_points(mechanism, seed_known)})
+        start, _ = start_poses(mechanism, group, {**points, **known_points(mechanism, seed_known)},
+                               placed.row_values(self.seed_row))
         sign = 0 if start is None else newton_row(mechanism, group, seed_known, start, size,
                                                   placed.row_values(self.seed_row)).sign
         done = 0

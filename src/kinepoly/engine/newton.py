@@ -223,20 +223,62 @@ def group_size(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, co
     return size if size > 0.0 and math.isfinite(size) else 1.0
 
 
-def start_poses(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex]) -> tuple[
+def start_poses(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex],
+                values: Mapping[int, float] | None = None) -> tuple[
         Reals | None, str]:
     """The group's starting poses from known or guessed points (the first two points of each link
-    that have one); None and the link's name when a link has none."""
-    q: list[float] = []
+    that have one); None and the link's name when a link has none.
+
+    A guide with one placed point only (a cylinder's barrel, in its own frame or in the frame's) turns so
+    that its line runs through the block's placed point, at the stroke ``values`` gives where an input
+    drives the slider (else at the farther of the two places on the line at that distance): its angle
+    does not depend on how its points are written. Other links with one placed point start at angle 0
+    (a block's angle follows its guide's in Newton's first step).
+    """
+    placed: dict[str, tuple[complex, complex]] = {}  # one placed point: (local, world)
+    angle: dict[str, float] = {}
     for link in group.links:
         pts = [(complex(*p.local), points[p.name]) for p in mechanism.scene.link(link).points if p.name in points]
         if not pts:
             return None, link
-        (la, wa), (lb, wb) = pts[0], pts[1] if len(pts) > 1 else pts[0]
-        theta = phase(wb - wa) - phase(lb - la) if len(pts) > 1 else 0.0
-        origin = wa - la * complex(math.cos(theta), math.sin(theta))
+        if len(pts) > 1:
+            (la, wa), (lb, wb) = pts[0], pts[1]
+            angle[link] = phase(wb - wa) - phase(lb - la)
+        placed[link] = pts[0]
+    for link in group.links:
+        if link not in angle:
+            turned = _guide_angle(group, link, placed[link], points, values or {})
+            if turned is not None:
+                angle[link] = turned
+    q: list[float] = []
+    for link in group.links:
+        local, world = placed[link]
+        theta = angle.get(link, 0.0)
+        origin = world - local * complex(math.cos(theta), math.sin(theta))
         q += [origin.real, origin.imag, theta]
     return np.array(q), ""
+
+
+def _guide_angle(group: NewtonGroup, link: str, placed: tuple[complex, complex], points: Mapping[str, complex],
+                 values: Mapping[int, float]) -> float | None:
+    """The angle of a guide with one placed point whose line runs through its block's point (``start_poses``)."""
+    for joint in group.joints:
+        if not isinstance(joint, SliderSpec) or joint.guide != link or joint.point not in points:
+            continue
+        local, world = placed
+        reach = abs(points[joint.point] - world)
+        e = complex(math.cos(joint.angle_rad), math.sin(joint.angle_rad))
+        foot = complex(*joint.through) - local  # the line from the placed point: foot + s e
+        driven = [values[d.index] for d in group.drives if d.joint == joint and d.index in values]
+        if driven:
+            stroke = driven[0]
+        else:
+            along = (foot * e.conjugate()).real
+            stroke = -along + math.sqrt(max(reach * reach - abs(foot) ** 2 + along * along, 0.0))
+        on_line = foot + stroke * e
+        if reach > 0.0 and on_line != 0:
+            return phase(points[joint.point] - world) - phase(on_line)
+    return None
 
 
 @dataclass(frozen=True)

@@ -133,7 +133,8 @@ class Walk:
 
     def _solve(self, known: Mapping[str, LinkPose], guess: Mapping[str, complex],
                values: Mapping[int, float]) -> RowClosure:
-        start, _ = start_poses(self.mechanism, self.group, {**guess, **known_points(self.mechanism, known)})
+        start, _ = start_poses(self.mechanism, self.group, {**guess, **known_points(self.mechanism, known)},
+                               values)
         if start is None:
             return RowClosure(None, math.inf, 0)
         return newton_row(self.mechanism, self.group, known, start, self.size, values)

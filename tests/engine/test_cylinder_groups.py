@@ -1,0 +1,135 @@
+"""Cylinders inside larger groups: the lifting platform of ``examples/platform-lift.toml``.
+
+The platform 3 hangs from the frame on the arms 2 (A0 A) and 4 (B0 B), and the cylinder from C0 on the
+frame to P on the platform sets its stroke s = |C0 P|. Everything here is derived on its own, in
+mpmath at 40 digits, from the four-bar's closed form (B the crossing of the circles about A and about B0
+on the platform's side of A B0), and shares nothing with kinepoly: the stroke at an arm angle theta2,
+the arm angle at a stroke (a root of s(theta2) - s), the ends of the stroke (the roots of ds/dtheta2, where
+the platform meets a dead point), and the rates by differentiating the closed form (d theta2 / dt =
+s_dot / s'(theta2), d2 theta2 / dt2 = (s_ddot - s''(theta2) theta2_dot^2) / s'(theta2)).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import mpmath as mp  # type: ignore[import-untyped]
+import numpy as np
+import pytest
+from tests.scenes import EXAMPLES
+
+import kinepoly
+from kinepoly.sweep import sweep
+
+mp.mp.dps = 40
+
+A0, B0, C0 = mp.mpc(0, 0), mp.mpc(400, 0), mp.mpc(350, -50)
+ARM2, ARM4, AB = mp.mpf(250), mp.mpf(250), mp.mpf(300)
+P_ON_PLATFORM = mp.mpc(100, 80)  # P in the platform's frame: A at its origin, B on its x-axis
+S_DOT, S_DDOT = 50, -20
+
+OWN_FRAMES = (EXAMPLES / "platform-lift.toml").read_text()
+FRAME_COORDINATES = OWN_FRAMES.replace(
+    "5 = { points = { C0 = [0, 0] } }", "5 = { points = { C0 = [350, -50] } }").replace(
+    "6 = { points = { P = [0, 0] } }", "6 = { points = { P = [190.8773300227689, 316.9877053789638] } }").replace(
+    "line = { through = [0, 0], angle = 0 }", "line = { through = [350, -50], angle = 113.44113455483786 }")
+"""The same platform with the barrel and the rod written in frame coordinates at the scene's stroke."""
+
+
+def _platform(theta2: mp.mpf) -> tuple[mp.mpc, mp.mpc, mp.mpc]:
+    """A, B and P at the arm angle theta2 (the assembly with the platform above the line A B0)."""
+    a = A0 + ARM2 * mp.expjpi(theta2 / mp.pi)
+    d = B0 - a
+    dist = abs(d)
+    along = (AB**2 - ARM4**2 + dist**2) / (2 * dist)
+    b = a + (along + 1j * mp.sqrt(AB**2 - along**2)) * d / dist
+    return a, b, a + P_ON_PLATFORM * (b - a) / AB
+
+
+def _stroke(theta2: mp.mpf) -> mp.mpf:
+    return abs(_platform(theta2)[2] - C0)
+
+
+def _dead_points() -> tuple[mp.mpf, mp.mpf]:
+    """The arm angles where ds/dtheta2 = 0 on either side of the scene's position: from a scan, refined."""
+    scan = np.radians(np.linspace(-60.0, 113.0, 347))
+    strokes = np.array([float(_stroke(mp.mpf(t))) for t in scan])
+    turns = np.flatnonzero(np.diff(np.sign(np.diff(strokes))))
+    assert len(turns) == 2  # one least and one greatest stroke on this stretch
+    return tuple(mp.findroot(lambda t: mp.diff(_stroke, t), mp.mpf(scan[k + 1])) for k in turns)
+
+
+LOW, HIGH = _dead_points()
+
+
+def _arm_at(stroke: float) -> mp.mpf:
+    """theta2 at the stroke, between the dead points (s grows with theta2 there)."""
+    return mp.findroot(lambda t: _stroke(t) - stroke, (LOW + mp.mpf("1e-6"), HIGH - mp.mpf("1e-6")),
+                       solver="anderson")
+
+
+def _motion(stroke: float, point: Callable[[mp.mpf], mp.mpc]) -> tuple[complex, complex, complex]:
+    """The point's position, velocity and acceleration at the stroke, s_dot = 50, s_ddot = -20."""
+    t = _arm_at(stroke)
+    s1, s2 = mp.diff(_stroke, t, 1), mp.diff(_stroke, t, 2)
+    w = S_DOT / s1
+    alpha = (S_DDOT - s2 * w * w) / s1
+    x1, x2 = mp.diff(point, t, 1), mp.diff(point, t, 2)
+    return complex(point(t)), complex(x1 * w), complex(x2 * w * w + x1 * alpha)
+
+
+POINTS: dict[str, Callable[[mp.mpf], mp.mpc]] = {
+    "A": lambda t: _platform(t)[0], "B": lambda t: _platform(t)[1], "P": lambda t: _platform(t)[2]}
+
+
+def _scene(text: str, stroke: float) -> kinepoly.Scene:
+    theta = _arm_at(stroke)
+    a, b, p = (complex(z) for z in _platform(theta))
+    guess = f"A = [{a.real:.0f}, {a.imag:.0f}]\nB = [{b.real:.0f}, {b.imag:.0f}]\nP = [{p.real:.0f}, {p.imag:.0f}]"
+    text = text.replace("s = 400", f"s = {stroke!r}")
+    start, end = text.index("[guess]"), text.index("[find]")
+    return kinepoly.loads_scene(text[:start] + "[guess]\n" + guess + "\n\n" + text[end:])
+
+
+def test_the_stroke_range_is_where_the_platform_meets_its_dead_points() -> None:
+    assert float(_stroke(LOW)) == pytest.approx(194.293652, abs=1e-6)  # the figures the example's comment gives
+    assert float(_stroke(HIGH)) == pytest.approx(462.553059, abs=1e-6)
+    for text in (OWN_FRAMES, FRAME_COORDINATES):
+        result = sweep(kinepoly.loads_scene(text), steps=40)
+        values = result.input.values
+        assert (result.status[1:-1] == 0).all()
+        assert float(values[0]) == pytest.approx(float(_stroke(LOW)), abs=1e-4)  # 1e-7 of the size inside
+        assert float(values[-1]) == pytest.approx(float(_stroke(HIGH)), abs=1e-4)
+
+
+@pytest.mark.parametrize("text", [OWN_FRAMES, FRAME_COORDINATES], ids=["own-frames", "frame-coordinates"])
+def test_a_sweep_follows_the_stroke_between_the_dead_points(text: str) -> None:
+    result = sweep(kinepoly.loads_scene(text), steps=13, start=260.0, stop=325.0)
+    assert (result.status == 0).all(), result.warnings
+    for row, stroke in enumerate(result.input.values):
+        for name, point in POINTS.items():
+            x, v, a = _motion(float(stroke), point)
+            got = complex(result.column(f"r_{name}_x").values[row], result.column(f"r_{name}_y").values[row])
+            assert abs(got - x) <= 1e-9 * 500, (stroke, name)
+            got = complex(result.column(f"v_{name}_x").values[row], result.column(f"v_{name}_y").values[row])
+            assert abs(got - v) <= 1e-9 * abs(v), (stroke, name)
+            got = complex(result.column(f"a_{name}_x").values[row], result.column(f"a_{name}_y").values[row])
+            assert abs(got - a) <= 1e-8 * abs(a), (stroke, name)
+
+
+@pytest.mark.parametrize("stroke", [200.0, 260.0, 325.0, 400.0, 455.0])
+def test_the_platform_in_own_frames_solves_as_in_frame_coordinates(stroke: float) -> None:
+    """The same values from both ways of writing the cylinder, each equal to the closed form's."""
+    solutions = [kinepoly.solve(_scene(text, stroke)) for text in (OWN_FRAMES, FRAME_COORDINATES)]
+    for s in solutions:
+        assert s.velocity is not None and s.acceleration is not None
+        for name, point in POINTS.items():
+            x, v, a = _motion(stroke, point)
+            assert abs(complex(*s.position(name)) - x) <= 1e-9 * 500, name
+            assert abs(complex(*s.velocity.tips[name]) - v) <= 1e-9 * abs(v), name
+            assert abs(complex(*s.acceleration.tips[name]) - a) <= 1e-8 * abs(a), name
+        assert s.slider("56").s == pytest.approx(stroke, rel=1e-12)
+    own, frame = solutions
+    assert math.remainder(own.angle("5") - frame.angle("5") - math.radians(113.44113455483786), math.tau) == (
+        pytest.approx(0.0, abs=1e-9))  # the barrel's frame is turned by the axis' angle; its motion is the same
