@@ -133,3 +133,37 @@ def test_the_platform_in_own_frames_solves_as_in_frame_coordinates(stroke: float
     own, frame = solutions
     assert math.remainder(own.angle("5") - frame.angle("5") - math.radians(113.44113455483786), math.tau) == (
         pytest.approx(0.0, abs=1e-9))  # the barrel's frame is turned by the axis' angle; its motion is the same
+
+
+def test_the_platform_is_a_triad_built_through_its_assur_point() -> None:
+    """Once the stroke is given the cylinder is one leg C0 P: the group is a triad, with no linear solve, its
+    Assur point S on the lines of the two legs the step names, and every velocity tip on both of its direction
+    lines (the acceleration steps' lines are the triads' own, tested over every example with the triads)."""
+    s = kinepoly.solve(kinepoly.load_scene(EXAMPLES / "platform-lift.toml"))
+    assert not [step for step in s.steps if step.kind == "linear-solve"]
+    assur = [step for step in s.steps if step.topic == "assur-point"]
+    assert {step.polygon for step in assur} == {"velocity", "acceleration"}
+    at = complex(*s.position("S"))
+    lines = {"2": ("A0", "A"), "4": ("B0", "B"), "5+6": ("C0", "P")}
+    for step in assur:
+        assert {str(step.param("first")), str(step.param("second")), str(step.param("third"))} == set(lines)
+        for name in ("first", "second"):
+            p, q = (complex(*s.position(x)) for x in lines[str(step.param(name))])
+            assert abs(((at - p) / (q - p)).imag) <= 1e-12 * abs(at - p) / abs(q - p) + 1e-15
+    for step in s.steps:
+        if step.kind == "intersection" and step.polygon == "velocity":
+            tip = complex(*step.value)
+            for line in step.lines:
+                through, direction = complex(*line.through), complex(*line.direction)
+                assert abs(((tip - through) * direction.conjugate()).imag) <= 1e-9 * 100 * abs(direction)
+    # the drive's terms: P over the barrel's point under it moves along the axis at s_dot
+    assert s.velocity is not None and s.acceleration is not None
+    x = _motion(400.0, POINTS["P"])[0]
+    axis = (x - complex(C0)) / abs(x - complex(C0))
+    rel = complex(*s.velocity.tips["P"]) - complex(*s.velocity.tips["P@5"])
+    assert abs(rel - S_DOT * axis) <= 1e-12 * S_DOT
+    omega = s.velocity.omega["5"]
+    rel = complex(*s.acceleration.tips["P"]) - complex(*s.acceleration.tips["P@5"])
+    assert abs(rel - (S_DDOT * axis + 2 * omega * 1j * S_DOT * axis)) <= 1e-9 * abs(rel)
+    assert s.slider("56").s_dot == pytest.approx(S_DOT, rel=1e-12)
+    assert s.slider("56").s_ddot == pytest.approx(S_DDOT, rel=1e-9)
