@@ -17,6 +17,8 @@ from collections.abc import Callable
 import mpmath as mp  # type: ignore[import-untyped]
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from tests.scenes import EXAMPLES
 
 import kinepoly
@@ -88,7 +90,7 @@ def _scene(text: str, stroke: float) -> kinepoly.Scene:
     a, b, p = (complex(z) for z in _platform(theta))
     guess = f"A = [{a.real:.0f}, {a.imag:.0f}]\nB = [{b.real:.0f}, {b.imag:.0f}]\nP = [{p.real:.0f}, {p.imag:.0f}]"
     text = text.replace("s = 400", f"s = {stroke!r}")
-    start, end = text.index("[guess]"), text.index("[find]")
+    start, end = text.index("\n[guess]") + 1, text.index("\n[find]") + 1
     return kinepoly.loads_scene(text[:start] + "[guess]\n" + guess + "\n\n" + text[end:])
 
 
@@ -167,3 +169,108 @@ def test_the_platform_is_a_triad_built_through_its_assur_point() -> None:
     assert abs(rel - (S_DDOT * axis + 2 * omega * 1j * S_DOT * axis)) <= 1e-9 * abs(rel)
     assert s.slider("56").s_dot == pytest.approx(S_DOT, rel=1e-12)
     assert s.slider("56").s_ddot == pytest.approx(S_DDOT, rel=1e-9)
+
+
+# -- a cylinder between the crank and the rocker of a crank-rocker: a class-4 group -----------------------
+
+CRANK_ROCKER = (EXAMPLES / "crank-rocker-cylinder.toml").read_text()
+F0 = mp.mpc(100, 0)
+CRANK, COUPLER, ROCKER = mp.mpf(30), mp.mpf(110), mp.mpf(80)
+C_ON_CRANK, D_ON_ROCKER = mp.mpc(20, 15), mp.mpc(40, -10)
+
+
+def _crank_rocker(theta2: mp.mpf) -> dict[str, mp.mpc]:
+    """A, B, C, D at the crank angle theta2 (the four-bar closed with B above the line A B0)."""
+    turn = mp.expjpi(theta2 / mp.pi)
+    a = CRANK * turn
+    d = F0 - a
+    dist = abs(d)
+    along = (COUPLER**2 - ROCKER**2 + dist**2) / (2 * dist)
+    b = a + (along + 1j * mp.sqrt(COUPLER**2 - along**2)) * d / dist
+    return {"A": a, "B": b, "C": C_ON_CRANK * turn, "D": F0 + D_ON_ROCKER * (b - F0) / ROCKER}
+
+
+def _cylinder(theta2: mp.mpf) -> mp.mpf:
+    at = _crank_rocker(theta2)
+    return abs(at["D"] - at["C"])
+
+
+def _stroke_ends() -> tuple[mp.mpf, mp.mpf]:
+    """The crank angles of the least and the greatest stroke over a turn (ds/dtheta2 = 0)."""
+    scan = np.radians(np.arange(0.0, 360.0, 1.0))
+    strokes = np.array([float(_cylinder(mp.mpf(t))) for t in scan])
+    low, high = (mp.findroot(lambda t: mp.diff(_cylinder, t), mp.mpf(scan[k])) for k in (strokes.argmin(), strokes.argmax()))
+    return low, high
+
+
+SHORTEST, LONGEST = _stroke_ends()
+
+
+def _configurations(stroke: float) -> tuple[mp.mpf, mp.mpf]:
+    """The crank angle at the stroke in each configuration: the stroke growing with theta2 (from the shortest
+    to the longest) and shrinking (from the longest round to the shortest)."""
+    grow = mp.findroot(lambda t: _cylinder(t) - stroke, (SHORTEST - 2 * mp.pi + mp.mpf("1e-9"), LONGEST - mp.mpf("1e-9")),
+                       solver="anderson")
+    shrink = mp.findroot(lambda t: _cylinder(t) - stroke, (LONGEST + mp.mpf("1e-9"), SHORTEST - mp.mpf("1e-9")),
+                         solver="anderson")
+    return grow, shrink
+
+
+def _crank_rocker_scene(stroke: float, guess: dict[str, complex]) -> kinepoly.Scene:
+    text = CRANK_ROCKER.replace("s = 100", f"s = {stroke!r}")
+    start, end = text.index("\n[guess]") + 1, text.index("\n[find]") + 1
+    lines = "\n".join(f"{name} = [{z.real!r}, {z.imag!r}]" for name, z in guess.items())
+    return kinepoly.loads_scene(text[:start] + "[guess]\n" + lines + "\n\n" + text[end:])
+
+
+def test_the_crank_rocker_cylinder_is_a_class_4_group_solved_where_a_student_cannot_construct_it() -> None:
+    s = kinepoly.solve(kinepoly.load_scene(EXAMPLES / "crank-rocker-cylinder.toml"))
+    assert s.check.max_rel_error <= 1e-9
+    assert not [step for step in s.steps if step.topic == "assur-point"]
+    assert [step.kind for step in s.steps if step.kind == "linear-solve"] == ["linear-solve"] * 2
+
+
+@pytest.mark.parametrize("stroke", [85.0, 88.0, 91.75, 94.7, 96.2, 100.0, 110.0, 120.0, 127.0])
+def test_a_solve_lands_on_the_configuration_of_an_exact_guess(stroke: float) -> None:
+    """Each configuration's own points as the guess give that configuration (before: the other one, at 91.75
+    to 94.7 mm, or no solution at 96.2, with the crank turned up to 80 degrees from the guess)."""
+    for theta in _configurations(stroke):
+        want = {name: complex(z) for name, z in _crank_rocker(theta).items()}
+        s = kinepoly.solve(_crank_rocker_scene(stroke, want))
+        for name, z in want.items():
+            assert abs(complex(*s.position(name)) - z) <= 1e-9 * 100, (stroke, float(theta), name)
+        assert not [n for n in s.notices if n.code == "far-from-guess"]
+
+
+@settings(max_examples=40, deadline=None)
+@given(stroke=st.floats(86.0, 126.0), which=st.integers(0, 1), offsets=st.lists(
+    st.tuples(st.floats(-12.0, 12.0), st.floats(-12.0, 12.0)), min_size=4, max_size=4))
+def test_a_solve_takes_the_assembly_nearest_the_guess_or_says_it_did_not(
+        stroke: float, which: int, offsets: list[tuple[float, float]]) -> None:
+    """A rough guess (each point up to 12 mm off one configuration): the solve takes the configuration whose
+    points lie nearest the guess, or warns that it may not have."""
+    configurations = [{name: complex(z) for name, z in _crank_rocker(theta).items()}
+                      for theta in _configurations(stroke)]
+    guess = {name: z + complex(*d) for (name, z), d in zip(configurations[which].items(), offsets, strict=True)}
+    s = kinepoly.solve(_crank_rocker_scene(stroke, guess))
+    if [n for n in s.notices if n.code == "far-from-guess"]:
+        return
+    score = [sum(abs(c[name] - g) ** 2 for name, g in guess.items()) for c in configurations]
+    nearest = configurations[score.index(min(score))]
+    for name, z in nearest.items():
+        assert abs(complex(*s.position(name)) - z) <= 1e-9 * 100, name
+
+
+def test_the_crank_rocker_cylinder_sweeps_its_whole_stroke_on_one_configuration() -> None:
+    """From the shortest stroke to the longest (the dead points of the group) every row closes, on the
+    configuration of the scene's guess, equal to the closed form."""
+    result = sweep(kinepoly.load_scene(EXAMPLES / "crank-rocker-cylinder.toml"), steps=60)
+    values = result.input.values
+    assert float(values[0]) == pytest.approx(float(_cylinder(SHORTEST)), abs=1e-4)
+    assert float(values[-1]) == pytest.approx(float(_cylinder(LONGEST)), abs=1e-4)
+    assert (result.status[1:-1] == 0).all(), result.warnings
+    for row in range(1, len(values) - 1):
+        theta = _configurations(float(values[row]))[0]
+        for name, z in _crank_rocker(theta).items():
+            got = complex(result.column(f"r_{name}_x").values[row], result.column(f"r_{name}_y").values[row])
+            assert abs(got - complex(z)) <= 1e-9 * 100, (float(values[row]), name)

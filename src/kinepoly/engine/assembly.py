@@ -26,7 +26,7 @@ from kinepoly.engine.branches import follow_branch
 from kinepoly.engine.cam_contact import Candidates, Ints
 from kinepoly.engine.cam_place import floating_unreachable, follow_contact, guessed_contact, seeded_contact
 from kinepoly.engine.closures import Choice, Closure
-from kinepoly.engine.newton import group_size, newton_row, start_poses
+from kinepoly.engine.newton import group_reach, group_size, newton_row, start_poses
 from kinepoly.engine.newton_walk import Walk, known_points
 from kinepoly.engine.plan import CamGroup, NewtonGroup, PositionPlan
 from kinepoly.engine.position import Failure, Placement, Positions, describe_input, input_values, solve_positions
@@ -41,6 +41,12 @@ from kinepoly.scene.flat_side import flat_side
 __all__ = ["Continuity", "NearestGuess", "position_at_input"]
 
 Vec = tuple[float, float]
+
+_NEAR_GUESS = 0.05
+"""A Newton group's solution whose guessed points lie further than this share of its links' length from their
+guess may have leapt to another assembly: the solve creeps from the guess again and keeps the nearer one."""
+_FAR_GUESS = 0.25
+"""Further than this share from the guess, the solve says so (``far-from-guess``)."""
 
 
 @dataclass(frozen=True)
@@ -130,9 +136,15 @@ class NearestGuess:
             raise AssemblyError(
                 f"group {group.name} is not a dyad and is solved by Newton's method from [guess]; "
                 f"link {missing} has no guessed or known point: add [guess] positions for its points")
-        size = group_size(mechanism, group, points)
-        closure = newton_row(mechanism, group, placed.row_poses(group.known_links(), 0), start, size,
-                             placed.row_values(0))
+        size, reach = group_size(mechanism, group, points), group_reach(mechanism, group)
+        known_poses, values = placed.row_poses(group.known_links(), 0), placed.row_values(0)
+        closure = newton_row(mechanism, group, known_poses, start, size, values)
+        off = self._off_guess(mechanism, closure.poses)
+        if off[0] > _NEAR_GUESS * reach:  # perhaps leapt to another assembly: creep from the guess instead
+            crept = newton_row(mechanism, group, known_poses, start, size, values, reach)
+            crept_off = self._off_guess(mechanism, crept.poses)
+            if crept_off[0] < off[0]:
+                closure, off = crept, crept_off
         found, residual = closure.poses, closure.residual
         if found is None:
             raise AssemblyError(
@@ -140,7 +152,29 @@ class NearestGuess:
                 f"joint residual of {residual:.3g}; the group cannot be assembled there, or [guess] is far from it"
                 f"{floating_unreachable(group)}")
         poses = {**placed.poses, **{link: ArrayPose.of_rows([pose]) for link, pose in found.items()}}
-        return replace(placed, poses=poses)
+        if off[0] <= _FAR_GUESS * reach:
+            return replace(placed, poses=poses)
+        distance, point, at = off
+        guess = self.guess[point]
+        at = at + complex(*self.origin)
+        notice = Notice("far-from-guess", (
+            f"group {group.name}: Newton's method from [guess] closed it where {point} lies at ({at.real:.6g}, "
+            f"{at.imag:.6g}), {distance:.3g} {mechanism.scene.units.length} from its guess "
+            f"[{_coordinate(guess[0], self.origin[0])}, {_coordinate(guess[1], self.origin[1])}]: another assembly "
+            "may lie nearer the guess (give [guess] positions closer to the assembly you mean)"))
+        return replace(placed, poses=poses, notices=(*placed.notices, notice))
+
+    def _off_guess(self, mechanism: Mechanism, poses: Mapping[str, LinkPose] | None) -> tuple[float, str, complex]:
+        """The guessed point of ``poses``' links furthest from its guess: (distance, name, where it lies)."""
+        worst = (math.inf if poses is None else 0.0, "", 0j)
+        for link, pose in (poses or {}).items():
+            for p in mechanism.scene.link(link).points:
+                if p.name in self.guess:
+                    at = complex(*pose.world(p.local))
+                    distance = abs(at - complex(*self.guess[p.name]))
+                    if distance > worst[0]:
+                        worst = (distance, p.name, at)
+        return worst
 
 
 def _telling_point(mechanism: Mechanism, closure: Closure, pick: int) -> tuple[str, complex, complex]:

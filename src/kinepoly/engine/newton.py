@@ -30,7 +30,7 @@ from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import CamSpec, SliderSpec
 
-__all__ = ["CLOSED_REL", "RowClosure", "group_size", "newton_row", "start_poses"]
+__all__ = ["CLOSED_REL", "RowClosure", "group_reach", "group_size", "newton_row", "start_poses"]
 
 CLOSED_REL = 1e-9
 """A group is closed when its joint residual is at most this times the group's size."""
@@ -223,6 +223,12 @@ def group_size(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, co
     return size if size > 0.0 and math.isfinite(size) else 1.0
 
 
+def group_reach(mechanism: Mechanism, group: NewtonGroup, default: float = 1.0) -> float:
+    """The longest distance of a point of the group's links from the link's own origin (``default`` if none)."""
+    return max((abs(complex(*p.local)) for link in group.links for p in mechanism.scene.link(link).points),
+               default=default) or default
+
+
 def start_poses(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex],
                 values: Mapping[int, float] | None = None) -> tuple[
         Reals | None, str]:
@@ -281,6 +287,19 @@ def _guide_angle(group: NewtonGroup, link: str, placed: tuple[complex, complex],
     return None
 
 
+_CREEP = 0.1
+"""The largest move of a step, in links' lengths, where ``newton_row`` is given ``reach``."""
+
+
+def _cut(step: Reals, links: int, reach: float | None) -> float:
+    """The factor that keeps a step within ``_CREEP`` of ``reach`` (1 without ``reach``)."""
+    if reach is None or not reach > 0.0:
+        return 1.0
+    poses = step[:3 * links].reshape(links, 3)
+    move = float(np.max(np.maximum(np.hypot(poses[:, 0], poses[:, 1]), np.abs(poses[:, 2]) * reach)))
+    return min(1.0, _CREEP * reach / move) if move > 0.0 else 1.0
+
+
 @dataclass(frozen=True)
 class RowClosure:
     """What Newton's method made of one row: the group's poses (None where it does not close), the final
@@ -292,9 +311,12 @@ class RowClosure:
 
 
 def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], start: Reals,
-               size: float, values: Mapping[int, float] | None = None) -> RowClosure:
+               size: float, values: Mapping[int, float] | None = None, reach: float | None = None) -> RowClosure:
     """Close the group at one row from ``start``. ``values``: the inputs' values at the row, by input
-    index (for driven joints)."""
+    index (for driven joints). ``reach``: the links' length; with it no step moves a link by more than a
+    tenth of it (a link's origin, or its points by turning), so that the iteration creeps from the start to
+    a nearby assembly instead of leaping across to another (more steps, and no stall rule while a step is
+    cut short)."""
     system = _RowSystem(mechanism, group, known, size, values or {})
     q = np.concatenate((start, system.start_parameters(start))) if group.cams else start
     r, jac = system.evaluate(q)
@@ -304,12 +326,14 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
         if not norm_r > 0.0 or (stalled >= 3 and norm_r > CLOSED_REL * size):
             break
         step = np.linalg.lstsq(jac, -r, rcond=None)[0]
+        cut = _cut(np.asarray(step, np.float64), len(group.links), reach)
+        step = step * cut
         t = 1.0
         while t > 1e-6:
             trial, trial_jac = system.evaluate(q + t * step)
             norm_trial = float(np.linalg.norm(trial))
             if norm_trial < norm_r:
-                stalled = stalled + 1 if norm_trial > 0.5 * norm_r else 0
+                stalled = stalled + 1 if norm_trial > 0.5 * norm_r and cut == 1.0 else 0
                 q, r, jac, norm_r = q + t * step, trial, trial_jac, norm_trial
                 break
             t /= 2
