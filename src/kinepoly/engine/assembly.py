@@ -140,7 +140,8 @@ class NearestGuess:
         known_poses, values = placed.row_poses(group.known_links(), 0), placed.row_values(0)
         closure = newton_row(mechanism, group, known_poses, start, size, values)
         off = self._off_guess(mechanism, closure.poses)
-        if off[0] > _NEAR_GUESS * reach:  # perhaps leapt to another assembly: creep from the guess instead
+        if closure.poses is not None and off[0] > _NEAR_GUESS * reach:  # perhaps leapt to another assembly:
+            # creep from the guess instead (a group that does not close from the guess is not searched further)
             crept = newton_row(mechanism, group, known_poses, start, size, values, reach)
             crept_off = self._off_guess(mechanism, crept.poses)
             if crept_off[0] < off[0]:
