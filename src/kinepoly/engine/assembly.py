@@ -26,12 +26,12 @@ from kinepoly.engine.branches import follow_branch
 from kinepoly.engine.cam_contact import Candidates, Ints
 from kinepoly.engine.cam_place import floating_unreachable, follow_contact, guessed_contact, seeded_contact
 from kinepoly.engine.closures import Choice, Closure
-from kinepoly.engine.newton import group_reach, group_size, newton_row, start_poses
+from kinepoly.engine.newton import RowClosure, group_reach, group_size, newton_row, start_poses
 from kinepoly.engine.newton_walk import Walk, known_points
 from kinepoly.engine.plan import CamGroup, NewtonGroup, PositionPlan
 from kinepoly.engine.position import Failure, Placement, Positions, describe_input, input_values, solve_positions
 from kinepoly.errors import AssemblyError, SingularityError
-from kinepoly.geom.arrays import Bools
+from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
@@ -42,9 +42,11 @@ __all__ = ["Continuity", "NearestGuess", "position_at_input"]
 
 Vec = tuple[float, float]
 
-_NEAR_GUESS = 0.05
-"""A Newton group's solution whose guessed points lie further than this share of its links' length from their
-guess may have leapt to another assembly: the solve creeps from the guess again and keeps the nearer one."""
+_NEAR_GUESS = 0.01
+"""A Newton group's solution with a guessed point further than this share of its links' length from its guess
+may have leapt to another assembly: the solve looks for others about the guess and keeps the nearest."""
+_PROBES = 12
+"""How many starts about the guess the solve tries besides it, where the first solution lies off the guess."""
 _FAR_GUESS = 0.25
 """Further than this share from the guess, the solve says so (``far-from-guess``)."""
 
@@ -140,12 +142,9 @@ class NearestGuess:
         known_poses, values = placed.row_poses(group.known_links(), 0), placed.row_values(0)
         closure = newton_row(mechanism, group, known_poses, start, size, values)
         off = self._off_guess(mechanism, closure.poses)
-        if closure.poses is not None and off[0] > _NEAR_GUESS * reach:  # perhaps leapt to another assembly:
-            # creep from the guess instead (a group that does not close from the guess is not searched further)
-            crept = newton_row(mechanism, group, known_poses, start, size, values, reach)
-            crept_off = self._off_guess(mechanism, crept.poses)
-            if crept_off[0] < off[0]:
-                closure, off = crept, crept_off
+        if closure.poses is not None and off[0] > _NEAR_GUESS * reach:  # perhaps leapt to another assembly
+            closure = self._nearest(mechanism, group, closure, (known_poses, start, size, values, reach))
+            off = self._off_guess(mechanism, closure.poses)
         found, residual = closure.poses, closure.residual
         if found is None:
             raise AssemblyError(
@@ -164,6 +163,27 @@ class NearestGuess:
             f"[{_coordinate(guess[0], self.origin[0])}, {_coordinate(guess[1], self.origin[1])}]: another assembly "
             "may lie nearer the guess (give [guess] positions closer to the assembly you mean)"))
         return replace(placed, poses=poses, notices=(*placed.notices, notice))
+
+    def _nearest(self, mechanism: Mechanism, group: NewtonGroup, closure: RowClosure,
+                 row: tuple[Mapping[str, LinkPose], Reals, float, Mapping[int, float], float]) -> RowClosure:
+        """Of the assemblies Newton's method reaches from the guess (directly, creeping, and from ``_PROBES``
+        starts turned and moved at random about it, the same every run), the one whose guessed points lie
+        nearest their guess (least sum of squares, as for a dyad). A group that does not close from the guess
+        is not searched further."""
+        known, start, size, values, reach = row
+        found = [closure, newton_row(mechanism, group, known, start, size, values, reach)]
+        rng = np.random.default_rng(0)
+        links = len(group.links)
+        for _ in range(_PROBES):
+            moved = start.copy()
+            moved[:3 * links] += (rng.uniform(-0.5, 0.5, (links, 3)) * (reach, reach, 2.0 * math.pi)).ravel()
+            found.append(newton_row(mechanism, group, known, moved, size, values))
+        return min((c for c in found if c.poses is not None), key=lambda c: self._score_poses(mechanism, c.poses))
+
+    def _score_poses(self, mechanism: Mechanism, poses: Mapping[str, LinkPose] | None) -> float:
+        return sum(abs(complex(*pose.world(p.local)) - complex(*self.guess[p.name])) ** 2
+                   for link, pose in (poses or {}).items() for p in mechanism.scene.link(link).points
+                   if p.name in self.guess)
 
     def _off_guess(self, mechanism: Mechanism, poses: Mapping[str, LinkPose] | None) -> tuple[float, str, complex]:
         """The guessed point of ``poses``' links furthest from its guess: (distance, name, where it lies)."""

@@ -10,7 +10,7 @@ is that of a pin leg, square to K Q, after the drive's relative term (``engine.c
 
 (a motor between the two links gives its own relative terms). The leg's line on the mechanism, through
 which the Assur point is found, is K Q itself. ``engine.triad`` builds the group; this module gives the
-leg's known terms, and reads the carrier's rate and the slider's values after.
+leg's known terms, and reads the carrier's rate, its point under Q and the slider's values after.
 """
 
 from __future__ import annotations
@@ -103,32 +103,32 @@ def acceleration_terms(ctx: _Context, leg: Leg) -> tuple[Points, Points, tuple[D
     return end, np.asarray(direction), (*vectors, DrawnVector(term, b.vec(start), b.vec(end), "relative"))
 
 
-def _finish(polygon: Polygon, leg: Leg, along: Reals) -> None:
-    """The carrier's rate read off the leg's line, and a motor's rate (the carrier's point under Q is
-    constructed from K and that rate when it is asked, with its own step)."""
+def _finish(polygon: Polygon, leg: Leg, tip: Points, along: Reals, relative: Points) -> None:
+    """The carrier's rate read off the leg's line, its point under Q (the tip less the drive's term, found
+    with Q's tip, as in a carried dyad), and a motor's rate."""
     from kinepoly.engine.velocity import add_motor_rate, read_rate
 
     assert leg.pin is not None
+    polygon.add_tip(leg.carrier, leg.point, np.asarray(tip - relative))
     read_rate(polygon, leg.carrier, leg.pin, polygon.label(leg.carrier, leg.point), along)
     drive = _drive(leg)
     if isinstance(drive.joint, Revolute):
         add_motor_rate(polygon, drive, leg.link, leg.carrier, along)
 
 
-def finish_velocity(polygon: Polygon, leg: Leg, along: Reals, sliding: dict[str, Points]) -> None:
-    """After the construction: the carrier's omega; a cylinder's sliding velocity."""
+def finish_velocity(polygon: Polygon, leg: Leg, tip: Points, along: Reals, sliding: dict[str, Points]) -> None:
+    """After the construction: the carrier's omega and point under Q; a cylinder's sliding velocity."""
     relative = _relative_velocity(polygon, leg)
-    _finish(polygon, leg, along)
+    _finish(polygon, leg, tip, along, relative)
     joint = _drive(leg).joint
     if isinstance(joint, SliderSpec):
         sign = 1.0 if leg.link == joint.block else -1.0
         sliding[joint.name] = np.asarray(sign * relative)
-        polygon.tip(joint.guide, joint.point)  # the guide's point under the block's, for the Coriolis term
 
 
-def finish_acceleration(ctx: _Context, leg: Leg, along: Reals) -> None:
-    """After the construction: the carrier's alpha; a cylinder's sliding and Coriolis terms."""
-    _finish(ctx.b, leg, along)
+def finish_acceleration(ctx: _Context, leg: Leg, tip: Points, along: Reals) -> None:
+    """After the construction: the carrier's alpha and point under Q; a cylinder's sliding and Coriolis terms."""
+    _finish(ctx.b, leg, tip, along, _relative_acceleration(ctx, leg))
     joint = _drive(leg).joint
     if isinstance(joint, SliderSpec):
         ctx.slide_values(joint, joint.block, joint.point)

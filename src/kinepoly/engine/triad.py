@@ -329,9 +329,9 @@ def velocity_by_assur_point(polygon: Polygon, triad: Triad, sliding: dict[str, P
             on_leg, on_t = (polygon.tip(leg.link, leg.point), tip) if leg.kind == "slot" else (
                 tip, polygon.tip(leg.known, leg.point))
             sliding[leg.slider.name] = np.asarray(on_leg - on_t)
-    for leg, along in zip(triad.legs, built.along, strict=True):
+    for leg, along, tip in zip(triad.legs, built.along, built.tips, strict=True):
         if leg.drive is not None:
-            driven_leg.finish_velocity(polygon, leg, along, sliding)
+            driven_leg.finish_velocity(polygon, leg, tip, along, sliding)
 
 
 def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built, s_world: Points,
@@ -479,8 +479,8 @@ def acceleration_by_assur_point(ctx: _Context, triad: Triad) -> None:
     w2 = w * w
     built, s_world, order = _construct(b, triad, legs, lambda r: np.asarray(b.normal_sign * w2 * r))
     _finish(b, triad, legs, built, s_world, order)
-    for leg, along in zip(triad.legs, built.along, strict=True):
+    for leg, along, tip in zip(triad.legs, built.along, built.tips, strict=True):
         if leg.slider is not None:
             ctx.slide_values(leg.slider, leg.link, leg.point)
         if leg.drive is not None:
-            driven_leg.finish_acceleration(ctx, leg, along)
+            driven_leg.finish_acceleration(ctx, leg, tip, along)
