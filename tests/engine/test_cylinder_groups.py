@@ -22,6 +22,8 @@ from hypothesis import strategies as st
 from tests.scenes import EXAMPLES
 
 import kinepoly
+from kinepoly.present.catalogue import load_catalogue
+from kinepoly.present.phrasing import Context, step_sentence
 from kinepoly.sweep import sweep
 
 mp.mp.dps = 40
@@ -223,11 +225,53 @@ def _crank_rocker_scene(stroke: float, guess: dict[str, complex]) -> kinepoly.Sc
     return kinepoly.loads_scene(text[:start] + "[guess]\n" + lines + "\n\n" + text[end:])
 
 
-def test_the_crank_rocker_cylinder_is_a_class_4_group_solved_where_a_student_cannot_construct_it() -> None:
+def test_the_crank_rocker_cylinder_is_a_class_4_group_and_its_steps_say_so() -> None:
+    """Once the stroke is given the crank, coupler, rocker and cylinder close a contour of four: no Assur point;
+    the linear solve's steps name class 4 (in every language) and lay the relative vectors it gives, each
+    square to its link (the tangential terms too), the normal terms toward the first joint, and the slider's
+    (s_dot along its axis; s_ddot along it and the Coriolis term), every one ending on the tip of its point."""
     s = kinepoly.solve(kinepoly.load_scene(EXAMPLES / "crank-rocker-cylinder.toml"))
     assert s.check.max_rel_error <= 1e-9
     assert not [step for step in s.steps if step.topic == "assur-point"]
-    assert [step.kind for step in s.steps if step.kind == "linear-solve"] == ["linear-solve"] * 2
+    steps = [step for step in s.steps if step.kind == "linear-solve"]
+    assert [step.polygon for step in steps] == ["velocity", "acceleration"]
+    assert all(step.param("assur_class") == 4 for step in steps)
+    for lang, words in (("en", "class 4"), ("tr", "4. sınıftandır"), ("ro", "clasa 4")):
+        say = load_catalogue(lang)
+        assert all(words in step_sentence(step, say, Context(s, {"velocity": 1.0, "acceleration": 1.0}))
+                   for step in steps), lang
+    assert s.velocity is not None and s.acceleration is not None
+    axis = complex(*s.position("D")) - complex(*s.position("C"))
+    for step in steps:
+        tips = (s.velocity if step.polygon == "velocity" else s.acceleration).tips
+        drawn = {v.label: v for v in step.vectors}
+        assert {"v_B/A", "v_D@5/C", "v_D/D@5"} <= set(drawn) if step.polygon == "velocity" else (
+            {"a^n_B/A", "a^t_B/A", "a^n_D@5/C", "a^t_D@5/C", "a_D/D@5"} <= set(drawn))
+        for label, v in drawn.items():
+            along = complex(*v.end) - complex(*v.start)
+            term, _, ends = label.partition("_")
+            point, _, ref = ends.partition("/")
+            segment = complex(*s.position(point.partition("@")[0])) - complex(*s.position(ref.partition("@")[0]))
+            if ref.partition("@")[0] == point.partition("@")[0]:  # the slider's: s_dot e; s_ddot e + 2 omega x s_dot e
+                e = axis / abs(axis)
+                want = 10 * e if step.polygon == "velocity" else -2 * e + 2 * s.velocity.omega["5"] * 1j * 10 * e
+                assert abs(along - want) <= 1e-9 * abs(want)
+            elif term == "a^n":  # toward the first joint
+                assert abs((along * segment.conjugate()).imag) <= 1e-9 * abs(along) * abs(segment)
+                assert (along * segment.conjugate()).real <= 0.0
+            else:  # square to the link
+                assert abs((along * segment.conjugate()).real) <= 1e-9 * abs(along) * abs(segment) + 1e-12
+            if term != "a^n":  # it ends on its point's tip
+                assert abs(complex(*v.end) - complex(*tips[point])) <= 1e-9 * abs(complex(*tips[point]))
+
+
+def test_a_guess_far_from_every_assembly_is_said_to_be() -> None:
+    """Every guessed point 60 mm off: whichever assembly the solve takes, it warns that another may lie nearer."""
+    theta = _configurations(100.0)[0]
+    guess = {name: complex(z) + 60 + 60j for name, z in _crank_rocker(theta).items()}
+    s = kinepoly.solve(_crank_rocker_scene(100.0, guess))
+    warned = [n.message for n in s.notices if n.code == "far-from-guess"]
+    assert len(warned) == 1 and "from its guess" in warned[0] and "another assembly" in warned[0]
 
 
 @pytest.mark.parametrize("stroke", [85.0, 88.0, 91.75, 94.7, 96.2, 100.0, 110.0, 120.0, 127.0])
