@@ -318,3 +318,32 @@ def test_the_crank_rocker_cylinder_sweeps_its_whole_stroke_on_one_configuration(
         for name, z in _crank_rocker(theta).items():
             got = complex(result.column(f"r_{name}_x").values[row], result.column(f"r_{name}_y").values[row])
             assert abs(got - complex(z)) <= 1e-9 * 100, (float(values[row]), name)
+
+
+def test_a_motor_in_a_leg_is_a_driven_leg_too() -> None:
+    """Arm 4 split at M by a motor (theta47 driven) as well as the cylinder: both legs are driven, the group is
+    still a triad, and P's velocity and acceleration equal central differences of P's place solved with both
+    inputs moving at their rates (s = 400 + 50 t - 10 t^2, theta47 = 10 deg + 0.3 t - 0.1 t^2 rad)."""
+    text = OWN_FRAMES.replace("4 = { points = { B0 = [0, 0], B = [250, 0] } }",
+                              "4 = { points = { B0 = [0, 0], M = [125, 0] } }\n7 = { points = { M = [0, 0], B = [125, 0] } }")
+    text = text.replace("[input]\nslider", "[[input]]\nslider").replace(
+        "s_ddot = -20\n", "s_ddot = -20\n\n[[input]]\nlink = \"7\"\nrelative_to = \"4\"\nangle = ANGLE\nomega = 0.3\n"
+        "alpha = -0.2\n").replace("B = [396, 250]", "B = [380, 250]\nM = [400, 125]")
+
+    def at(t: float) -> kinepoly.Solution:
+        angle = 10.0 + math.degrees(0.3 * t - 0.1 * t * t)
+        return kinepoly.solve(kinepoly.loads_scene(text.replace("s = 400", f"s = {400 + 50 * t - 10 * t * t!r}")
+                                                   .replace("ANGLE", repr(angle))))
+
+    s = at(0.0)
+    assert s.check.max_rel_error <= 1e-9
+    assert not [step for step in s.steps if step.kind == "linear-solve"]
+    assur = next(step for step in s.steps if step.topic == "assur-point")
+    assert {str(assur.param(k)) for k in ("first", "second", "third")} == {"2", "4+7", "5+6"}
+    h = 1e-3
+    before, after = (complex(*at(t).position("P")) for t in (-h, h))
+    here = complex(*s.position("P"))
+    assert s.velocity is not None and s.acceleration is not None
+    v, a = complex(*s.velocity.tips["P"]), complex(*s.acceleration.tips["P"])
+    assert abs(v - (after - before) / (2 * h)) <= 1e-6 * abs(v)
+    assert abs(a - (after - 2 * here + before) / (h * h)) <= 1e-4 * abs(a)
