@@ -26,12 +26,12 @@ from kinepoly.engine.branches import follow_branch
 from kinepoly.engine.cam_contact import Candidates, Ints
 from kinepoly.engine.cam_place import floating_unreachable, follow_contact, guessed_contact, seeded_contact
 from kinepoly.engine.closures import Choice, Closure
-from kinepoly.engine.newton import group_size, newton_row, start_poses
+from kinepoly.engine.newton import RowClosure, group_reach, group_size, newton_row, start_poses
 from kinepoly.engine.newton_walk import Walk, known_points
 from kinepoly.engine.plan import CamGroup, NewtonGroup, PositionPlan
 from kinepoly.engine.position import Failure, Placement, Positions, describe_input, input_values, solve_positions
 from kinepoly.errors import AssemblyError, SingularityError
-from kinepoly.geom.arrays import Bools
+from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
@@ -41,6 +41,15 @@ from kinepoly.scene.flat_side import flat_side
 __all__ = ["Continuity", "NearestGuess", "position_at_input"]
 
 Vec = tuple[float, float]
+
+_NEAR_GUESS = 0.03
+"""A Newton group's solution with a guessed point further than this share of its links' length from its guess
+may have leapt to another assembly: the solve looks for others about the guess and keeps the nearest (the
+examples guess within 2.4%, and pay nothing for it)."""
+_PROBES = 12
+"""How many starts about the guess the solve tries besides it, where the first solution lies off the guess."""
+_FAR_GUESS = 0.25
+"""Further than this share from the guess, the solve says so (``far-from-guess``)."""
 
 
 @dataclass(frozen=True)
@@ -125,14 +134,18 @@ class NearestGuess:
     def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
         known = known_points(mechanism, placed.row_poses(placed.poses, 0))
         points = {**{name: complex(x, y) for name, (x, y) in self.guess.items()}, **known}
-        start, missing = start_poses(mechanism, group, points)
+        start, missing = start_poses(mechanism, group, points, placed.row_values(0))
         if start is None:
             raise AssemblyError(
                 f"group {group.name} is not a dyad and is solved by Newton's method from [guess]; "
                 f"link {missing} has no guessed or known point: add [guess] positions for its points")
-        size = group_size(mechanism, group, points)
-        closure = newton_row(mechanism, group, placed.row_poses(group.known_links(), 0), start, size,
-                             placed.row_values(0))
+        size, reach = group_size(mechanism, group, points), group_reach(mechanism, group)
+        known_poses, values = placed.row_poses(group.known_links(), 0), placed.row_values(0)
+        closure = newton_row(mechanism, group, known_poses, start, size, values)
+        off = self._off_guess(mechanism, closure.poses)
+        if closure.poses is not None and off[0] > _NEAR_GUESS * reach:  # perhaps leapt to another assembly
+            closure = self._nearest(mechanism, group, closure, (known_poses, start, size, values, reach))
+            off = self._off_guess(mechanism, closure.poses)
         found, residual = closure.poses, closure.residual
         if found is None:
             raise AssemblyError(
@@ -140,7 +153,50 @@ class NearestGuess:
                 f"joint residual of {residual:.3g}; the group cannot be assembled there, or [guess] is far from it"
                 f"{floating_unreachable(group)}")
         poses = {**placed.poses, **{link: ArrayPose.of_rows([pose]) for link, pose in found.items()}}
-        return replace(placed, poses=poses)
+        if off[0] <= _FAR_GUESS * reach:
+            return replace(placed, poses=poses)
+        distance, point, at = off
+        guess = self.guess[point]
+        at = at + complex(*self.origin)
+        notice = Notice("far-from-guess", (
+            f"group {group.name}: Newton's method from [guess] closed it where {point} lies at ({at.real:.6g}, "
+            f"{at.imag:.6g}), {distance:.3g} {mechanism.scene.units.length} from its guess "
+            f"[{_coordinate(guess[0], self.origin[0])}, {_coordinate(guess[1], self.origin[1])}]: another assembly "
+            "may lie nearer the guess (give [guess] positions closer to the assembly you mean)"))
+        return replace(placed, poses=poses, notices=(*placed.notices, notice))
+
+    def _nearest(self, mechanism: Mechanism, group: NewtonGroup, closure: RowClosure,
+                 row: tuple[Mapping[str, LinkPose], Reals, float, Mapping[int, float], float]) -> RowClosure:
+        """Of the assemblies Newton's method reaches from the guess (directly, creeping, and from ``_PROBES``
+        starts turned and moved at random about it, the same every run), the one whose guessed points lie
+        nearest their guess (least sum of squares, as for a dyad). A group that does not close from the guess
+        is not searched further."""
+        known, start, size, values, reach = row
+        found = [closure, newton_row(mechanism, group, known, start, size, values, reach)]
+        rng = np.random.default_rng(0)
+        links = len(group.links)
+        for _ in range(_PROBES):
+            moved = start.copy()
+            moved[:3 * links] += (rng.uniform(-0.5, 0.5, (links, 3)) * (reach, reach, 2.0 * math.pi)).ravel()
+            found.append(newton_row(mechanism, group, known, moved, size, values))
+        return min((c for c in found if c.poses is not None), key=lambda c: self._score_poses(mechanism, c.poses))
+
+    def _score_poses(self, mechanism: Mechanism, poses: Mapping[str, LinkPose] | None) -> float:
+        return sum(abs(complex(*pose.world(p.local)) - complex(*self.guess[p.name])) ** 2
+                   for link, pose in (poses or {}).items() for p in mechanism.scene.link(link).points
+                   if p.name in self.guess)
+
+    def _off_guess(self, mechanism: Mechanism, poses: Mapping[str, LinkPose] | None) -> tuple[float, str, complex]:
+        """The guessed point of ``poses``' links furthest from its guess: (distance, name, where it lies)."""
+        worst = (math.inf if poses is None else 0.0, "", 0j)
+        for link, pose in (poses or {}).items():
+            for p in mechanism.scene.link(link).points:
+                if p.name in self.guess:
+                    at = complex(*pose.world(p.local))
+                    distance = abs(at - complex(*self.guess[p.name]))
+                    if distance > worst[0]:
+                        worst = (distance, p.name, at)
+        return worst
 
 
 def _telling_point(mechanism: Mechanism, closure: Closure, pick: int) -> tuple[str, complex, complex]:
@@ -236,7 +292,8 @@ class Continuity:
         points = known_points(mechanism, seed)
         size = group_size(mechanism, group, points)
         seed_known = placed.row_poses(group.known_links(), self.seed_row)
-        start, _ = start_poses(mechanism, group, {**points, **known_points(mechanism, seed_known)})
+        start, _ = start_poses(mechanism, group, {**points, **known_points(mechanism, seed_known)},
+                               placed.row_values(self.seed_row))
         sign = 0 if start is None else newton_row(mechanism, group, seed_known, start, size,
                                                   placed.row_values(self.seed_row)).sign
         done = 0

@@ -14,6 +14,12 @@ cam at K slides along the face, so the follower's point under K moves relative t
 velocity over the face).
 All rows are solved by one stacked ``numpy.linalg.solve``; a row whose equations (made
 dimensionless) have a condition number above ``SINGULAR_CONDITION`` is singular.
+
+A group of class 4 once its inputs are given (``assur_class``: four links, two links held by a driven
+joint counted as one, whose moving links close a contour of four) is beyond the constructions of the
+course, which reach class 3; its step says so, and lays the relative vectors the solve gives: each
+link's from its first joint to its others (for accelerations the normal term, then the tangential one),
+and each slider's block over its guide.
 """
 
 from __future__ import annotations
@@ -26,7 +32,7 @@ from kinepoly.engine.cam_contact import centre_label, face_direction
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import JointSolve, Polygon
 from kinepoly.engine.position import describe_input
-from kinepoly.engine.steps import Step
+from kinepoly.engine.steps import DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, turn
 from kinepoly.model.mechanism import Revolute
@@ -35,7 +41,7 @@ from kinepoly.scene.spec import CamSpec, SliderSpec
 if TYPE_CHECKING:
     from kinepoly.engine.acceleration import _Context
 
-__all__ = ["NEAR_SINGULAR_CONDITION", "SINGULAR_CONDITION", "acceleration_by_linear_solve",
+__all__ = ["NEAR_SINGULAR_CONDITION", "SINGULAR_CONDITION", "acceleration_by_linear_solve", "assur_class",
            "velocity_by_linear_solve"]
 
 SINGULAR_CONDITION = 1e12
@@ -188,8 +194,51 @@ def _store(polygon: Polygon, group: NewtonGroup, u: Reals, extra: dict[tuple[str
     return found
 
 
+def assur_class(group: NewtonGroup) -> int | None:
+    """4 where the group, its driven joints' links taken as one, is four links whose joints inside the group
+    close a contour of four (two outer joints); None for any other shape (not named)."""
+    inside = set(group.links)
+    driven = {d.joint for d in group.drives if d.moving in inside and d.base in inside}
+    joints = [j for j in group.joints if j not in driven]
+    inner = [j for j in joints if set(_joint_links(j)) <= inside]
+    if group.cams or len(group.links) - len(driven) != 4 or len(joints) != 6 or len(inner) != 4:
+        return None
+    return 4
+
+
+def _relative_vectors(polygon: Polygon, group: NewtonGroup) -> tuple[DrawnVector, ...]:
+    """Each link's relative vectors from its first joint to its others, and each slider's block over its guide."""
+    sym = polygon.symbol
+    out: list[DrawnVector] = []
+    for link in group.links:
+        labels = list(dict.fromkeys(polygon.label(link, point) for owner, point in _group_points(group)
+                                    if owner == link))
+        points = {polygon.label(link, point): point for owner, point in _group_points(group) if owner == link}
+        if len(labels) < 2:
+            continue
+        ref = labels[0]
+        start = polygon.tip(link, points[ref])
+        for label in labels[1:]:
+            end = polygon.tip(link, points[label])
+            if polygon.kind == "velocity":
+                out.append(DrawnVector(f"v_{label}/{ref}", polygon.vec(start), polygon.vec(end), "relative"))
+                continue
+            w = polygon.omega_of(link)
+            r = polygon.world(points[label]) - polygon.world(points[ref])
+            middle = np.asarray(start + (polygon.normal_sign * w * w) * r)
+            out += [DrawnVector(f"a^n_{label}/{ref}", polygon.vec(start), polygon.vec(middle), "normal"),
+                    DrawnVector(f"a^t_{label}/{ref}", polygon.vec(middle), polygon.vec(end), "tangential")]
+    for joint in group.joints:
+        if isinstance(joint, SliderSpec):
+            block, guide = polygon.label(joint.block, joint.point), polygon.label(joint.guide, joint.point)
+            out.append(DrawnVector(f"{sym}_{block}/{guide}", polygon.vec(polygon.tip(joint.guide, joint.point)),
+                                   polygon.vec(polygon.tip(joint.block, joint.point)), "relative"))
+    return tuple(out)
+
+
 def _record(polygon: Polygon, group: NewtonGroup, found: list[str]) -> None:
     if polygon.record:
+        order = assur_class(group)
         tips = ", ".join(f.lower() for f in found)
         links = [c for c in group.cams if c.kind != "flat"]
         faces = [c for c in group.cams if c.kind == "flat"]
@@ -200,9 +249,11 @@ def _record(polygon: Polygon, group: NewtonGroup, found: list[str]) -> None:
                           + "".join(f" with the equivalent link {centre_label(c)}{c.point}" for c in links)
                           + "".join(f" with the block pinned at {centre_label(c)} on the face of {c.follower}"
                                     for c in faces),
-                          result=tips, params=(("group", group.name), ("links", ", ".join(group.links)),
-                                               ("tips", tips), *((("equivalent", equivalent),) if links else ()),
-                                               *((("face", face),) if faces else ()))))
+                          result=tips, vectors=_relative_vectors(polygon, group) if order else (),
+                          params=(("group", group.name), ("links", ", ".join(group.links)),
+                                  ("tips", tips), *((("equivalent", equivalent),) if links else ()),
+                                  *((("face", face),) if faces else ()),
+                                  *((("assur_class", order),) if order else ()))))
 
 
 def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict[str, Points]) -> None:

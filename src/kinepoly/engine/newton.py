@@ -30,7 +30,7 @@ from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import CamSpec, SliderSpec
 
-__all__ = ["CLOSED_REL", "RowClosure", "group_size", "newton_row", "start_poses"]
+__all__ = ["CLOSED_REL", "RowClosure", "group_reach", "group_size", "newton_row", "start_poses"]
 
 CLOSED_REL = 1e-9
 """A group is closed when its joint residual is at most this times the group's size."""
@@ -223,20 +223,81 @@ def group_size(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, co
     return size if size > 0.0 and math.isfinite(size) else 1.0
 
 
-def start_poses(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex]) -> tuple[
+def group_reach(mechanism: Mechanism, group: NewtonGroup, default: float = 1.0) -> float:
+    """The longest distance of a point of the group's links from the link's own origin (``default`` if none)."""
+    return max((abs(complex(*p.local)) for link in group.links for p in mechanism.scene.link(link).points),
+               default=default) or default
+
+
+def start_poses(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex],
+                values: Mapping[int, float] | None = None) -> tuple[
         Reals | None, str]:
     """The group's starting poses from known or guessed points (the first two points of each link
-    that have one); None and the link's name when a link has none."""
-    q: list[float] = []
+    that have one); None and the link's name when a link has none.
+
+    A guide with one placed point only (a cylinder's barrel, in its own frame or in the frame's) turns so
+    that its line runs through the block's placed point, at the stroke ``values`` gives where an input
+    drives the slider (else at the farther of the two places on the line at that distance): its angle
+    does not depend on how its points are written. Other links with one placed point start at angle 0
+    (a block's angle follows its guide's in Newton's first step).
+    """
+    placed: dict[str, tuple[complex, complex]] = {}  # one placed point: (local, world)
+    angle: dict[str, float] = {}
     for link in group.links:
         pts = [(complex(*p.local), points[p.name]) for p in mechanism.scene.link(link).points if p.name in points]
         if not pts:
             return None, link
-        (la, wa), (lb, wb) = pts[0], pts[1] if len(pts) > 1 else pts[0]
-        theta = phase(wb - wa) - phase(lb - la) if len(pts) > 1 else 0.0
-        origin = wa - la * complex(math.cos(theta), math.sin(theta))
+        if len(pts) > 1:
+            (la, wa), (lb, wb) = pts[0], pts[1]
+            angle[link] = phase(wb - wa) - phase(lb - la)
+        placed[link] = pts[0]
+    for link in group.links:
+        if link not in angle:
+            turned = _guide_angle(group, link, placed[link], points, values or {})
+            if turned is not None:
+                angle[link] = turned
+    q: list[float] = []
+    for link in group.links:
+        local, world = placed[link]
+        theta = angle.get(link, 0.0)
+        origin = world - local * complex(math.cos(theta), math.sin(theta))
         q += [origin.real, origin.imag, theta]
     return np.array(q), ""
+
+
+def _guide_angle(group: NewtonGroup, link: str, placed: tuple[complex, complex], points: Mapping[str, complex],
+                 values: Mapping[int, float]) -> float | None:
+    """The angle of a guide with one placed point whose line runs through its block's point (``start_poses``)."""
+    for joint in group.joints:
+        if not isinstance(joint, SliderSpec) or joint.guide != link or joint.point not in points:
+            continue
+        local, world = placed
+        reach = abs(points[joint.point] - world)
+        e = complex(math.cos(joint.angle_rad), math.sin(joint.angle_rad))
+        foot = complex(*joint.through) - local  # the line from the placed point: foot + s e
+        driven = [values[d.index] for d in group.drives if d.joint == joint and d.index in values]
+        if driven:
+            stroke = driven[0]
+        else:
+            along = (foot * e.conjugate()).real
+            stroke = -along + math.sqrt(max(reach * reach - abs(foot) ** 2 + along * along, 0.0))
+        on_line = foot + stroke * e
+        if reach > 0.0 and on_line != 0:
+            return phase(points[joint.point] - world) - phase(on_line)
+    return None
+
+
+_CREEP = 0.1
+"""The largest move of a step, in links' lengths, where ``newton_row`` is given ``reach``."""
+
+
+def _cut(step: Reals, links: int, reach: float | None) -> float:
+    """The factor that keeps a step within ``_CREEP`` of ``reach`` (1 without ``reach``)."""
+    if reach is None or not reach > 0.0:
+        return 1.0
+    poses = step[:3 * links].reshape(links, 3)
+    move = float(np.max(np.maximum(np.hypot(poses[:, 0], poses[:, 1]), np.abs(poses[:, 2]) * reach)))
+    return min(1.0, _CREEP * reach / move) if move > 0.0 else 1.0
 
 
 @dataclass(frozen=True)
@@ -250,9 +311,12 @@ class RowClosure:
 
 
 def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], start: Reals,
-               size: float, values: Mapping[int, float] | None = None) -> RowClosure:
+               size: float, values: Mapping[int, float] | None = None, reach: float | None = None) -> RowClosure:
     """Close the group at one row from ``start``. ``values``: the inputs' values at the row, by input
-    index (for driven joints)."""
+    index (for driven joints). ``reach``: the links' length; with it no step moves a link by more than a
+    tenth of it (a link's origin, or its points by turning), so that the iteration creeps from the start to
+    a nearby assembly instead of leaping across to another (more steps, and no stall rule while a step is
+    cut short)."""
     system = _RowSystem(mechanism, group, known, size, values or {})
     q = np.concatenate((start, system.start_parameters(start))) if group.cams else start
     r, jac = system.evaluate(q)
@@ -262,12 +326,14 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
         if not norm_r > 0.0 or (stalled >= 3 and norm_r > CLOSED_REL * size):
             break
         step = np.linalg.lstsq(jac, -r, rcond=None)[0]
+        cut = _cut(np.asarray(step, np.float64), len(group.links), reach)
+        step = step * cut
         t = 1.0
         while t > 1e-6:
             trial, trial_jac = system.evaluate(q + t * step)
             norm_trial = float(np.linalg.norm(trial))
             if norm_trial < norm_r:
-                stalled = stalled + 1 if norm_trial > 0.5 * norm_r else 0
+                stalled = stalled + 1 if norm_trial > 0.5 * norm_r and cut == 1.0 else 0
                 q, r, jac, norm_r = q + t * step, trial, trial_jac, norm_trial
                 break
             t /= 2

@@ -19,7 +19,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
 
-from kinepoly.engine.newton import RowClosure, newton_row, start_poses
+from kinepoly.engine.newton import RowClosure, group_reach, newton_row, start_poses
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.position import Placement
 from kinepoly.model.mechanism import Mechanism
@@ -65,9 +65,7 @@ class Walk:
     @cached_property
     def reach(self) -> float:
         """The longest distance of a point of the group's links from the link's own origin."""
-        scene = self.mechanism.scene
-        return max((abs(complex(*p.local)) for link in self.group.links for p in scene.link(link).points),
-                   default=self.size) or self.size
+        return group_reach(self.mechanism, self.group, self.size)
 
     def gap(self) -> None:
         """A row where the group cannot be placed (an earlier group did not close there)."""
@@ -133,7 +131,8 @@ class Walk:
 
     def _solve(self, known: Mapping[str, LinkPose], guess: Mapping[str, complex],
                values: Mapping[int, float]) -> RowClosure:
-        start, _ = start_poses(self.mechanism, self.group, {**guess, **known_points(self.mechanism, known)})
+        start, _ = start_poses(self.mechanism, self.group, {**guess, **known_points(self.mechanism, known)},
+                               values)
         if start is None:
             return RowClosure(None, math.inf, 0)
         return newton_row(self.mechanism, self.group, known, start, self.size, values)

@@ -9,7 +9,11 @@ an unknown multiple of a known direction e:
 - a block pinned to T at X, sliding on a known guide: Q = X, from the tip of X on the guide,
   e along the slide;
 - a block pinned to a known link at K, sliding in a slot of T: Q = K (a point under T), from
-  the tip of K, e along the slot.
+  the tip of K, e along the slot;
+- two links held by a driven joint (a cylinder: the barrel pinned to a known link at K, the rod to T
+  at X, or the other way round): once the stroke is given, a binary link K X whose length changes at a
+  known rate: Q = X, from the tip of K plus the drive's relative term, e perpendicular to KX
+  (``engine.driven_leg``).
 
 The line of a leg is the line through Q perpendicular to e (a binary link's own line). Where
 the lines of two legs cross is the Assur point S, a point of T. Since S - Q is perpendicular to
@@ -33,6 +37,7 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
+from kinepoly.engine import driven_leg
 from kinepoly.engine.cam_contact import centre_label, face_direction
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import LineCrossing, Polygon
@@ -40,7 +45,7 @@ from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, cross_lines
 from kinepoly.geom.tolerances import PARALLEL_SIN
-from kinepoly.model.mechanism import Mechanism, Revolute, joint_links
+from kinepoly.model.mechanism import Drive, Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import SliderSpec
 
 if TYPE_CHECKING:
@@ -65,6 +70,15 @@ class Leg:
     ``pin``, W on the ternary ``point``): a link at this instant only, whose omega is kept with the pair; or,
     for a flat face (kind ``face``), the block pinned to the cam at K (``point``) sliding along the ternary's
     face, whose velocity over the face is kept with the pair."""
+    carrier: str = ""
+    """A driven leg's other link, pinned to the known link at ``pin`` (``link`` is pinned to the ternary)."""
+    drive: Drive | None = None
+    """A driven leg's input, the joint between ``carrier`` and ``link``."""
+
+    @property
+    def name(self) -> str:
+        """The leg as the steps name it: its link, or both links of a driven leg (``5+6``)."""
+        return f"{self.carrier}+{self.link}" if self.carrier else self.link
 
 
 @dataclass(frozen=True)
@@ -94,7 +108,8 @@ def triad_of(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
     on a spline cam with two legs of its own is a triad whose third leg is the pair's equivalent link K W."""
     if group.cams:
         return _floating_triad(mechanism, group)
-    if len(group.links) != 4 or len(group.joints) != 6:
+    inside = [d for d in group.drives if d.moving in group.links and d.base in group.links]
+    if len(group.links) != 4 + len(inside) or len(group.joints) != 6 + len(inside):
         return None
     for ternary in group.links:
         legs = _legs(mechanism, group, ternary, 3)
@@ -119,11 +134,33 @@ def _legs(mechanism: Mechanism, group: NewtonGroup, ternary: str, count: int) ->
     legs = []
     for link, joint in zip(legs_links, inner, strict=True):
         outer = [j for j in group.joints if link in joint_links(j) and not set(joint_links(j)) <= inside]
-        leg = _leg(mechanism, ternary, link, joint, outer[0]) if len(outer) == 1 else None
+        leg = (_leg(mechanism, ternary, link, joint, outer[0]) if len(outer) == 1
+               else _driven_leg(group, ternary, link, joint) if not outer else None)
         if leg is None:
             return []
         legs.append(leg)
     return legs
+
+
+def _driven_leg(group: NewtonGroup, ternary: str, link: str, inner: Revolute | SliderSpec) -> Leg | None:
+    """``link`` pinned to the ternary and held by a driven joint to a ``carrier`` of the group that is pinned
+    to a known link, and to nothing else: one leg once the input is given (``engine.driven_leg``)."""
+    if not isinstance(inner, Revolute):
+        return None
+    inside = set(group.links)
+    for drive in group.drives:
+        if link not in (drive.moving, drive.base) or ternary in (drive.moving, drive.base):
+            continue
+        carrier = drive.base if link == drive.moving else drive.moving
+        own = [j for j in group.joints if link in joint_links(j)]
+        theirs = [j for j in group.joints if carrier in joint_links(j) and j != drive.joint]
+        if carrier not in inside or len(own) != 2 or len(theirs) != 1 or not isinstance(theirs[0], Revolute):
+            continue
+        known = next(x for x in joint_links(theirs[0]) if x != carrier)
+        if known in inside:
+            continue
+        return Leg("pin", link, inner.point, known, theirs[0].point, None, carrier=carrier, drive=drive)
+    return None
 
 
 def _floating_triad(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
@@ -250,7 +287,7 @@ def _face_direction(polygon: Polygon, leg: Leg) -> Points:
 
 
 def _name(triad: Triad) -> str:
-    return f"{triad.ternary}-" + "-".join(leg.link for leg in triad.legs) + " (triad)"
+    return f"{triad.ternary}-" + "-".join(leg.name for leg in triad.legs) + " (triad)"
 
 
 # -- velocity ---------------------------------------------------------------------------------------
@@ -260,6 +297,8 @@ def _velocity_leg(polygon: Polygon, triad: Triad, leg: Leg) -> _LegLine:
     from kinepoly.engine.velocity import slide_direction
 
     at = polygon.world(leg.point)
+    if leg.drive is not None:
+        return _LegLine(at, *driven_leg.velocity_terms(polygon, leg))
     if leg.kind == "pin":
         assert leg.pin is not None
         start = polygon.tip(leg.known, leg.pin)
@@ -290,6 +329,9 @@ def velocity_by_assur_point(polygon: Polygon, triad: Triad, sliding: dict[str, P
             on_leg, on_t = (polygon.tip(leg.link, leg.point), tip) if leg.kind == "slot" else (
                 tip, polygon.tip(leg.known, leg.point))
             sliding[leg.slider.name] = np.asarray(on_leg - on_t)
+    for leg, along, tip in zip(triad.legs, built.along, built.tips, strict=True):
+        if leg.drive is not None:
+            driven_leg.finish_velocity(polygon, leg, tip, along, sliding)
 
 
 def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built, s_world: Points,
@@ -308,7 +350,7 @@ def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
         _record(polygon, triad, legs, built, order, labels, s_world, normal_t)
     read_rate(polygon, t, triad.assur, labels[order[2]], built.rate)
     for leg, along in zip(triad.legs, built.along, strict=True):
-        if leg.kind == "pin" and not leg.equivalent:
+        if leg.kind == "pin" and not leg.equivalent and leg.drive is None:
             assert leg.pin is not None
             read_rate(polygon, leg.link, leg.pin, leg.point, along)
 
@@ -348,7 +390,8 @@ def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
     def leg_term(k: int) -> str:
         leg = triad.legs[k]
         if leg.kind == "pin":
-            return f"{sym}{'^t' if polygon.kind == 'acceleration' else ''}_{leg.point}/{leg.pin}"
+            point = polygon.label(leg.carrier, leg.point) if leg.drive is not None else leg.point
+            return f"{sym}{'^t' if polygon.kind == 'acceleration' else ''}_{point}/{leg.pin}"
         return f"{sym}_{labels[k]}/{polygon.label(leg.known, leg.point)}"
 
     def leg_known(k: int) -> str:
@@ -378,10 +421,10 @@ def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
         return any(leg.equivalent and vector in legs[k].vectors for k, leg in enumerate(triad.legs))
 
     la, lb = triad.legs[a], triad.legs[b]
-    polygon.step(Step(polygon=polygon.kind, kind="known", equation=f"{s} = line of leg {la.link} x line of "
-                      f"leg {lb.link}", result=s, topic="assur-point",
-                      params=(("point", s), ("ternary", t), ("first", la.link), ("second", lb.link),
-                              *_leg_line("first", la, t), *_leg_line("second", lb, t), ("third", triad.legs[m].link))))
+    polygon.step(Step(polygon=polygon.kind, kind="known", equation=f"{s} = line of leg {la.name} x line of "
+                      f"leg {lb.name}", result=s, topic="assur-point",
+                      params=(("point", s), ("ternary", t), ("first", la.name), ("second", lb.name),
+                              *_leg_line("first", la, t), *_leg_line("second", lb, t), ("third", triad.legs[m].name))))
     # the tip of S: from each leg's known tip its known terms and T's normal term toward S, then the line along
     # the leg's direction, which carries the leg's term and T's tangential term about S (parallel)
     vectors: tuple[DrawnVector, ...] = ()
@@ -404,7 +447,7 @@ def _record(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
         known=tuple((v.label, "magnitude and direction") for v in vectors) + tuple((d.term, "direction")
                                                                                   for d in directions),
         vectors=vectors, lines=(lines[0], lines[1]), value=polygon.vec(built.s), topic="assur-tip",
-        params=(("point", s), ("ternary", t), ("first", la.link), ("second", lb.link)),
+        params=(("point", s), ("ternary", t), ("first", la.name), ("second", lb.name)),
         directions=(directions[0], directions[1])))
     # the third leg's point from S, then the other two from it: T's normal term, then its tangential line
     for k, from_k in ((m, -1), (a, m), (b, m)):
@@ -459,6 +502,8 @@ def _acceleration_leg(ctx: _Context, triad: Triad, leg: Leg) -> _LegLine:
 
     b = ctx.b
     at = b.world(leg.point)
+    if leg.drive is not None:
+        return _LegLine(at, *driven_leg.acceleration_terms(ctx, leg))
     if leg.kind == "pin":
         assert leg.pin is not None
         omega = np.asarray(ctx.v.equivalent[leg.equivalent].real) if leg.equivalent else None
@@ -491,6 +536,8 @@ def acceleration_by_assur_point(ctx: _Context, triad: Triad) -> None:
 
     built, s_world, order = _construct(b, triad, legs, normal_t)
     _finish(b, triad, legs, built, s_world, order, normal_t)
-    for leg in triad.legs:
+    for leg, along, tip in zip(triad.legs, built.along, built.tips, strict=True):
         if leg.slider is not None:
             ctx.slide_values(leg.slider, leg.link, leg.point)
+        if leg.drive is not None:
+            driven_leg.finish_acceleration(ctx, leg, tip, along)

@@ -676,6 +676,8 @@ class _Phrase:
         if "face" in self.p:  # a floating flat face: the block pinned at K sliding along it
             for pair, centre, follower in (part.split(" ") for part in str(self.p["face"]).split(", ")):
                 text += " " + self.say.say("step.linear_solve_face", pair=pair, centre=centre, follower=follower)
+        if "assur_class" in self.p:  # beyond the course's constructions: say so, and what is drawn
+            text += " " + self.say.say("step.linear_solve_class", order=str(self.p["assur_class"]))
         items = []
         for label in labels:
             fields = self.tip_fields(label, tips.get(label, (0.0, 0.0)))

@@ -166,8 +166,9 @@ def polygon_figure(solution: Solution, kind: Kind) -> Figure:
             lines += [FigureLine(line, number) for line in step.lines]
     pole_names = tuple(sorted(label for label in polygon.tips if label in ground_points
                               and norm(polygon.tips[label]) <= _SAME * size))
-    tips = tuple(FigureTip(label, value, tip_step.get(label, 0)) for label, value in polygon.tips.items()
-                 if label not in pole_names)
+    tips = tuple(FigureTip(label, value, tip_step.get(label, tip_step.get(label.partition("@")[0], 0)))
+                 for label, value in polygon.tips.items() if label not in pole_names)  # B@3 found with b, where
+    # no step names it (a driven joint's carrier under its pin: the tip less the drive's term)
     tip_steps = {t.label: t.step for t in tips}
     vectors = _with_absolutes(vectors, tips, symbol, size)
     images = []
