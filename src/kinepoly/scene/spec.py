@@ -48,6 +48,9 @@ class PointSpec:
     name: str
     local: Vector
     line: int = 0
+    polar: tuple[float, float] | None = None
+    """(r, angle in radians) where the scene wrote the point as ``{ polar = [r, angle] }`` (``local`` is then
+    the same point in x, y); a scene written back writes it so."""
 
 
 @dataclass(frozen=True)

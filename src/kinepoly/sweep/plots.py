@@ -9,6 +9,7 @@ are shaded grey, singular rows marked by thin red lines.
 
 from __future__ import annotations
 
+import dataclasses
 import io
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -16,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from kinepoly.sweep.run import Column, SweepResult
+from kinepoly.sweep.shown import shown_values
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -114,8 +116,13 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
         for col in sliders:
             target.plot(x, _masked(col), lw=1.2, ls="--", label=col.name)
         target.set_ylabel(slider_unit)
-        if lines:
+        if lines:  # the sliders' own axis windowed on their own ok rows (else on the panel's, below)
+            _robust_limits(target, [c.values[c.valid] for c in sliders],
+                           [c.values[c.valid & (result.status == _OK)] for c in sliders])
             target.legend(loc="lower right", fontsize=7)
+        else:
+            shown += [c.values[c.valid] for c in sliders]
+            bulk += [c.values[c.valid & (result.status == _OK)] for c in sliders]
     ax.set_title(title, fontsize=9)
     ax.set_xlabel(_input_label(result))
     ax.set_ylabel(unit if lines else slider_unit)
@@ -339,6 +346,12 @@ def _seed_pose(result: SweepResult, link: str) -> tuple[complex, complex] | None
     return points[0] - rotation * local[0], rotation
 
 
+def _as_shown(result: SweepResult) -> SweepResult:
+    """The sweep with its columns by the number rule (``sweep.shown``): no rounding noise drawn on its own axis."""
+    shown = shown_values(result)
+    return dataclasses.replace(result, columns=tuple(col._replace(values=shown[col.name]) for col in result.columns))
+
+
 def plot_png(result: SweepResult, dpi: int = 110) -> bytes:
     """All the sweep's plots on one sheet, as PNG bytes."""
     import matplotlib.pyplot as plt
@@ -359,6 +372,7 @@ def plot_figure(result: SweepResult) -> Figure:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    result = _as_shown(result)
     units = result.scene.units
     length = units.length
     panels: list[Callable[[Axes], None]] = [
