@@ -148,9 +148,17 @@ def _pairs(result: SweepResult, prefix: str) -> list[tuple[str, Column, Column]]
     return out
 
 
+def _closed(values: np.ndarray, valid: npt.NDArray[np.bool_], periodic: bool) -> tuple[np.ndarray, np.ndarray]:
+    """A full turn's rows and its first row again at the end (the turn's end is its start: no gap there)."""
+    if not periodic or len(values) < 2:
+        return values, valid
+    return np.append(values, values[0]), np.append(valid, valid[0] & valid[-1])
+
+
 def _curve_panel(ax: Axes, pairs: list[tuple[str, Column, Column]], title: str, unit: str,
-                 ok: npt.NDArray[np.bool_] | None = None) -> None:
-    """The curves of ``pairs``; a hodograph (``ok``: the rows that are ok) about its pole, windowed on those rows."""
+                 ok: npt.NDArray[np.bool_] | None = None, periodic: bool = False) -> None:
+    """The curves of ``pairs``; a hodograph (``ok``: the rows that are ok) about its pole, windowed on those rows;
+    ``periodic``: each curve closed (a full turn)."""
     points: list[np.ndarray] = []
     bulk: list[np.ndarray] = []
     for name, cx, cy in pairs:
@@ -158,8 +166,9 @@ def _curve_panel(ax: Axes, pairs: list[tuple[str, Column, Column]], title: str, 
         points.append(cx.values[valid] + 1j * cy.values[valid])
         if ok is not None:
             bulk.append(cx.values[valid & ok] + 1j * cy.values[valid & ok])
-        line = ax.plot(np.ma.masked_array(cx.values, ~valid), np.ma.masked_array(cy.values, ~valid), lw=1.2,
-                       label=name)
+        xs, shown = _closed(cx.values, valid, periodic)
+        ys, _ = _closed(cy.values, valid, periodic)
+        line = ax.plot(np.ma.masked_array(xs, ~shown), np.ma.masked_array(ys, ~shown), lw=1.2, label=name)
         if valid.any():
             first = int(np.flatnonzero(valid)[0])
             ax.plot([cx.values[first]], [cy.values[first]], "o", ms=3, color=line[0].get_color())
@@ -212,7 +221,8 @@ def _draw_skeleton(ax: Axes, result: SweepResult, only: str | None = None) -> No
 
 def _paths_panel(ax: Axes, result: SweepResult) -> None:
     paths = [p for p in _pairs(result, "r_") if "@" not in p[0]]  # A@4 runs where A runs
-    _curve_panel(ax, paths, "point paths (the mechanism at the scene's input)", result.scene.units.length)
+    _curve_panel(ax, paths, "point paths (the mechanism at the scene's input)", result.scene.units.length,
+                 periodic=result.periodic)
     _draw_skeleton(ax, result)
 
 
@@ -385,10 +395,10 @@ def plot_figure(result: SweepResult) -> Figure:
     ]
     if _pairs(result, "v_"):
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "v_"), "velocity hodographs", f"{length}/s",
-                                              result.status == _OK))
+                                              result.status == _OK, result.periodic))
     if _pairs(result, "a_"):
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "a_"), "acceleration hodographs",
-                                              f"{length}/s^2", result.status == _OK))
+                                              f"{length}/s^2", result.status == _OK, result.periodic))
     if any(c.kind == "transmission" for c in result.columns):
         panels.append(lambda ax: _kind_panel(ax, result, "transmission", "transmission angles (0 dead point, 90 best)",
                                              True))
