@@ -96,6 +96,7 @@ def test_the_curves_of_a_full_turn_are_closed() -> None:
         plt.close(fig)
 
 
+@pytest.mark.slow  # a Newton sweep of the triad-slot
 def test_the_sliders_rate_axis_is_windowed_like_its_panel() -> None:
     """triad-slot's s_dot_46 and s_ddot_46 run to 4e5 and 2e13 at the range's ends: their own axis (a twin of the
     omega panel's) flattened the curve into a line; it is windowed on the ok rows as the panel is."""
@@ -124,3 +125,26 @@ def test_the_repr_of_a_solution_is_one_line() -> None:
         solution = kinepoly.solve(kinepoly.load_scene(EXAMPLES / name))
         text = repr(solution)
         assert "\n" not in text and len(text) < 300 and solution.scene.title in text
+
+
+def test_the_rate_panels_of_an_all_ok_open_range_keep_the_stroke_readable() -> None:
+    """slotted-crank-slider: every row ok, the range stopped where the slider runs off; its rates grow to 1e5 over
+    more than 1 % of the rows, so a window of percentiles 1..99 reached those and flattened the rest. The window
+    holds the middle 80 % of the rows and is a fraction of that 1..99 span."""
+    import matplotlib.pyplot as plt
+
+    from kinepoly.sweep.plots import plot_figure
+
+    result = sweep(kinepoly.load_scene(EXAMPLES / "slotted-crank-slider.toml"), steps=360)
+    assert (result.status == 0).all() and any(n.code == "open-range" for n in result.notices)
+    fig = plot_figure(result)
+    try:
+        for name in ("s_dot_14", "s_dot_23", "s_ddot_14"):
+            values = result.column(name).values
+            axis = next(ax for ax in fig.axes if any(line.get_label() == name for line in ax.get_lines()))
+            low, high = axis.get_ylim()
+            p1, p10, p90, p99 = np.percentile(values, [1, 10, 90, 99])
+            assert low <= p10 and p90 <= high, (name, low, high, p10, p90)
+            assert high - low <= 0.2 * (p99 - p1), (name, low, high, p1, p99)
+    finally:
+        plt.close(fig)

@@ -226,6 +226,7 @@ def test_a_newton_groups_range_ends_close_just_inside_its_dead_points() -> None:
             kinepoly.solve(kinepoly.loads_scene(text.replace("angle = 60", f"angle = {end + outward * 1e-4!r}")))
 
 
+@pytest.mark.slow  # six Newton sweeps over their whole range
 @settings(max_examples=6, deadline=None)
 @given(st.floats(-4, 4), st.floats(-4, 4), st.floats(-4, 4), st.floats(-4, 4))
 def test_random_newton_groups_range_ends_close(cx: float, cy: float, gx: float, gy: float) -> None:

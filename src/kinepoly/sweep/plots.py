@@ -69,8 +69,14 @@ def robust_window(values: list[np.ndarray], bulk: list[np.ndarray]) -> tuple[flo
     typical = float(np.percentile(np.abs(core), 95))
     if typical <= 0.0 or float(np.abs(data).max()) <= 5.0 * typical:
         return None
-    low, high = (float(x) for x in np.percentile(core, [1, 99]))
-    margin = 0.15 * max(high - low, typical)
+    # the bulk: the values within five spreads of the median, the spread being what four in five of them
+    # keep to (rates that run off near an open range's ends fill more than 1 % of the rows: percentiles 1..99
+    # reached 1e7 there and flattened the rest to a line)
+    centre = float(np.median(core))
+    spread = float(np.percentile(np.abs(core - centre), 80))
+    bulk_values = core[np.abs(core - centre) <= 5.0 * spread] if spread > 0.0 else core
+    low, high = (float(x) for x in np.percentile(bulk_values, [1, 99]))
+    margin = 0.15 * max(high - low, spread)
     return low - margin, high + margin
 
 
