@@ -1,10 +1,9 @@
 """A sweep's columns as people see them (the plots' curves and axes, the animation's table).
 
 The number rule of ``present.clean`` with the sweep's error estimate: a sweep accepts a row whose
-error is below ``LOUD_ERROR`` relative to the size of its kind, so a value of a kind (lengths,
-speeds, accelerations, angles, omega, alpha) within ``LOUD_ERROR`` times the largest value of that
-kind in the sweep is 0, and a column whose values all lie within that estimate of one short decimal
-is that decimal (a rate held constant: 40, not 40 ± 1e-11). The CSV is data and keeps the computed
+error is below ``LOUD_ERROR`` relative to the size of its kind, so a value within ``LOUD_ERROR``
+times that size (``shown_values`` says which) is 0, and a column whose values all lie within that
+estimate of one short decimal is that decimal (a rate held constant: 40, not 40 ± 1e-11). The CSV is data and keeps the computed
 values (as the JSON does).
 """
 
@@ -22,7 +21,7 @@ from kinepoly.sweep.run import Column, SweepResult
 __all__ = ["SWEEP_RELATIVE", "shown_values", "tidy_column"]
 
 SWEEP_RELATIVE = LOUD_ERROR
-"""The relative error estimate of a value of a sweep, against the largest of its kind."""
+"""The relative error estimate of a value of a sweep, against the size of its kind (``shown_values``)."""
 
 _DIMENSION = {"angle": "angle", "transmission": "angle", "pressure": "angle", "omega": "omega", "alpha": "alpha",
               "position": "length", "slider": "length", "centrode": "length", "centrode-local": "length",
@@ -67,19 +66,24 @@ def _dimension(result: SweepResult, col: Column) -> str:
 
 
 def shown_values(result: SweepResult) -> dict[str, np.ndarray]:
-    """Every column's values (0 where a row has none) by the number rule, by column name; the estimate of a
-    value is ``SWEEP_RELATIVE`` times the largest value of its kind in its row (each row is a solve of its own),
-    or of the size the input sets for that kind (the mechanism's size, the input's rates), whichever is larger."""
+    """Every column's values (0 where a row has none) by the number rule, by column name.
+
+    The estimate of a value is ``SWEEP_RELATIVE`` times the size of its kind that the input sets (the
+    mechanism's size, the input's rates: ``_natural_sizes``) or, for a component of a vector, that
+    vector's length in its row (a component beside a large one: ``D (2858.58, -4.5e-13)``), whichever
+    is larger. A value is never judged against another quantity's size: near a dead point one rate
+    runs to 1e13 while another, honest, stays in the thousands."""
     columns = [result.input, *result.columns]
-    largest: dict[str, np.ndarray] = {key: np.full(len(result.input.values), size)
-                                      for key, size in _natural_sizes(result.scene).items()}
-    for col in columns:
-        size = np.where(col.valid & np.isfinite(col.values), np.abs(col.values), 0.0)
-        key = _dimension(result, col)
-        largest[key] = np.maximum(largest[key], size) if key in largest else size
+    natural = _natural_sizes(result.scene)
+    names = {col.name: col for col in columns}
     out = {}
     for col in columns:
-        error = SWEEP_RELATIVE * largest[_dimension(result, col)]
+        size = np.full(len(col.values), natural.get(_dimension(result, col), 0.0))
+        if col.name.endswith(("_x", "_y")):
+            other = names.get(col.name[:-1] + ("y" if col.name.endswith("_x") else "x"))
+            if other is not None and other.kind == col.kind:
+                size = np.maximum(size, np.hypot(col.values, other.values))
+        error = SWEEP_RELATIVE * np.where(np.isfinite(size), size, 0.0)
         values = np.zeros(len(col.values))
         values[col.valid] = tidy_column(col.values[col.valid], error[col.valid])
         out[col.name] = values
