@@ -185,6 +185,8 @@ def _curve_panel(ax: Axes, pairs: list[tuple[str, Column, Column]], title: str, 
     ax.set_xlabel(f"x ({unit})")
     ax.set_ylabel(f"y ({unit})")
     clipped = ok is not None and _hodograph_window(ax, points, bulk, unit)
+    if ok is not None:
+        ax.locator_params(axis="x", nbins=5)  # a square panel: wide numbers on x would touch (-12500-10000)
     ax.set_aspect("equal", adjustable="box" if clipped else "datalim")
     ax.grid(True, lw=0.3)
     if pairs:
