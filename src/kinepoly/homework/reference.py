@@ -107,7 +107,8 @@ def values_of(solution: Solution) -> dict[AnswerKey, Value]:
         out[AnswerKey("theta", link)] = (solution.angle(link) if driven is not None
                                          else noise.value(solution.angle(link), "angle"))
         if link in asked.omega and velocity is not None:
-            out[AnswerKey("omega", link)] = driven.omega if driven else noise.value(float(velocity.omega[link]), "omega")
+            out[AnswerKey("omega", link)] = (driven.omega if driven
+                                             else noise.value(float(velocity.omega[link]), "omega"))
         if link in asked.alpha and acceleration is not None:
             out[AnswerKey("alpha", link)] = (driven.alpha if driven
                                              else noise.value(float(acceleration.alpha[link]), "alpha"))
@@ -120,7 +121,8 @@ def values_of(solution: Solution) -> dict[AnswerKey, Value]:
         slider, given = solution.slider(name), solution.driven_slider(name) is not None
         out[AnswerKey("s", name)] = float(slider.s) if given else noise.value(float(slider.s), "position")
         if slider.s_dot is not None:
-            out[AnswerKey("s_dot", name)] = float(slider.s_dot) if given else noise.value(float(slider.s_dot), "velocity")
+            out[AnswerKey("s_dot", name)] = (float(slider.s_dot) if given
+                                             else noise.value(float(slider.s_dot), "velocity"))
         if slider.s_ddot is not None and slider.coriolis is not None:
             out[AnswerKey("s_ddot", name)] = (float(slider.s_ddot) if given
                                               else noise.value(float(slider.s_ddot), "acceleration"))

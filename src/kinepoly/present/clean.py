@@ -6,11 +6,12 @@ written back to a scene is 210). A driven value is given, not computed: it is sh
 gives it (``Solution.slider`` and the sweep's columns echo a driven slider's s, s_dot and s_ddot;
 ``given_angle`` turns a stored angle back into the number written in the scene's unit).
 
-The JSON keeps the computed floats (the driven values aside, echoed exactly); the table, the steps, the title block, the handouts and
-the answer keys print what ``Noise`` leaves. A quantity's floor is its kind's estimated
-relative error (``Solution.accuracy``) times the natural size of that kind in the scene (the
-cross-check's normwise scale): an x-coordinate of 1.4e-14 mm in a 200 mm mechanism, a triad's
-angle of 4.8e-14 degrees or a unit direction's 6.1e-17 are all below it, and print as 0.
+The JSON keeps the computed floats (the driven values aside, echoed exactly); the table, the steps,
+the title block, the handouts and the answer keys print what ``Noise`` leaves. A quantity's floor
+is its kind's estimated relative error (``Solution.accuracy``) times the natural size of that kind
+in the scene (the cross-check's normwise scale): an x-coordinate of 1.4e-14 mm in a 200 mm
+mechanism, a triad's angle of 4.8e-14 degrees or a unit direction's 6.1e-17 are all below it, and
+print as 0. A sweep's columns take the same rule with the sweep's estimate (``sweep.shown``).
 """
 
 from __future__ import annotations

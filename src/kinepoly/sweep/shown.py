@@ -3,8 +3,8 @@
 The number rule of ``present.clean`` with the sweep's error estimate: a sweep accepts a row whose
 error is below ``LOUD_ERROR`` relative to the size of its kind, so a value within ``LOUD_ERROR``
 times that size (``shown_values`` says which) is 0, and a column whose values all lie within that
-estimate of one short decimal is that decimal (a rate held constant: 40, not 40 ± 1e-11). The CSV is data and keeps the computed
-values (as the JSON does).
+estimate of one short decimal is that decimal (a rate held constant: 40, not 40 ± 1e-11). The CSV
+is data and keeps the computed values (as the JSON does).
 """
 
 from __future__ import annotations
