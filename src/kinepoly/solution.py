@@ -38,7 +38,7 @@ from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
-from kinepoly.scene.spec import Scene
+from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 
 __all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "wanted", "what_is_asked"]
 
@@ -116,13 +116,42 @@ class Solution:
         return self.pose.links[owner].world(self.mechanism.local(owner, point))
 
     def angle(self, link: str) -> float:
-        """theta_1k in radians, in (-pi, pi]."""
+        """theta_1k in radians, in (-pi, pi]; a link driven on the frame at an angle in that range: the angle given."""
+        given = self.driven_link(link)
+        if given is not None and -math.pi < given.angle_rad <= math.pi:
+            return given.angle_rad
         theta = math.remainder(self.pose.links[link].theta, 2.0 * math.pi)
         return math.pi if theta == -math.pi else theta
 
+    def driven_link(self, link: str) -> LinkInput | None:
+        """The input that turns ``link`` on the frame (its theta, omega and alpha given), None if none does."""
+        for drive in self.mechanism.drives:
+            spec = drive.spec
+            if isinstance(spec, LinkInput) and spec.relative_to is None and spec.link == link and drive.on_frame:
+                return spec
+        return None
+
     def slider(self, name: str) -> SliderValues:
-        """An asked slider's s, s_dot, s_ddot and Coriolis term, as the engine constructed them."""
-        return self.sliders[name]
+        """An asked slider's s, s_dot, s_ddot and Coriolis term, as the engine constructed them; a driven
+        slider's s, s_dot and s_ddot as the scene gives them (given, not recomputed: 50, not 49.99999999999999)."""
+        values, spec = self.sliders[name], self.driven_slider(name)
+        if spec is None:
+            return values
+        return SliderValues(spec.s, None if values.s_dot is None else spec.s_dot,
+                            None if values.s_ddot is None else spec.s_ddot, values.coriolis)
+
+    def driven_slider(self, name: str) -> SliderInput | None:
+        """The input that drives slider ``name`` (its s, s_dot and s_ddot given), None if none does."""
+        for drive in self.mechanism.drives:
+            if isinstance(drive.spec, SliderInput) and drive.spec.slider == name:
+                return drive.spec
+        return None
+
+    def __repr__(self) -> str:
+        """One line: the scene, what was solved, the cross-check (the default repr printed every array)."""
+        inputs = "; ".join(drive.name for drive in self.mechanism.drives) or "given motion"
+        return (f"<Solution {self.scene.title!r}: {len(self.mechanism.scene.links)} links, input {inputs}, "
+                f"{len(self.steps)} steps, max relative error {self.check.max_rel_error:.2g}>")
 
 
 def _pair(mechanism: Mechanism, label: str) -> tuple[str, str]:
@@ -249,7 +278,7 @@ def _quantities(sol: Solution, analytic: AnalyticSolution) -> list[Quantity]:
     for link in dict.fromkeys((*asked.omega, *asked.alpha)):
         out.append(Quantity(f"links.{link}.angle", "angle", sol.angle(link), analytic.poses[link].theta))
     for name in asked.sliders:
-        got, ref = sol.slider(name), analytic.slider_values(mech, name)
+        got, ref = sol.sliders[name], analytic.slider_values(mech, name)  # as constructed, driven ones too
         out.append(Quantity(f"sliders.{name}.s", "position", got.s, ref["s"]))
         if got.s_dot is not None:
             out.append(Quantity(f"sliders.{name}.s_dot", "velocity", got.s_dot, ref["s_dot"]))

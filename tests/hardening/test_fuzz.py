@@ -66,6 +66,7 @@ def _run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]
     return code, out, err
 
 
+@pytest.mark.slow  # about 19 s: 60 random scenes, some with a handout
 @settings(max_examples=60, deadline=timedelta(seconds=120), derandomize=True,
           suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 @given(text=scenes(), with_handout=st.integers(0, 3))

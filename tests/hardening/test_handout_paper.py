@@ -22,7 +22,7 @@ from kinepoly.handout.drawing import band_frame, drawing_layers
 from kinepoly.render.labels import LabelCache
 from kinepoly.render.layout import paper_size
 from kinepoly.render.primitives import Sheet, Text
-from kinepoly.render.sheet import build_sheet, layout_sheet, step_sheets
+from kinepoly.render.sheet import build_sheet, layout_sheet, step_count, step_sheets
 from kinepoly.scene.loader import load_scene, loads_scene
 from kinepoly.solution import solve
 
@@ -76,5 +76,5 @@ def test_labels_placed_once_per_handout_are_those_placed_anew_on_each_page(name:
 def test_step_sheets_with_the_shared_cache_are_the_sheets_built_alone() -> None:
     solution = solve(load_scene(EXAMPLES / "centers-six-bar.toml"))
     layout = layout_sheet(solution, "A4")
-    alone = [build_sheet(solution, "A4", step=n, layout=layout) for n in range(1, len(solution.steps) + 1)]
+    alone = [build_sheet(solution, "A4", step=n, layout=layout) for n in range(1, step_count(solution) + 1)]
     assert step_sheets(solution, "A4") == alone

@@ -186,6 +186,7 @@ def test_plot_draws_the_s_v_a_diagram_and_the_pressure_angle() -> None:
     import matplotlib.pyplot as plt
 
     from kinepoly.sweep.plots import plot_figure
+    from kinepoly.sweep.shown import shown_values
 
     result = sweep(kinepoly.load_scene(EXAMPLES / "eccentric-cam-flat.toml"), steps=90)
     assert result.followers == (("23", ("s_13", "s_dot_13", "s_ddot_13")),)
@@ -195,12 +196,16 @@ def test_plot_draws_the_s_v_a_diagram_and_the_pressure_angle() -> None:
         stacked = [ax for ax in fig.axes if ax.get_visible() and ax.get_ylabel().split("\n")[0] in
                    ("s_13", "s_dot_13", "s_ddot_13")]
         assert [ax.get_ylabel().split("\n")[0] for ax in stacked] == ["s_13", "s_dot_13", "s_ddot_13"]
-        for ax in stacked:  # the plotted vertices are the CSV's column, over the cam angle
+        shown = shown_values(result)
+        for ax in stacked:  # the plotted vertices are the CSV's column by the number rule, over the cam angle
             x, y = ax.lines[0].get_data()
             name = ax.get_ylabel().split("\n")[0]
             assert np.array_equal(np.asarray(x), result.input.values)
-            assert np.array_equal(np.asarray(y), result.column(name).values)
+            assert np.array_equal(np.asarray(y), shown[name])
+            assert np.allclose(shown[name], result.column(name).values, rtol=1e-9, atol=1e-9 * np.abs(shown[name]).max())
         pressure = next(ax for title, ax in by_title.items() if title.startswith("pressure angles"))
-        assert np.array_equal(np.asarray(pressure.lines[0].get_ydata()), result.column("pressure_angle_23").values)
+        # a flat face square to its guide: the pressure angle is 0 (the column's 3.5e-15 deg is rounding noise)
+        assert np.array_equal(np.asarray(pressure.lines[0].get_ydata()), shown["pressure_angle_23"])
+        assert np.abs(result.column("pressure_angle_23").values).max() < 1e-12
     finally:
         plt.close(fig)

@@ -59,6 +59,7 @@ def _errors(path: Path, n: int, steps: int = 360) -> tuple[float, float, float]:
     return tuple(float(np.max(np.hypot(gaps[2 * k], gaps[2 * k + 1]))) for k in range(3))  # type: ignore[return-value]
 
 
+@pytest.mark.slow  # about 11 to 15 s each
 @pytest.mark.parametrize("path", [TRIAD, SLEEVE])
 def test_the_examples_follow_the_exact_circle_over_a_turn_at_the_splines_order(path: Path) -> None:
     # measured over 360 rows, 36 / 72 / 144 points: triad 1.4e-4 / 8.4e-6 / 5.3e-7 mm, 0.067 / 8.2e-3 / 1.0e-3
@@ -70,6 +71,7 @@ def test_the_examples_follow_the_exact_circle_over_a_turn_at_the_splines_order(p
             assert math.log2(a[k] / b[k]) == pytest.approx(order, abs=0.35)
 
 
+@pytest.mark.slow  # about 25 to 34 s each: the slowest of the suite
 @pytest.mark.parametrize("path", [TRIAD, SLEEVE, FLAT])
 def test_velocity_and_acceleration_are_the_positions_finite_differences(path: Path) -> None:
     steps = 3600

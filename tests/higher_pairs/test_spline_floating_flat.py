@@ -45,6 +45,7 @@ def _errors(n: int, steps: int = 360) -> tuple[float, float, float]:
     return tuple(float(np.max(np.hypot(gaps[2 * k], gaps[2 * k + 1]))) for k in range(3))  # type: ignore[return-value]
 
 
+@pytest.mark.slow  # about 10 s
 def test_the_face_follows_the_exact_circle_over_a_turn_at_the_splines_order() -> None:
     # measured over 360 rows, 36 / 72 / 144 points: 1.5e-4 / 9.2e-6 / 5.7e-7 mm, 0.068 / 8.5e-3 / 1.0e-3 mm/s,
     # 94 / 25 / 5.9 mm/s^2 (orders 4.0 4.0, 3.0 3.1, 1.9 2.1)

@@ -55,6 +55,7 @@ def _sheet_text(sheet: Any) -> str:
                      if isinstance(item, Text))
 
 
+@pytest.mark.slow  # every example drawn and handed out in every form: 4 to 8 s each
 @pytest.mark.parametrize("name", NAMES)
 def test_solve_draw_and_every_handout_write_the_same_kv_and_ka(name: str, tmp_path: Path,
                                                                capsys: pytest.CaptureFixture[str]) -> None:

@@ -15,6 +15,7 @@ from tools.regenerate_drawings import DRAWN_FORMATS, draw_example, stale
 DRAWINGS = EXAMPLES.parent / "drawings"
 
 
+@pytest.mark.slow  # every example drawn in every format: the slowest test of all
 def test_committed_drawings_are_current() -> None:
     problems = stale(EXAMPLES, DRAWINGS)
     assert not problems, "stale drawings; run python3 tools/regenerate_drawings.py:\n" + "\n".join(problems)

@@ -35,7 +35,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--dpi", type=int, default=150, help="resolution of PNG output (default 150)")
 
 
-def _targets(output: str, stem: str) -> list[tuple[Path, str]]:
+def _targets(output: str, stem: str, steps: str | None = None) -> list[tuple[Path, str]]:
+    """The files of ``-o``; a file in the ``--steps`` folder is made with it, as the steps are."""
     path = Path(output)
     if output.endswith(("/", "\\")) or path.is_dir():  # made once the drawing is (a failed run leaves none)
         _check_folder(path, "-o")
@@ -44,7 +45,9 @@ def _targets(output: str, stem: str) -> list[tuple[Path, str]]:
     if fmt not in FORMATS:
         raise OutputError(f"-o {output}: unknown drawing format {path.suffix or '(no extension)'!r}; expected a file "
                           f"ending in .svg, .dxf, .png or .pdf, or a folder ending in /")
-    if not path.parent.is_dir():
+    if steps and path.parent.resolve() == Path(steps).resolve():
+        _check_folder(path.parent, "-o")
+    elif not path.parent.is_dir():
         raise OutputError(f"-o {output}: the folder {str(path.parent)!r} does not exist; create it or choose another")
     return [(path, fmt)]
 
@@ -122,7 +125,7 @@ def run(args: argparse.Namespace) -> int:
 def _draw(args: argparse.Namespace) -> list[str]:
     """Draw the scene as asked; return the lines to print (one per file written)."""
     from kinepoly.render.layout import paper_name, paper_size
-    from kinepoly.render.sheet import build_sheet, layout_sheet
+    from kinepoly.render.sheet import build_sheet, layout_sheet, step_count
     from kinepoly.scene.loader import load_scene
     from kinepoly.solution import solve
 
@@ -134,7 +137,7 @@ def _draw(args: argparse.Namespace) -> list[str]:
         paper = paper_size(args.paper)
     except ValueError as error:
         raise OutputError(str(error)) from error
-    targets = _targets(args.output, Path(args.scene).stem) if args.output else []
+    targets = _targets(args.output, Path(args.scene).stem, args.steps) if args.output else []
     if args.steps:
         _check_folder(Path(args.steps), "--steps")
     t0 = time.perf_counter()
@@ -153,7 +156,7 @@ def _draw(args: argparse.Namespace) -> list[str]:
         for path, fmt in targets:
             files.append((path, *_render(path, fmt, sheet, args.dpi)))
             lines.append(f"wrote {path}")
-    total = len(solution.steps) if args.steps else 0
+    total = step_count(solution) if args.steps else 0  # the Kennedy steps too, numbered as solve --steps numbers them
     for number in range(1, total + 1):
         path = Path(args.steps) / f"step-{number:0{max(2, len(str(total)))}d}.svg"
         files.append((path, *_render(path, "svg", build_sheet(solution, paper, step=number, layout=layout), args.dpi)))

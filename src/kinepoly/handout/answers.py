@@ -94,7 +94,8 @@ def _center_omegas(solution: Solution, say: Catalogue) -> list[Part]:
 
 
 def _error(say: Catalogue, x: float) -> str:
-    text = f"{x:.1e}"
+    """A relative error in two digits; an exact agreement is 0 (not 0.0e+00)."""
+    text = "0" if x == 0.0 else f"{x:.1e}"
     return text.replace(".", say.decimal) if say.decimal != "." else text
 
 

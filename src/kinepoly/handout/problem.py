@@ -49,15 +49,18 @@ def _drive_paragraph(solution: Solution, say: Catalogue, inp: LinkInput | Slider
         return Paragraph(say.say(
             "problem.input_link", link=inp.link, angle_name=f"θ{pair}",
             angle=_angle(solution, say, inp.angle_rad), omega_name=f"ω{pair}",
-            omega=say.number(abs(inp.omega)), omega_sense=say.say(f"sense.{_sense(inp.omega)}"),
-            alpha_name=f"α{pair}", alpha=say.number(abs(inp.alpha)),
-            alpha_sense=say.say(f"sense.{_sense(inp.alpha)}")))
+            omega=say.number(abs(inp.omega)), omega_sense=_sense_text(say, inp.omega),
+            alpha_name=f"α{pair}", alpha=say.number(abs(inp.alpha)), alpha_sense=_sense_text(say, inp.alpha)))
     return Paragraph(say.say("problem.input_slider", slider=inp.slider, s=say.number(inp.s),
                              s_dot=say.number(inp.s_dot), s_ddot=say.number(inp.s_ddot), unit=unit))
 
 
-def _sense(rate: float) -> str:
-    return "ccw" if rate > 0 else ("cw" if rate < 0 else "zero")
+def _sense_text(say: Catalogue, rate: float) -> str:
+    """The sense after an input rate (`` counter-clockwise``); nothing after a zero rate (0 rad/s², not "0 rad/s²
+    zero")."""
+    if rate == 0.0:
+        return ""
+    return say.say("problem.rate_sense", sense=say.say(f"sense.{'ccw' if rate > 0 else 'cw'}"))
 
 
 def _frame(solution: Solution, say: Catalogue) -> list[Paragraph]:

@@ -24,6 +24,7 @@ from kinepoly.engine.construct import construct_row
 from kinepoly.errors import KinepolyError
 from kinepoly.geom.vec import Vec
 from kinepoly.homework.answers import AnswerKey, Direction, Value
+from kinepoly.present.clean import noise_of
 from kinepoly.present.scales import A4, polygon_scales
 from kinepoly.scene.spec import FindSpec, GivenInput, Scene
 from kinepoly.solution import Solution, solve, wanted
@@ -93,35 +94,45 @@ def _pair(v: Vec) -> tuple[float, float]:
 
 def values_of(solution: Solution) -> dict[AnswerKey, Value]:
     """Every value ``solution`` reports for its scene's [find], keyed, in the order ``kinepoly solve`` shows them:
-    links (theta, omega, alpha), points (velocity, acceleration), sliders (s, s_dot, s_ddot), instant centers."""
+    links (theta, omega, alpha), points (velocity, acceleration), sliders (s, s_dot, s_ddot), instant centers.
+
+    By the number rule (``present.clean``): a value within its error estimate of 0 is 0, of a short decimal that
+    decimal, and a driven value is the one given; the answer keys and the checking show them so."""
     asked, find = solution.asked, solution.scene.find
     velocity, acceleration = solution.velocity, solution.acceleration
+    noise = noise_of(solution)
     out: dict[AnswerKey, Value] = {}
     for link in dict.fromkeys((*asked.omega, *asked.alpha)):
-        out[AnswerKey("theta", link)] = solution.angle(link)
+        driven = solution.driven_link(link)
+        out[AnswerKey("theta", link)] = (solution.angle(link) if driven is not None
+                                         else noise.value(solution.angle(link), "angle"))
         if link in asked.omega and velocity is not None:
-            out[AnswerKey("omega", link)] = float(velocity.omega[link])
+            out[AnswerKey("omega", link)] = (driven.omega if driven
+                                             else noise.value(float(velocity.omega[link]), "omega"))
         if link in asked.alpha and acceleration is not None:
-            out[AnswerKey("alpha", link)] = float(acceleration.alpha[link])
+            out[AnswerKey("alpha", link)] = (driven.alpha if driven
+                                             else noise.value(float(acceleration.alpha[link]), "alpha"))
     for label in dict.fromkeys((*find.velocity, *find.acceleration)):
         if label in find.velocity and velocity is not None:
-            out[AnswerKey("velocity", label)] = _pair(velocity.tips[label])
+            out[AnswerKey("velocity", label)] = _pair(noise.pair(velocity.tips[label], "velocity"))
         if label in find.acceleration and acceleration is not None:
-            out[AnswerKey("acceleration", label)] = _pair(acceleration.tips[label])
+            out[AnswerKey("acceleration", label)] = _pair(noise.pair(acceleration.tips[label], "acceleration"))
     for name in asked.sliders:
-        slider = solution.slider(name)
-        out[AnswerKey("s", name)] = float(slider.s)
+        slider, given = solution.slider(name), solution.driven_slider(name) is not None
+        out[AnswerKey("s", name)] = float(slider.s) if given else noise.value(float(slider.s), "position")
         if slider.s_dot is not None:
-            out[AnswerKey("s_dot", name)] = float(slider.s_dot)
+            out[AnswerKey("s_dot", name)] = (float(slider.s_dot) if given
+                                             else noise.value(float(slider.s_dot), "velocity"))
         if slider.s_ddot is not None and slider.coriolis is not None:
-            out[AnswerKey("s_ddot", name)] = float(slider.s_ddot)
+            out[AnswerKey("s_ddot", name)] = (float(slider.s_ddot) if given
+                                              else noise.value(float(slider.s_ddot), "acceleration"))
     centers = solution.centers.centers if solution.centers is not None else {}
     for key, name in solution.centers.asked if solution.centers is not None else ():
         center = centers[name]
         if center.position is not None:
-            out[AnswerKey("center", key)] = _pair(center.position)
+            out[AnswerKey("center", key)] = _pair(noise.pair(center.position, "position"))
         elif center.direction is not None:
-            out[AnswerKey("center", key)] = Direction(*_pair(center.direction))
+            out[AnswerKey("center", key)] = Direction(*_pair(noise.pair(center.direction, "direction")))
     return out
 
 

@@ -14,7 +14,18 @@ from collections.abc import Iterable, Sequence
 
 from kinepoly.homework.answers import AnswerKey, Direction, Value
 from kinepoly.homework.higher_pairs import as_written
-from kinepoly.scene.spec import CamSpec, GearSpec, LinkInput, PitchCircle, PitchLine, Scene, SliderInput, Units
+from kinepoly.present.clean import given_angle
+from kinepoly.scene.spec import (
+    CamSpec,
+    GearSpec,
+    LinkInput,
+    PitchCircle,
+    PitchLine,
+    PointSpec,
+    Scene,
+    SliderInput,
+    Units,
+)
 
 __all__ = ["answers_toml", "scene_toml", "toml_key", "toml_number"]
 
@@ -42,12 +53,20 @@ def _pair(v: Sequence[float], digits: int | None = None) -> str:
     return f"[{toml_number(v[0], digits)}, {toml_number(v[1], digits)}]"
 
 
+def _point(scene: Scene, point: PointSpec) -> str:
+    """``[x, y]``, or ``{ polar = [r, angle] }`` where the scene wrote it so."""
+    if point.polar is None:
+        return _pair(point.local)
+    return f"{{ polar = [{toml_number(point.polar[0])}, {_angle(scene, point.polar[1])}] }}"
+
+
 def _strings(names: Iterable[str]) -> str:
     return "[" + ", ".join(json.dumps(name, ensure_ascii=False) for name in names) + "]"
 
 
 def _angle(scene: Scene, radians: float) -> str:
-    return toml_number(math.degrees(radians) if scene.units.angle == "deg" else radians)
+    """An angle as the scene writes it (``present.clean.given_angle``: 210, not 210.00000000000003)."""
+    return toml_number(given_angle(radians, scene.units.angle))
 
 
 def _name_line(name: str, first: str, second: str) -> list[str]:
@@ -112,7 +131,7 @@ def scene_toml(scene: Scene, header: str = "") -> str:
         out.append(f"ground = {json.dumps(scene.ground)}")
     out += ["", "[links]"]
     for link in scene.links:
-        points = ", ".join(f"{toml_key(p.name)} = {_pair(p.local)}" for p in link.points)
+        points = ", ".join(f"{toml_key(p.name)} = {_point(scene, p)}" for p in link.points)
         out.append(f"{toml_key(link.name)} = {{ points = {{ {points} }} }}")
     for slider in scene.sliders:
         out += ["", "[[sliders]]", f"block = {json.dumps(slider.block)}", f"guide = {json.dumps(slider.guide)}",

@@ -49,7 +49,9 @@ from kinepoly.homework.higher_pairs import (
 from kinepoly.homework.reference import asked_keys, values_of
 from kinepoly.homework.toml_out import answers_toml, scene_toml
 from kinepoly.homework.vary import Range, Ranges
+from kinepoly.present.clean import roundoff, tidy
 from kinepoly.scene.loader import loads_scene
+from kinepoly.scene.reader_state import polar_point
 from kinepoly.scene.spec import GivenInput, LinkInput, LinkSpec, PointSpec, Scene
 from kinepoly.solution import Solution, solve
 
@@ -113,10 +115,19 @@ def _between(start: _Numbers, end: _Numbers, t: float, turn: float) -> _Numbers:
                     tuple(a + t * (b - a) for a, b in zip(start.pairs, end.pairs)))
 
 
+def _as_polar(point: PointSpec, xy: Vec) -> tuple[float, float] | None:
+    """A point the scene writes in polar form keeps it: its new radius (the drawn one, to roundoff) at its angle."""
+    if point.polar is None:
+        return None
+    r = math.hypot(*xy)
+    return (tidy(r, roundoff(r, 8.0)), point.polar[1])
+
+
 def _written_scene(base: Scene, numbers: _Numbers, guess: tuple[tuple[str, Vec], ...],
                    title: str | None = None) -> Scene:
     """The variant as it is written: ``base`` (as the user wrote it, cams and gears too) with ``numbers``."""
-    links = tuple(LinkSpec(link.name, tuple(PointSpec(p.name, xy, p.line) for p, xy in zip(link.points, coords)),
+    links = tuple(LinkSpec(link.name, tuple(PointSpec(p.name, xy, p.line, _as_polar(p, xy))
+                                            for p, xy in zip(link.points, coords)),
                            link.line) for link, coords in zip(base.links, numbers.points))
     sliders = tuple(dataclasses.replace(s, through=xy) for s, xy in zip(base.sliders, numbers.through))
     points = {p.name for link in base.links for p in link.points}
@@ -176,11 +187,18 @@ def _length_rounder(scene: Scene, extra_digits: int = 0) -> Callable[[float], fl
     return _rounder(_length_exponent(scene) - extra_digits)
 
 
+def _drawn_point(point: PointSpec, factor: float, length: Callable[[float], float]) -> Vec:
+    """A point's coordinates times ``factor``, each rounded by ``length``; a polar point's radius rounded, its
+    angle kept (a coupler point written { polar = [60, 20] } stays at 20 degrees)."""
+    if point.polar is not None:
+        return polar_point(length(factor * point.polar[0]), point.polar[1])
+    return (length(factor * point.local[0]), length(factor * point.local[1]))
+
+
 def _draw(rng: random.Random, scene: Scene, ranges: Ranges) -> _Numbers:
     length = _length_rounder(scene)
     factors = _factors(rng, scene, ranges)
-    points = tuple(tuple((length(factors[link.name] * x), length(factors[link.name] * y)) for x, y in
-                         (p.local for p in link.points)) for link in scene.links)
+    points = tuple(tuple(_drawn_point(p, factors[link.name], length) for p in link.points) for link in scene.links)
     through = tuple((length(factors[s.guide] * s.through[0]), length(factors[s.guide] * s.through[1]))
                     for s in scene.sliders)
     inputs = []

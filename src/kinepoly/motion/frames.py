@@ -29,6 +29,7 @@ from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.scene.spec import LinkInput
 from kinepoly.sweep.plots import robust_window
 from kinepoly.sweep.run import PreparedSweep, SweepResult
+from kinepoly.sweep.shown import shown_values
 
 __all__ = ["NO_POLYGON", "PANEL_MM", "PARTS", "Frames", "LinkFrames", "PolygonFrames", "SliderFrames", "Trace", "Value",
            "fitting_scale", "make_frames"]
@@ -202,8 +203,10 @@ def _polygon_frames(polygon: Polygon, idx: npt.NDArray[np.intp], valid: Bools, o
 
 
 def _values(result: SweepResult) -> tuple[Value, ...]:
+    """The values shown beside the drawing, by the number rule (``sweep.shown``)."""
     unit = result.scene.units
     length, angle = unit.length, unit.angle
+    shown = shown_values(result)
     out = [Value(result.input.name, angle if isinstance(result.scene.input, LinkInput) else length,
                  result.input.values, result.input.valid, 0)]
     names = {c.name for c in result.columns}
@@ -211,12 +214,12 @@ def _values(result: SweepResult) -> tuple[Value, ...]:
              "slider-acceleration": f"{length}/s^2", "transmission": angle}
     for col in result.columns:
         if col.kind in units:
-            out.append(Value(col.name, units[col.kind], col.values, col.valid, col.order))
+            out.append(Value(col.name, units[col.kind], shown[col.name], col.valid, col.order))
         elif col.kind in ("velocity", "acceleration", "coriolis") and col.name.endswith("_x") \
                 and col.name[:-2] + "_y" in names:
             other = result.column(col.name[:-2] + "_y")
             where = "/s" if col.kind == "velocity" else "/s^2"
-            out.append(Value(f"|{col.name[:-2]}|", f"{length}{where}", np.hypot(col.values, other.values),
+            out.append(Value(f"|{col.name[:-2]}|", f"{length}{where}", np.hypot(shown[col.name], shown[other.name]),
                              col.valid & other.valid, col.order))
     return tuple(out)
 

@@ -199,7 +199,6 @@ const cells = D.values.map(v => {
   table.appendChild(tr);
   return value;
 });
-const biggest = D.values.map(v => Math.max(0, ...v.values.filter(x => x !== null).map(Math.abs)));
 const slider = document.getElementById("position");
 slider.max = D.rows.length - 1;
 let frame = 0, timer = null;
@@ -258,8 +257,7 @@ function show(k) {
   D.values.forEach((v, j) => {
     const x = v.values[row];
     cells[j].dataset.value = x === null ? "" : String(x);
-    const tiny = x !== null && Math.abs(x) < 1e-9 * biggest[j];  // rounding noise of a rate through zero
-    cells[j].textContent = x === null ? "\u2014" : tiny ? "0" : Number(x.toPrecision(6)).toString();
+    cells[j].textContent = x === null ? "\u2014" : Number(x.toPrecision(6)).toString();  // by the number rule already
   });
   if (cursor !== null) cursor.move(D.inputs[row]);
   const status = D.status[row] === "ok" ? "" : ` (${D.status[row]})`;

@@ -216,7 +216,7 @@ class _Scene:
         status = ("", " (near-singular)", " (singular: polygons not determined)", "")[int(f.status[row])]
         self.title = (f"{f.title}: {value_text(f.input_name, float(f.inputs[row]), f.input_unit)}, "
                             f"position {row + 1} of {len(f.inputs)}{status}")
-        shown = [value_text(v.name, _clean(v.values, row), v.unit) for v in f.values[1:] if v.valid[row]
+        shown = [value_text(v.name, float(v.values[row]), v.unit) for v in f.values[1:] if v.valid[row]
                  and v.order >= 1 and not v.name.startswith("|")]
         self.values = "   ".join(shown[:5])
 
@@ -269,12 +269,6 @@ class _Scene:
             px, py = ax.transData.transform((x, y))
             draw.text((px + shift, height - py - shift), text, fill=color, font=self.label_font, anchor="ld")
         return np.asarray(image)
-
-
-def _clean(values: np.ndarray, row: int) -> float:
-    """The value at ``row``, 0 where it is rounding noise against the column's largest (a rate through zero)."""
-    x = float(values[row])
-    return 0.0 if abs(x) < 1e-9 * float(np.abs(values).max()) else x
 
 
 def _step(x: np.ndarray) -> float:

@@ -1,10 +1,17 @@
-"""Rounding noise as people read it: a value below its quantity's error estimate prints as 0.
+"""The number rule: how every number meant for people is shown.
 
-The JSON keeps the computed floats; the table, the steps, the title block, the handouts and
-the answer keys print what ``Noise`` leaves. A quantity's floor is its kind's estimated
-relative error (``Solution.accuracy``) times the natural size of that kind in the scene (the
-cross-check's normwise scale): an x-coordinate of 1.4e-14 mm in a 200 mm mechanism, a triad's
-angle of 4.8e-14 degrees or a unit direction's 6.1e-17 are all below it, and print as 0.
+A value within its error estimate of zero is 0; a value within its estimate of a short decimal is
+that decimal (``tidy``: 49.99999999999999 with an estimate of 1e-13 is 50, 210.00000000000003
+written back to a scene is 210). A driven value is given, not computed: it is shown as the scene
+gives it (``Solution.slider`` and the sweep's columns echo a driven slider's s, s_dot and s_ddot;
+``given_angle`` turns a stored angle back into the number written in the scene's unit).
+
+The JSON keeps the computed floats (the driven values aside, echoed exactly); the table, the steps,
+the title block, the handouts and the answer keys print what ``Noise`` leaves. A quantity's floor
+is its kind's estimated relative error (``Solution.accuracy``) times the natural size of that kind
+in the scene (the cross-check's normwise scale): an x-coordinate of 1.4e-14 mm in a 200 mm
+mechanism, a triad's angle of 4.8e-14 degrees or a unit direction's 6.1e-17 are all below it, and
+print as 0. A sweep's columns take the same rule with the sweep's estimate (``sweep.shown``).
 """
 
 from __future__ import annotations
@@ -19,7 +26,7 @@ from kinepoly.geom.tolerances import UNIT_ROUNDOFF
 if TYPE_CHECKING:
     from kinepoly.solution import Solution
 
-__all__ = ["KINDS", "Noise", "clean", "format_number", "noise_of"]
+__all__ = ["KINDS", "Noise", "clean", "format_number", "given_angle", "noise_of", "roundoff", "tidy"]
 
 KINDS = ("position", "angle", "direction", "velocity", "omega", "instant_center", "acceleration", "alpha")
 """The kinds of printed quantities: those of the cross-check, and ``direction`` (a unit vector)."""
@@ -41,6 +48,44 @@ def clean(value: float, scale: float, relative: float) -> float:
     return 0.0 if abs(value) <= abs(scale) * relative else value + 0.0
 
 
+def tidy(value: float, error: float) -> float:
+    """The number rule: 0 where ``|value| <= error``; else the decimal of fewest significant digits within
+    ``error`` of ``value`` (``value`` itself where none is nearer than the last digit).
+
+    ``error`` is the value's absolute error estimate (>= 0); -0.0 becomes 0.0; infinities and NaN pass.
+    """
+    if not math.isfinite(value):
+        return value
+    error = abs(error) if math.isfinite(error) else 0.0
+    if abs(value) <= error:
+        return 0.0
+    for digits in range(17):
+        shorter = float(f"{value:.{digits}e}")
+        if abs(shorter - value) <= error:
+            return shorter + 0.0
+    return value + 0.0
+
+
+def roundoff(value: float, units: float = 4.0) -> float:
+    """The error estimate of a value computed in a few floating-point operations from exact numbers
+    (a unit conversion, a scale factor): ``units`` units in its last place."""
+    return units * math.ulp(value) if math.isfinite(value) else 0.0
+
+
+def given_angle(radians: float, unit: str) -> float:
+    """A stored angle in the scene's ``unit`` as the scene wrote it: the decimal of fewest digits whose
+    conversion to radians is ``radians`` itself (60 degrees, not 59.99999999999999; 210, not
+    210.00000000000003). In radians, ``radians``."""
+    if unit != "deg" or not math.isfinite(radians):
+        return radians + 0.0
+    degrees = math.degrees(radians)
+    for digits in range(17):
+        shorter = float(f"{degrees:.{digits}e}")
+        if math.radians(shorter) == radians:
+            return shorter + 0.0
+    return degrees + 0.0
+
+
 @dataclass(frozen=True)
 class Noise:
     """The absolute error floor of each kind (the unit of the kind: mm, rad, mm/s, ...)."""
@@ -51,16 +96,16 @@ class Noise:
         return self.floors.get(kind, 0.0)
 
     def value(self, x: float, kind: str) -> float:
-        """``x`` of ``kind``, 0 where below the floor."""
-        return clean(x, self.floor(kind), 1.0)
+        """``x`` of ``kind`` by the number rule (``tidy``), its floor the error estimate."""
+        return tidy(x, self.floor(kind))
 
     def pair(self, v: Sequence[float], kind: str) -> tuple[float, float]:
         """A vector of ``kind`` with each component below the floor set to 0."""
         return self.value(v[0], kind), self.value(v[1], kind)
 
     def degrees(self, x: float) -> float:
-        """An angle already in degrees, 0 where below the angle floor (kept in radians)."""
-        return clean(x, math.degrees(self.floor("angle")), 1.0)
+        """An angle already in degrees by the number rule, its estimate the angle floor (kept in radians)."""
+        return tidy(x, math.degrees(self.floor("angle")))
 
 
 def _scales(solution: Solution) -> dict[str, float]:

@@ -12,7 +12,7 @@ from kinepoly.check.summary import QuantityError
 from kinepoly.engine.steps import Step
 from kinepoly.geom.vec import Vec, norm, unit
 from kinepoly.present.centers import centers_json, centers_steps_text, centers_table, kennedy_steps_json
-from kinepoly.present.clean import Noise, noise_of
+from kinepoly.present.clean import Noise, given_angle, noise_of
 from kinepoly.present.phrasing import Context, canonical_terms, canonical_text, english, scale_note, step_sentence
 from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.scene.spec import GivenInput, LinkInput
@@ -27,6 +27,13 @@ def _pair(v: Vec) -> list[float]:
 
 def _angle(solution: Solution, radians: float) -> float:
     return math.degrees(radians) if solution.scene.units.angle == "deg" else radians
+
+
+def _link_angle(solution: Solution, link: str) -> float:
+    """theta_1k in the scene's unit; a driven link's as the scene gives it (60, not 59.99999999999999)."""
+    if solution.driven_link(link) is not None:
+        return given_angle(solution.angle(link), solution.scene.units.angle)
+    return _angle(solution, solution.angle(link))
 
 
 def _shown_tips(solution: Solution, kind: str) -> dict[str, Vec]:
@@ -65,11 +72,12 @@ def to_json(solution: Solution, scales: PolygonScales | None = None) -> dict[str
     out: dict[str, Any] = {"title": scene.title, "units": {"length": scene.units.length, "angle": scene.units.angle}}
     links: dict[str, dict[str, float]] = {}
     for name in dict.fromkeys((*asked.omega, *asked.alpha)):
-        link_entry = links.setdefault(name, {"angle": _angle(solution, solution.angle(name))})
+        link_entry = links.setdefault(name, {"angle": _link_angle(solution, name)})
+        driven = solution.driven_link(name)  # its omega and alpha given, not recomputed
         if name in asked.omega and solution.velocity is not None:
-            link_entry["omega"] = solution.velocity.omega[name]
+            link_entry["omega"] = driven.omega if driven is not None else solution.velocity.omega[name]
         if name in asked.alpha and solution.acceleration is not None:
-            link_entry["alpha"] = solution.acceleration.alpha[name]
+            link_entry["alpha"] = driven.alpha if driven is not None else solution.acceleration.alpha[name]
     if links:
         out["links"] = links
     points: dict[str, dict[str, list[float]]] = {}
@@ -226,7 +234,8 @@ def input_text(solution: Solution) -> str:
     for drive in solution.mechanism.drives:
         spec, pair = drive.spec, f"{drive.base}{drive.moving}"
         if isinstance(spec, LinkInput):
-            out.append(f"theta{pair} = {_fmt(_angle(solution, spec.angle_rad))} {solution.scene.units.angle}, "
+            out.append(f"theta{pair} = {_fmt(given_angle(spec.angle_rad, solution.scene.units.angle))} "
+                       f"{solution.scene.units.angle}, "
                        f"omega{pair} = {_fmt(spec.omega)} rad/s, alpha{pair} = {_fmt(spec.alpha)} rad/s^2")
         else:
             u = solution.scene.units.length

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from kinepoly.present.clean import format_number
-from kinepoly.present.phrasing import Context, english, step_sentence
+from kinepoly.present.phrasing import Context, english, kennedy_sentence, step_sentence
 from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.render import centers as centers_layer
 from kinepoly.render import higher_pairs as higher_pairs_layer
@@ -36,7 +36,8 @@ from kinepoly.render.titleblock import (
 )
 from kinepoly.solution import Solution
 
-__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "readable_values", "roomy", "step_sheets"]
+__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "readable_values", "roomy", "step_count",
+           "step_sheets"]
 
 MARGIN_MM = 10.0
 _INNER_MM = 3.0
@@ -272,16 +273,23 @@ def _step_blocks(solution: Solution, layout: Layout, step: int, width: float) ->
     The sheet keeps the drawing's layout, so the step's block fits the drawing's title block: as
     wide as the row leaves it, in smaller type where its sentence is long.
     """
-    s = solution.steps[step - 1]
     kinds = _drawn_terms(layout.figures)
     head = layout.blocks[0]
     legend = [legend_block(kinds)] if kinds else []
-    words = step_sentence(s, english(), Context(solution, {p.name: p.scale for p in layout.panels}))
-    heading = f"[{s.polygon}, {s.kind}] {s.equation}"
+    context = Context(solution, {p.name: p.scale for p in layout.panels})
+    if step <= len(solution.steps):
+        s = solution.steps[step - 1]
+        words = step_sentence(s, english(), context)
+        heading = f"[{s.polygon}, {s.kind}] {s.equation}"
+    else:  # a Kennedy step, numbered after the polygons' as kinepoly solve --steps numbers it
+        assert solution.centers is not None
+        kennedy = solution.centers.steps[step - len(solution.steps) - 1]
+        words = kennedy_sentence(kennedy, english(), context)
+        heading = f"[instant centers, kennedy] {kennedy.equation}"
     room = layout.title_rect[3] - layout.title_rect[1]
 
     def blocks(text_w: float, size: float) -> list[Block]:
-        return [head, step_block(step, len(solution.steps), heading, words, text_w, size), *legend]
+        return [head, step_block(step, step_count(solution), heading, words, text_w, size), *legend]
 
     def one_row(text_w: float) -> bool:
         return all(y == 0.0 for _, (_, y) in flow(blocks(text_w, STEP_TEXT_MM), width))
@@ -346,8 +354,13 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
     return Sheet(layout.width, layout.height, title, tuple(Layer(name, tuple(layers[name])) for name in LAYERS))
 
 
+def step_count(solution: Solution) -> int:
+    """The steps ``kinepoly solve --steps`` numbers: the polygons' construction, then the Kennedy steps."""
+    return len(solution.steps) + (len(solution.centers.steps) if solution.centers is not None else 0)
+
+
 def step_sheets(solution: Solution, paper: str | tuple[float, float] = "A4") -> list[Sheet]:
-    """One sheet per construction step, all on the layout of the whole drawing."""
+    """One sheet per step (``step_count``), all on the layout of the whole drawing; a Kennedy step's sheet shows
+    the whole construction with that step in its title block."""
     layout = layout_sheet(solution, paper)
-    return [build_sheet(solution, paper, step=n, layout=layout)
-            for n in range(1, len(solution.steps) + 1)]
+    return [build_sheet(solution, paper, step=n, layout=layout) for n in range(1, step_count(solution) + 1)]

@@ -95,7 +95,7 @@ def _check_words(solution: Solution, err: float) -> str:
     if 0.0 < estimate and err <= estimate:
         bound = 10.0 ** math.ceil(math.log10(estimate))
         return f"largest relative error below {bound:.0e}, within its estimate ({verdict})"
-    return f"largest relative error {err:.1e} ({verdict})"
+    return f"largest relative error {'0' if err == 0.0 else format(err, '.1e')} ({verdict})"
 
 
 def _unit_text(solution: Solution) -> tuple[str, str, str]:

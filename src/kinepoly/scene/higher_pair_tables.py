@@ -1,7 +1,8 @@
 """The higher pairs of a scene: ``[[gears]]`` (pitch curves rolling without slip) and ``[[cams]]``.
 
 A gear's pitch is ``{ center = "O2", radius = 48 }`` (a point of the gear's own link) or, for a rack,
-``{ line = { through = [x, y], angle = a } }`` in the rack's frame; ``phase`` places the reference mesh.
+``{ line = { through = [x, y], angle = a } }`` in the rack's frame; ``phase`` places the reference mesh (a
+circle's in the scene's angle unit, a line's a length; see docs/scene-format.md, "Higher pairs").
 A cam's profile is ``{ circle = { center = [x, y], radius = R } }`` in the cam's frame; its follower
 touches it by a ``roller``, a ``flat`` face or a ``knife`` edge. Pairs are numbered from 1 in key
 paths (``gears.1.pitch.2.radius``) and named like sliders (``"23"``).
@@ -255,7 +256,7 @@ class HigherPairTables(ReaderState):
         radius_value = require(self.report, path + ("circle",), circle, "radius", "radius = R")
         if center_value is None or radius_value is None:
             return None
-        center = self.read_point_value(path + ("circle", "center"), center_value)
+        center, _ = self.read_point_value(path + ("circle", "center"), center_value)
         radius = self._positive(path + ("circle", "radius"), radius_value)
         return None if center is None or radius is None else (center, radius, ())
 

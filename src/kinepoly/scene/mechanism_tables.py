@@ -90,8 +90,8 @@ class MechanismTables(ReaderState):
             self.report.add(path, 'bad point name; expected a name without "@" (kept for coincident points)')
         else:
             check_showable(self.report, path, name, "the point name")
-        local = self.read_point_value(path, value)
-        return PointSpec(name, _NOWHERE if local is None else local, line)
+        local, polar = self.read_point_value(path, value)
+        return PointSpec(name, _NOWHERE if local is None else local, line, polar)
 
     # -- joints implied by shared point names
 

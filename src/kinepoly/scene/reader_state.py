@@ -16,7 +16,7 @@ from kinepoly.scene.spec import LinkSpec, SliderSpec
 from kinepoly.scene.units import Kinds, quantity, quantity_pair
 from kinepoly.scene.values import Vector, check_keys, require
 
-__all__ = ["ReaderState"]
+__all__ = ["ReaderState", "polar_point"]
 
 _POLAR_KEYS = ("polar",)
 
@@ -46,25 +46,26 @@ class ReaderState:
 
     # -- a point: [x, y] or { polar = [r, angle] } (a link's points, a cam circle's centre)
 
-    def read_point_value(self, path: KeyPath, value: object) -> Vector | None:
+    def read_point_value(self, path: KeyPath, value: object) -> tuple[Vector | None, tuple[float, float] | None]:
+        """The point in x, y, and (r, angle in radians) where it is written in polar form."""
         if isinstance(value, list) and len(value) == 2:
-            return quantity_pair(self.report, path, value, self.kinds.length)
+            return quantity_pair(self.report, path, value, self.kinds.length), None
         if not isinstance(value, dict):
             self.report.add(path, f"expected [x, y] or {{ polar = [r, angle] }}, got {show_value(value)}")
-            return None
+            return None, None
         check_keys(self.report, path, value, _POLAR_KEYS)
         polar = require(self.report, path, value, "polar", "[x, y] or { polar = [r, angle] }")
         if polar is None:
-            return None
+            return None, None
         if not isinstance(polar, list) or len(polar) != 2:
             self.report.add(path + ("polar",), f"expected [r, angle], got {show_value(polar)}")
-            return None
+            return None, None
         r = quantity(self.report, path + ("polar", "r"), polar[0], self.kinds.length)
         angle = quantity(self.report, path + ("polar", "angle"), polar[1], self.kinds.angle)
-        return None if r is None or angle is None else _polar(r, angle)
+        return (None, None) if r is None or angle is None else (polar_point(r, angle), (r, angle))
 
 
-def _polar(r: float, angle: float) -> Vector:
+def polar_point(r: float, angle: float) -> Vector:
     """The point at distance r and angle (rad); exact on the axes."""
     quarter = angle / (math.pi / 2.0)
     if abs(quarter - round(quarter)) < 1e-15 * max(1.0, abs(quarter)):

@@ -48,6 +48,9 @@ class PointSpec:
     name: str
     local: Vector
     line: int = 0
+    polar: tuple[float, float] | None = None
+    """(r, angle in radians) where the scene wrote the point as ``{ polar = [r, angle] }`` (``local`` is then
+    the same point in x, y); a scene written back writes it so."""
 
 
 @dataclass(frozen=True)
@@ -106,8 +109,10 @@ class PitchLine:
 class GearSpec:
     """Two pitch curves rolling without slip (``[[gears]]``): ``links[k]`` carries ``pitch[k]``.
 
-    ``phase[k]``: at the reference mesh, a circle's x-axis turned by phase (rad) points at the pitch
-    point; a line's ``through`` moved by phase (a length) along it lies at the pitch point."""
+    ``phase[k]``: at the reference mesh, a circle's x-axis turned by phase points at the pitch point; a
+    line's ``through`` moved by phase (a length) along it lies at the pitch point. A circle's phase is
+    written in the scene's angle unit (degrees by default) and stored here in radians, as every angle
+    of a spec; docs/scene-format.md ("Higher pairs") says what it places."""
 
     name: str
     links: tuple[str, str]

@@ -9,6 +9,7 @@ are shaded grey, singular rows marked by thin red lines.
 
 from __future__ import annotations
 
+import dataclasses
 import io
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
@@ -16,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from kinepoly.sweep.run import Column, SweepResult
+from kinepoly.sweep.shown import shown_values
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -67,8 +69,14 @@ def robust_window(values: list[np.ndarray], bulk: list[np.ndarray]) -> tuple[flo
     typical = float(np.percentile(np.abs(core), 95))
     if typical <= 0.0 or float(np.abs(data).max()) <= 5.0 * typical:
         return None
-    low, high = (float(x) for x in np.percentile(core, [1, 99]))
-    margin = 0.15 * max(high - low, typical)
+    # the bulk: the values within five spreads of the median, the spread being what four in five of them
+    # keep to (rates that run off near an open range's ends fill more than 1 % of the rows: percentiles 1..99
+    # reached 1e7 there and flattened the rest to a line)
+    centre = float(np.median(core))
+    spread = float(np.percentile(np.abs(core - centre), 80))
+    bulk_values = core[np.abs(core - centre) <= 5.0 * spread] if spread > 0.0 else core
+    low, high = (float(x) for x in np.percentile(bulk_values, [1, 99]))
+    margin = 0.15 * max(high - low, spread)
     return low - margin, high + margin
 
 
@@ -114,8 +122,13 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
         for col in sliders:
             target.plot(x, _masked(col), lw=1.2, ls="--", label=col.name)
         target.set_ylabel(slider_unit)
-        if lines:
+        if lines:  # the sliders' own axis windowed on their own ok rows (else on the panel's, below)
+            _robust_limits(target, [c.values[c.valid] for c in sliders],
+                           [c.values[c.valid & (result.status == _OK)] for c in sliders])
             target.legend(loc="lower right", fontsize=7)
+        else:
+            shown += [c.values[c.valid] for c in sliders]
+            bulk += [c.values[c.valid & (result.status == _OK)] for c in sliders]
     ax.set_title(title, fontsize=9)
     ax.set_xlabel(_input_label(result))
     ax.set_ylabel(unit if lines else slider_unit)
@@ -141,9 +154,17 @@ def _pairs(result: SweepResult, prefix: str) -> list[tuple[str, Column, Column]]
     return out
 
 
+def _closed(values: np.ndarray, valid: npt.NDArray[np.bool_], periodic: bool) -> tuple[np.ndarray, np.ndarray]:
+    """A full turn's rows and its first row again at the end (the turn's end is its start: no gap there)."""
+    if not periodic or len(values) < 2:
+        return values, valid
+    return np.append(values, values[0]), np.append(valid, valid[0] & valid[-1])
+
+
 def _curve_panel(ax: Axes, pairs: list[tuple[str, Column, Column]], title: str, unit: str,
-                 ok: npt.NDArray[np.bool_] | None = None) -> None:
-    """The curves of ``pairs``; a hodograph (``ok``: the rows that are ok) about its pole, windowed on those rows."""
+                 ok: npt.NDArray[np.bool_] | None = None, periodic: bool = False) -> None:
+    """The curves of ``pairs``; a hodograph (``ok``: the rows that are ok) about its pole, windowed on those rows;
+    ``periodic``: each curve closed (a full turn)."""
     points: list[np.ndarray] = []
     bulk: list[np.ndarray] = []
     for name, cx, cy in pairs:
@@ -151,8 +172,9 @@ def _curve_panel(ax: Axes, pairs: list[tuple[str, Column, Column]], title: str, 
         points.append(cx.values[valid] + 1j * cy.values[valid])
         if ok is not None:
             bulk.append(cx.values[valid & ok] + 1j * cy.values[valid & ok])
-        line = ax.plot(np.ma.masked_array(cx.values, ~valid), np.ma.masked_array(cy.values, ~valid), lw=1.2,
-                       label=name)
+        xs, shown = _closed(cx.values, valid, periodic)
+        ys, _ = _closed(cy.values, valid, periodic)
+        line = ax.plot(np.ma.masked_array(xs, ~shown), np.ma.masked_array(ys, ~shown), lw=1.2, label=name)
         if valid.any():
             first = int(np.flatnonzero(valid)[0])
             ax.plot([cx.values[first]], [cy.values[first]], "o", ms=3, color=line[0].get_color())
@@ -163,6 +185,8 @@ def _curve_panel(ax: Axes, pairs: list[tuple[str, Column, Column]], title: str, 
     ax.set_xlabel(f"x ({unit})")
     ax.set_ylabel(f"y ({unit})")
     clipped = ok is not None and _hodograph_window(ax, points, bulk, unit)
+    if ok is not None:
+        ax.locator_params(axis="x", nbins=5)  # a square panel: wide numbers on x would touch (-12500-10000)
     ax.set_aspect("equal", adjustable="box" if clipped else "datalim")
     ax.grid(True, lw=0.3)
     if pairs:
@@ -205,7 +229,8 @@ def _draw_skeleton(ax: Axes, result: SweepResult, only: str | None = None) -> No
 
 def _paths_panel(ax: Axes, result: SweepResult) -> None:
     paths = [p for p in _pairs(result, "r_") if "@" not in p[0]]  # A@4 runs where A runs
-    _curve_panel(ax, paths, "point paths (the mechanism at the scene's input)", result.scene.units.length)
+    _curve_panel(ax, paths, "point paths (the mechanism at the scene's input)", result.scene.units.length,
+                 periodic=result.periodic)
     _draw_skeleton(ax, result)
 
 
@@ -339,6 +364,12 @@ def _seed_pose(result: SweepResult, link: str) -> tuple[complex, complex] | None
     return points[0] - rotation * local[0], rotation
 
 
+def _as_shown(result: SweepResult) -> SweepResult:
+    """The sweep with its columns by the number rule (``sweep.shown``): no rounding noise drawn on its own axis."""
+    shown = shown_values(result)
+    return dataclasses.replace(result, columns=tuple(col._replace(values=shown[col.name]) for col in result.columns))
+
+
 def plot_png(result: SweepResult, dpi: int = 110) -> bytes:
     """All the sweep's plots on one sheet, as PNG bytes."""
     import matplotlib.pyplot as plt
@@ -359,6 +390,7 @@ def plot_figure(result: SweepResult) -> Figure:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    result = _as_shown(result)
     units = result.scene.units
     length = units.length
     panels: list[Callable[[Axes], None]] = [
@@ -371,10 +403,10 @@ def plot_figure(result: SweepResult) -> Figure:
     ]
     if _pairs(result, "v_"):
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "v_"), "velocity hodographs", f"{length}/s",
-                                              result.status == _OK))
+                                              result.status == _OK, result.periodic))
     if _pairs(result, "a_"):
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "a_"), "acceleration hodographs",
-                                              f"{length}/s^2", result.status == _OK))
+                                              f"{length}/s^2", result.status == _OK, result.periodic))
     if any(c.kind == "transmission" for c in result.columns):
         panels.append(lambda ax: _kind_panel(ax, result, "transmission", "transmission angles (0 dead point, 90 best)",
                                              True))

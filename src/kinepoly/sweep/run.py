@@ -288,14 +288,18 @@ def _columns(out: _Builder, asked: Asked, velocity: VelocityResult | None, accel
             out.pair(f"v_{label}", "velocity", velocity.tips[label])
         if label in scene.find.acceleration and acceleration is not None:
             out.pair(f"a_{label}", "acceleration", acceleration.tips[label])
+    driven = {drive.spec.slider: drive.spec for drive in mech.drives if isinstance(drive.spec, SliderInput)}
     for name in asked.sliders:
         motion = slider_motion(positions, mech.slider(name), velocity, acceleration)
+        given = driven.get(name)  # a driven slider's values are given, not recomputed (50, not 49.99999999999999)
         if f"s_{name}" != input_column:
-            out.add(f"s_{name}", "slider", motion.s)
+            out.add(f"s_{name}", "slider", motion.s if given is None else np.full(len(motion.s), given.s))
         if motion.s_dot is not None:
-            out.add(f"s_dot_{name}", "slider-rate", motion.s_dot)
+            out.add(f"s_dot_{name}", "slider-rate",
+                    motion.s_dot if given is None else np.full(len(motion.s_dot), given.s_dot))
         if motion.s_ddot is not None and motion.coriolis is not None:
-            out.add(f"s_ddot_{name}", "slider-acceleration", motion.s_ddot)
+            out.add(f"s_ddot_{name}", "slider-acceleration",
+                    motion.s_ddot if given is None else np.full(len(motion.s_ddot), given.s_ddot))
             if mech.slider(name).guide != mech.ground:  # a guide on the frame cannot turn: no Coriolis term
                 out.pair(f"coriolis_{name}", "coriolis", motion.coriolis)
 
