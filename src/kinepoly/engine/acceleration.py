@@ -40,6 +40,7 @@ from kinepoly.engine.velocity import (
     read_rate,
     record_drive_term,
     slide_direction,
+    slide_reference,
 )
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines
@@ -182,7 +183,7 @@ def _along_normal(ctx: _Context, term: str, known_link: str, known_point: str, p
 def _along_slide(ctx: _Context, term: str, slider: SliderSpec, other: str, point: str,
                  laid: list[DrawnVector]) -> Direction:
     """What ``slide_line`` draws, as data: the sliding term, after the Coriolis term when there is one."""
-    return Direction(term, "parallel", slider.name, ctx.b.label(other, point).lower(),
+    return Direction(term, *slide_reference(ctx.b, slider), ctx.b.label(other, point).lower(),
                      after=laid[-1].label if laid else "")
 
 
