@@ -8,6 +8,7 @@ to that step, the step's new elements highlighted, the step's text in the title 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -17,9 +18,9 @@ from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.render import centers as centers_layer
 from kinepoly.render import higher_pairs as higher_pairs_layer
 from kinepoly.render.labels import FEW, LabelCache, Request, place
-from kinepoly.render.layout import Content, Panel, arrange, larger_papers, paper_name, paper_size
+from kinepoly.render.layout import Content, Panel, arrange, larger_papers, nice_floor, paper_name, paper_size
 from kinepoly.render.mechanism import mechanism_box, mechanism_items
-from kinepoly.render.polygons import Figure, FigureDrawing, figure_box, polygon_figure
+from kinepoly.render.polygons import Figure, FigureDrawing, Kind, figure_box, polygon_figure
 from kinepoly.render.primitives import LAYERS, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.titleblock import (
     STEP_TEXT_MM,
@@ -36,7 +37,8 @@ from kinepoly.render.titleblock import (
 )
 from kinepoly.solution import Solution
 
-__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "readable_values", "roomy", "step_sheets"]
+__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "motion_layout", "readable_values", "roomy",
+           "step_sheets"]
 
 MARGIN_MM = 10.0
 _INNER_MM = 3.0
@@ -205,6 +207,38 @@ def _layout_on(solution: Solution, size: tuple[float, float], fixed: tuple[str, 
     reduced = frozenset({p.kind for p in decided.reduced} | {p.name for p in panels if p.wanted is not None
                                                              and p.scale < p.wanted * (1 - 1e-12)})
     return Layout(width, height, tuple(panels), figures, title_rect, notes, reduced, tuple(blocks))
+
+
+def _union(boxes: list[tuple[float, float, float, float]]) -> tuple[float, float, float, float]:
+    return (min(b[0] for b in boxes), min(b[1] for b in boxes), max(b[2] for b in boxes), max(b[3] for b in boxes))
+
+
+def motion_layout(solutions: list[Solution], size: tuple[float, float], foot_mm: float) -> Layout:
+    """One layout for every drawing of a motion (``solutions``, one per position shown): the mechanism and each
+    polygon at one scale for all of them, so that sizes compare from frame to frame; each panel holds what any
+    of them draws there (a polygon's scale the round number at which the largest fits). A strip ``foot_mm``
+    high at the foot takes the place of the title block (the frame's caption). Each frame's sheet is this
+    layout with that frame's figures (``dataclasses.replace(layout, figures=..., labels=LabelCache())``)."""
+    width, height = size
+    area = _drawing_area(width, height, foot_mm)
+    mech = _union([mechanism_box(s) for s in solutions] +
+                  [(x, y, x, y) for s in solutions for x, y in higher_pairs_layer.higher_pair_points(s)])
+    contents = [Content("mechanism", mech, None, _PADDING_MM["mechanism"])]
+    diagram = centers_layer.centers_content(solutions[0])
+    if diagram is not None:
+        contents.append(diagram)
+    both: tuple[Kind, Kind] = ("velocity", "acceleration")
+    kinds = [k for k in both if any((s.velocity if k == "velocity" else s.acceleration) is not None
+                                    for s in solutions)]
+    for kind in kinds:
+        box = _union([figure_box(polygon_figure(s, kind)) for s in solutions
+                      if (s.velocity if kind == "velocity" else s.acceleration) is not None])
+        probe = Content(kind, box, None, _PADDING_MM[kind])
+        fit = probe.fit((area[2] - area[0]) / (1 + len(kinds)) * 1.5, area[3] - area[1])
+        contents.append(Content(kind, box, nice_floor(fit) if 0.0 < fit < math.inf else 1.0, _PADDING_MM[kind]))
+    panels = arrange(contents, area)
+    title_rect = (MARGIN_MM, MARGIN_MM, width - MARGIN_MM, MARGIN_MM + foot_mm)
+    return Layout(width, height, tuple(panels), (), title_rect, ())
 
 
 def _mechanism_box(solution: Solution) -> tuple[float, float, float, float]:

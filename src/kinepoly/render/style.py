@@ -11,6 +11,7 @@ __all__ = [
     "HEAD_LENGTH_MM",
     "LABEL_MM",
     "LINK_STROKE",
+    "PATH",
     "PIN_RADIUS_MM",
     "SMALL_MM",
     "TERM_COLORS",
@@ -34,6 +35,8 @@ HEAD_HALF_WIDTH_MM = 0.75
 LINK_STROKE = Stroke("#1a1a1a", 0.6)
 THIN = Stroke("#000000", 0.18)
 DIRECTION_LINE = Stroke("#6b6b6b", 0.18, (2.0, 1.0))
+PATH = Stroke("#8a8a8a", 0.25)
+"""A point's path traced over a motion."""
 HALO = Stroke("#ffe27a", 1.6)
 """Under what the current step adds, in the step-by-step sheets."""
 
