@@ -34,8 +34,8 @@ _LEAD = "(|[«„\""
 _TRAIL = ")|].,;:!?»\"²"
 
 
-_COLUMN = re.compile(r"^(theta|omega|alpha|s|s_dot|s_ddot)_(\w+)$")
-_DOTS = {"s": "s", "s_dot": "ṡ", "s_ddot": "s̈"}
+_COLUMN = re.compile(r"^(theta|omega|alpha|s_ddot|s_dot|s)_(\w+)$")
+_DOTS = {"s": "s", "s_dot": "s\u0307", "s_ddot": "s\u0308"}
 
 
 def quantity_name(column: str, ground: str) -> str:

@@ -33,7 +33,7 @@ from kinepoly.render.primitives import Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.sheet import Layout, build_sheet, motion_layout
 from kinepoly.render.style import LABEL_MM, PATH, SMALL_MM, THIN, link_label_color
 from kinepoly.render.text import Run
-from kinepoly.scene.spec import FindSpec, GearSpec, LinkInput, Scene, SliderInput
+from kinepoly.scene.spec import GearSpec, LinkInput, Scene, SliderInput
 from kinepoly.solution import Solution, solve
 
 __all__ = ["DEFAULT_DPI", "SHEET_MM", "frame_sheets", "frame_solutions", "sheet_pixels"]
@@ -95,12 +95,10 @@ def _matches(solution: Solution, swept: dict[str, complex], size: float) -> bool
 
 
 def frame_solutions(frames: Frames, scene: Scene) -> list[Solution]:
-    """The solution at each frame, on the sweep's assembly; where the frame has no polygons (singular, or
-    beyond the motion's scale) the positions only."""
+    """The solution at each frame, on the sweep's assembly."""
     centers = "centers" in frames.parts
     find = scene.find if centers and scene.find.instant_centers else dataclasses.replace(
         scene.find, instant_centers="all" if centers else ())
-    positions_only = FindSpec(instant_centers=find.instant_centers)
     x0, y0, x1, y1 = frames.box
     size = max(x1 - x0, y1 - y0, 1e-300)
     out = []
@@ -109,23 +107,36 @@ def frame_solutions(frames: Frames, scene: Scene) -> list[Solution]:
         swept = _swept(frames, k, scene)
         at = dataclasses.replace(scene, input=_input_at(scene, float(frames.inputs[row])), find=find,
                                  guess=tuple((p, (z.real, z.imag)) for p, z in swept.items()))
-        valid = all(p is None or bool(p.valid[k]) for p in (frames.velocity, frames.acceleration))
-        if not valid:
-            at = dataclasses.replace(at, find=positions_only)
-        solution = _solve(at)
+        other = int(frames.rows[k - 1 if k > 0 else min(1, frames.count - 1)])
+        toward = _input_at(scene, float(frames.inputs[other]))
+        step = (toward.angle_rad - at.input.angle_rad if isinstance(toward, LinkInput) and isinstance(at.input, LinkInput)
+                else toward.s - at.input.s if isinstance(toward, SliderInput) and isinstance(at.input, SliderInput)
+                else 0.0)
+        solution = _solve(at, step)
         if scene.gears and not _matches(solution, swept, size):
             geared = _geared(at, solution, frames, k)
             if geared is not None:
-                solution = _solve(geared)
+                solution = _solve(geared, step)
         out.append(solution)
     return out
 
 
-def _solve(scene: Scene) -> Solution:
+def _solve(scene: Scene, toward: float) -> Solution:
+    """The solution of ``scene``; at a dead point, where the solve refuses a position whose rates are not
+    determined, the input moved a little ``toward`` the frame before it (the polygons are left out there)."""
     try:
         return solve(scene)
-    except KinepolyError:  # a singular position the sweep flagged only near-singular: the mechanism alone
-        return solve(dataclasses.replace(scene, find=FindSpec(instant_centers=scene.find.instant_centers)))
+    except KinepolyError:
+        inp = scene.input
+        assert isinstance(inp, LinkInput | SliderInput)
+        for nudge in (1e-6, 1e-4, 1e-2):
+            moved = (dataclasses.replace(inp, angle_rad=inp.angle_rad + nudge * toward) if isinstance(inp, LinkInput)
+                     else dataclasses.replace(inp, s=inp.s + nudge * toward))
+            try:
+                return solve(dataclasses.replace(scene, input=moved))
+            except KinepolyError:
+                continue
+        raise
 
 
 def _figures(solution: Solution, layout: Layout) -> tuple[Any, ...]:
@@ -274,7 +285,8 @@ def _sizing(frames: Frames, solutions: list[Solution]) -> list[Solution]:
     """The solutions the layout's scales fit: the ok positions' (every one with polygons where none is ok),
     but for those whose polygons are more than ``_SPREAD`` times the median size (near a dead point): drawn at
     a scale that holds those, every other polygon would shrink to a dot."""
-    drawn = [s for s in solutions if s.velocity is not None or s.acceleration is not None]
+    drawn = [s for k, s in enumerate(solutions) if (s.velocity is not None or s.acceleration is not None)
+             and all(p is None or bool(p.valid[k]) for p in (frames.velocity, frames.acceleration))]
     ok = [s for k, s in enumerate(solutions) if s in drawn and int(frames.status[int(frames.rows[k])]) == 0] or drawn
     if not ok:
         return solutions
@@ -291,7 +303,8 @@ def frame_sheets(frames: Frames, solutions: list[Solution]) -> Iterator[Sheet]:
     mechanism = layout.panel("mechanism")
     assert mechanism is not None
     for k, solution in enumerate(solutions):
-        figures = _figures(solution, layout)
+        shown = all(p is None or bool(p.valid[k]) for p in (frames.velocity, frames.acceleration))
+        figures = _figures(solution, layout) if shown else ()
         frame = dataclasses.replace(layout, figures=figures, labels=LabelCache())
         sheet = build_sheet(solution, SHEET_MM, layout=frame, title_block=False)
         extra: dict[str, list[Item]] = {

@@ -18,7 +18,16 @@ from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.render import centers as centers_layer
 from kinepoly.render import higher_pairs as higher_pairs_layer
 from kinepoly.render.labels import FEW, LabelCache, Request, place
-from kinepoly.render.layout import Content, Panel, arrange, larger_papers, nice_floor, paper_name, paper_size
+from kinepoly.render.layout import (
+    Content,
+    Panel,
+    arrange,
+    fit_panel,
+    larger_papers,
+    nice_floor,
+    paper_name,
+    paper_size,
+)
 from kinepoly.render.mechanism import mechanism_box, mechanism_items
 from kinepoly.render.polygons import Figure, FigureDrawing, Kind, figure_box, polygon_figure
 from kinepoly.render.primitives import LAYERS, Item, Layer, Path, Sheet, Stroke, Text
@@ -216,29 +225,44 @@ def _union(boxes: list[tuple[float, float, float, float]]) -> tuple[float, float
 def motion_layout(solutions: list[Solution], size: tuple[float, float], foot_mm: float) -> Layout:
     """One layout for every drawing of a motion (``solutions``, one per position shown): the mechanism and each
     polygon at one scale for all of them, so that sizes compare from frame to frame; each panel holds what any
-    of them draws there (a polygon's scale the round number at which the largest fits). A strip ``foot_mm``
-    high at the foot takes the place of the title block (the frame's caption). Each frame's sheet is this
-    layout with that frame's figures (``dataclasses.replace(layout, figures=..., labels=LabelCache())``)."""
+    of them draws there, at the largest round scale that fits it. The mechanism takes the left part of the
+    page (the circle diagram, when asked, below it), the polygons a column each. A strip ``foot_mm`` high at
+    the foot takes the place of the title block (the frame's caption). Each frame's sheet is this layout with
+    that frame's figures (``dataclasses.replace(layout, figures=..., labels=LabelCache())``)."""
     width, height = size
-    area = _drawing_area(width, height, foot_mm)
+    x0, y0, x1, y1 = _drawing_area(width, height, foot_mm)
     mech = _union([mechanism_box(s) for s in solutions] +
                   [(x, y, x, y) for s in solutions for x, y in higher_pairs_layer.higher_pair_points(s)])
-    contents = [Content("mechanism", mech, None, _PADDING_MM["mechanism"])]
-    diagram = centers_layer.centers_content(solutions[0])
-    if diagram is not None:
-        contents.append(diagram)
     both: tuple[Kind, Kind] = ("velocity", "acceleration")
     kinds = [k for k in both if any((s.velocity if k == "velocity" else s.acceleration) is not None
                                     for s in solutions)]
-    for kind in kinds:
+    split = x0 + (x1 - x0) * (_MOTION_MECHANISM if kinds else 1.0)
+    diagram = centers_layer.centers_content(solutions[0])
+    low = y0 + (y1 - y0) * 0.3 if diagram is not None else y0
+    panels = [_fitted(Content("mechanism", mech, None, _PADDING_MM["mechanism"]), (x0, low, split, y1))]
+    if diagram is not None:
+        panels.append(_fitted(diagram, (x0, y0, split, low), diagram.wanted))
+    column = (x1 - split) / max(len(kinds), 1)
+    for n, kind in enumerate(kinds):
         box = _union([figure_box(polygon_figure(s, kind)) for s in solutions
                       if (s.velocity if kind == "velocity" else s.acceleration) is not None])
-        probe = Content(kind, box, None, _PADDING_MM[kind])
-        fit = probe.fit((area[2] - area[0]) / (1 + len(kinds)) * 1.5, area[3] - area[1])
-        contents.append(Content(kind, box, nice_floor(fit) if 0.0 < fit < math.inf else 1.0, _PADDING_MM[kind]))
-    panels = arrange(contents, area)
+        rect = (split + n * column, y0, split + (n + 1) * column, y1)
+        panels.append(_fitted(Content(kind, box, 1.0, _PADDING_MM[kind]), rect))
     title_rect = (MARGIN_MM, MARGIN_MM, width - MARGIN_MM, MARGIN_MM + foot_mm)
     return Layout(width, height, tuple(panels), (), title_rect, ())
+
+
+_MOTION_MECHANISM = 0.44
+"""The mechanism's share of a motion's page width (the polygons share the rest)."""
+
+
+def _fitted(content: Content, rect: tuple[float, float, float, float], scale: float | None = None) -> Panel:
+    """``content`` in ``rect`` at ``scale``, or at the largest round scale that fits."""
+    if scale is None:
+        fit = content.fit(rect[2] - rect[0], rect[3] - rect[1])
+        scale = nice_floor(fit * (1.0 - 1e-9)) if 0.0 < fit < math.inf else 1.0
+    panel = fit_panel(content, rect, scale)
+    return Panel(panel.name, panel.rect, panel.scale, scale if content.wanted is not None else None, panel.origin)
 
 
 def _mechanism_box(solution: Solution) -> tuple[float, float, float, float]:
