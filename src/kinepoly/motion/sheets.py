@@ -31,7 +31,7 @@ from kinepoly.render.layout import Panel
 from kinepoly.render.polygons import Kind, figure_box, polygon_figure
 from kinepoly.render.primitives import Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.sheet import Layout, build_sheet, motion_layout
-from kinepoly.render.style import LABEL_MM, PATH, SMALL_MM, THIN, link_label_color
+from kinepoly.render.style import INK, LABEL_MM, MUTED_INK, PATH, RULE, SMALL_MM, THIN, link_label_color
 from kinepoly.render.text import Run
 from kinepoly.scene.spec import GearSpec, LinkInput, Scene, SliderInput
 from kinepoly.solution import Solution, solve
@@ -187,12 +187,12 @@ def _caption(frames: Frames, k: int, rect: tuple[float, float, float, float], sh
     head = f"{frames.title}: {where}, position {row + 1} of {len(frames.inputs)}{status}"
     shown = [_value_text(v.name, _clean(v.values, row), v.unit, ground) for v in frames.values[1:]
              if v.valid[row] and v.order >= 1 and not v.name.startswith("|")]
-    items: list[Item] = [Text(x0 + 3.0, y1 - 4.6, _runs(head, 3.2, room, True), "#000000", "caption title",
+    items: list[Item] = [Text(x0 + 3.0, y1 - 4.6, _runs(head, 3.2, room, True), INK, "caption title",
                               None, True)]
     lines = wrap(typographic("    ".join(shown)), LABEL_MM, room) if shown else []
     rows = max(1, int((y1 - y0 - 6.0) / 4.0))
     for n, line in enumerate(lines[:rows]):
-        items.append(Text(x0 + 3.0, y1 - 8.8 - 4.0 * n, _runs(line, LABEL_MM, room), "#000000", "caption values"))
+        items.append(Text(x0 + 3.0, y1 - 8.8 - 4.0 * n, _runs(line, LABEL_MM, room), INK, "caption values"))
     return items
 
 
@@ -218,7 +218,7 @@ def _no_polygon(frames: Frames, k: int, layout: Layout, figures: tuple[Any, ...]
             continue
         text = NO_POLYGON[2] if int(frames.status[row]) == 2 else NO_POLYGON[1]
         x0, y0, x1, y1 = panel.drawing_rect
-        out.append(Text(x0 + 2.0, (y0 + y1) / 2, _runs(text, LABEL_MM, x1 - x0 - 4.0), "#6b6b6b",
+        out.append(Text(x0 + 2.0, (y0 + y1) / 2, _runs(text, LABEL_MM, x1 - x0 - 4.0), MUTED_INK,
                         f"no polygon {kind}"))
     return out
 
@@ -263,7 +263,7 @@ def _functions(frames: Frames, k: int, rect: tuple[float, float, float, float]) 
                           _runs(f"{quantity_name(v.name, ground)} ({v.unit})", SMALL_MM, step - 2.0),
                           link_label_color(j + 1), f"function name {v.name}"))
     x = float(xs[int(frames.rows[k])])
-    items.append(Path((at(x, low), at(x, high)), Stroke("#000000", 0.35), role="functions cursor"))
+    items.append(Path((at(x, low), at(x, high)), RULE, role="functions cursor"))
     return items
 
 
