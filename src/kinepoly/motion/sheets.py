@@ -264,6 +264,9 @@ def _functions(frames: Frames, k: int, rect: tuple[float, float, float, float]) 
                           link_label_color(j + 1), f"function name {v.name}"))
     x = float(xs[int(frames.rows[k])])
     items.append(Path((at(x, low), at(x, high)), RULE, role="functions cursor"))
+    for y, text in ((box[3] - SMALL_MM, format_number(high)), (box[1], format_number(low))):
+        items.append(Text(box[0] - 1.0 - text_width(text, SMALL_MM), y, runs_of(text, SMALL_MM), INK,
+                          "functions end"))  # the window's ends, left of the chart
     return items
 
 
