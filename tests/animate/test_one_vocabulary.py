@@ -12,6 +12,7 @@ import ast
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 from tests.scenes import EXAMPLES
 
@@ -19,6 +20,7 @@ import kinepoly
 from kinepoly.handout.notation import quantity_name, runs_of, typographic
 from kinepoly.motion.frames import make_frames
 from kinepoly.motion.sheets import SHEET_MM, frame_sheets, frame_solutions, sheet_pixels
+from kinepoly.present.clean import format_number
 from kinepoly.render import style
 from kinepoly.render.primitives import Arrow, Circle, Sheet, Text
 from kinepoly.render.primitives import Path as SheetPath
@@ -78,4 +80,8 @@ def test_an_animation_frame_is_the_drawing_of_its_position(name: str) -> None:
     assert asked
     first = typographic(quantity_name(asked[0].name, ground))
     assert "".join(r.text for r in runs_of(first, style.LABEL_MM)) in words
+    for v in asked:  # each value as the sweep has it: a rate is not zeroed against the 1e13 of a dead point's rows
+        ok = v.valid & (frames.status == 0)
+        if abs(v.values[row]) > 1e-6 * float(np.abs(v.values[ok]).max()):
+            assert f"= {format_number(float(v.values[row])).replace('^2', '²')}" in words, (v.name, words)
     assert sheet_pixels(sheets[k]).shape == (900, 1600, 3)  # a size a projector shows

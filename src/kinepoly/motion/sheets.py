@@ -170,10 +170,12 @@ def _runs(text: str, size: float, room: float, bold: bool = False) -> tuple[Run,
     return runs if width <= room else runs_of(text, size * room / width, bold)
 
 
-def _clean(values: np.ndarray, row: int) -> float:
-    """The value at ``row``, 0 where it is rounding noise against the column's largest (a rate through zero)."""
+def _clean(values: np.ndarray, ok: np.ndarray, row: int) -> float:
+    """The value at ``row``, 0 where it is rounding noise against the column's largest at the ok rows (a rate
+    through zero); the rows near a dead point, where the rates run to 1e13, are not the measure."""
     x = float(values[row])
-    return 0.0 if abs(x) < 1e-9 * float(np.nanmax(np.abs(values))) else x
+    measured = np.abs(values[ok & np.isfinite(values)])
+    return 0.0 if measured.size and abs(x) < 1e-9 * float(measured.max()) else x
 
 
 def _caption(frames: Frames, k: int, rect: tuple[float, float, float, float], share: float) -> list[Item]:
@@ -185,7 +187,8 @@ def _caption(frames: Frames, k: int, rect: tuple[float, float, float, float], sh
     status = ("", " (near-singular)", " (singular: polygons not determined)", "")[int(frames.status[row])]
     where = _value_text(frames.input_name, float(frames.inputs[row]), frames.input_unit, ground)
     head = f"{frames.title}: {where}, position {row + 1} of {len(frames.inputs)}{status}"
-    shown = [_value_text(v.name, _clean(v.values, row), v.unit, ground) for v in frames.values[1:]
+    ok = frames.status == 0
+    shown = [_value_text(v.name, _clean(v.values, ok & v.valid, row), v.unit, ground) for v in frames.values[1:]
              if v.valid[row] and v.order >= 1 and not v.name.startswith("|")]
     items: list[Item] = [Text(x0 + 3.0, y1 - 4.6, _runs(head, 3.2, room, True), INK, "caption title",
                               None, True)]
