@@ -38,6 +38,16 @@ def _fresh(base: str, taken: set[str]) -> str:
     return name
 
 
+def _number(taken: set[str]) -> str:
+    """The next link number, as a textbook numbers the link it adds (the block 4 of a cam 2 and follower 3),
+    where the links are numbered; else empty."""
+    if not taken or not all(name.isdigit() for name in taken):
+        return ""
+    name = str(max(int(name) for name in taken) + 1)
+    taken.add(name)
+    return name
+
+
 def _center_point(scene: Scene, cam: CamSpec, taken: set[str]) -> str:
     """A point of the cam already at the disc's centre, or a new one ``K<name>``."""
     for p in scene.link(cam.cam).points:
@@ -63,7 +73,7 @@ def with_equivalent_links(scene: Scene) -> Scene:
         if k not in scene.link(cam.cam).point_names:
             owner = links[cam.cam]
             links[cam.cam] = replace(owner, points=(*owner.points, PointSpec(k, cam.center, cam.line)))
-        link = _fresh(f"eq{cam.name}", names)
+        link = _number(names) or _fresh(f"eq{cam.name}", names)
         if cam.kind == "flat":
             assert cam.flat is not None
             if flat_side(scene, cam) == "right":
