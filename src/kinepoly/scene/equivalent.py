@@ -14,9 +14,9 @@ position, the same lower-pair linkage:
 
 The equivalent link and its joints are added to the scene (``Scene.equivalent_links``), numbered as a
 textbook numbers the link it adds (the next number: block 4 of cam 2 and follower 3; ``eq23`` where the
-links are not numbered), so that the plan's dyads, the polygons and the analytic check use it like any other link. Kennedy's theorem does
-not: it asks centers between the scene's own links and takes the pair's common normal as a line edge
-(``engine.centers``).
+links are not numbered), so that the plan's dyads, the polygons and the analytic check use it like any
+other link. Kennedy's theorem does not: it asks centers between the scene's own links and takes the
+pair's common normal as a line edge (``engine.centers``).
 """
 
 from __future__ import annotations
