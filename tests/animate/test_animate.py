@@ -154,7 +154,7 @@ def test_mp4_pipes_the_frames_to_ffmpeg(tmp_path: Path, monkeypatch: pytest.Monk
     fake.chmod(0o755)
     monkeypatch.setattr(shutil, "which", lambda name, *a, **k: str(fake) if name == "ffmpeg" else None)
     made = kinepoly.animate(EXAMPLES / "four-bar.toml", tmp_path / "x.mp4", positions=6)
-    width, height = 800, 296
+    width, height = 1600, 900  # a frame a projector shows: the sheet of 10 x 5.625 inches at 160 dpi
     assert made.format == "mp4" and int(made.data) % 6 == 0 and int(made.data) // 6 >= width * height
 
 

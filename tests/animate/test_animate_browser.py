@@ -39,15 +39,21 @@ def test_the_slider_shows_row_k(browser: Any, page: Path) -> None:
     browser.goto(page.as_uri())
     result = sweep(load_scene(str(EXAMPLES / "slotted-lever.toml")), steps=48)
     assert browser.evaluate("document.getElementById('position').max") == "47"
-    assert browser.evaluate("document.querySelectorAll('#panels svg').length") == 4  # and the functions
+    drawn = set()
     for k in (0, 7, 30, 47):
         _slide_to(browser, k)
+        # one drawing: the frame's sheet, as `kinepoly draw` draws (its layers), captioned with its position
+        assert browser.evaluate("document.querySelectorAll('#drawing svg').length") == 1
+        assert browser.evaluate("document.querySelectorAll('#drawing svg g#velocity-polygon *').length") > 0
+        assert f"position {k + 1} of 48" in browser.text_content("#drawing svg g#title")
+        drawn.add(browser.inner_html("#drawing"))
         assert browser.evaluate("document.body.dataset.row") == str(k)
         shown = _values(browser)
         for name in ("theta_2", "omega_4", "alpha_4"):
             column = result.column(name)
             assert float(shown[name]) == column.values[k]
         assert browser.text_content("#where").startswith(f"position {k + 1} of 48: theta_2 = ")
+    assert len(drawn) == 4
     assert browser.errors == []
 
 
@@ -71,5 +77,7 @@ def test_play_and_pause(browser: Any, page: Path, tmp_path: Path) -> None:
 
 def test_the_page_fetches_nothing(page: Path) -> None:
     text = page.read_text()
-    assert "http://" not in text.replace("http://www.w3.org/2000/svg", "") and "https://" not in text
+    for namespace in ("http://www.w3.org/2000/svg", "http://www.w3.org/1999/xlink", "http://www.w3.org/2001/xml-events"):
+        text = text.replace(namespace, "")  # the SVG's namespaces: names, nothing fetched
+    assert "http://" not in text and "https://" not in text
     assert "<script src" not in text and "<link" not in text

@@ -47,8 +47,9 @@ def test_roller_page_names_the_link_its_ends_and_why(lang: str) -> None:
     assert rows[0][2] == say.pair(*k_at)
     assert rows[1][2] == say.pair(*solution.position("W"))
     text = _text(page)
-    for word in ("eq23", "K23", "C23", say.pair(*solution.contacts["23"].point)):
+    for word in ("K23W", "K23", "C23", say.pair(*solution.contacts["23"].point)):
         assert word in text
+    assert "eq23" not in text  # the construction's own name: the course texts say the equivalent link K23W
     raw = " ".join(part.text for c in page.columns for part in c.parts if isinstance(part, Paragraph))
     assert "v_W = v_K23 + v_W/K23" in raw and "a^n_W/K23" in raw  # the relations of a binary link
     assert not conflicts(sheets[k])  # type: ignore[arg-type]
@@ -64,6 +65,7 @@ def test_flat_face_page_names_the_block_and_its_slide(lang: str) -> None:
                                                                   12 * math.sin(math.radians(40)))
     assert rows[1] == (say.say("higher_pairs.end_slide"), "3", f"d = {say.number(35.0)}")
     assert "Coriolis" in _text(page)
+    assert "eq23" not in _text(page)  # the block at K on the face, as the course texts say
     assert not conflicts(sheets[k])  # type: ignore[arg-type]
 
 

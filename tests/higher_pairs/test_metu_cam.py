@@ -109,7 +109,7 @@ def test_the_metu_cams_centers_at_any_cam_angle(theta: float) -> None:
 def test_solve_steps_find_i23_on_the_line_i12_i13(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, err = run(capsys, "solve", str(EXAMPLE), "--steps")
     assert code == 0, err
-    assert "equivalent block eq23" in out and "I23 = (I12 I13) x" in out
+    assert "equivalent block at K on the face of 3" in out and "I23 = (I12 I13) x" in out
     assert "Links 1, 2, 3: I23 lies on the line I12 I13." in out
     shown = format(10.0 * _derived(50.0)["ratio"], ".5g").replace("-", "\u2212")  # type: ignore[arg-type]
     assert "(I12 I23)/(I13 I23) = 10 × (" in out and f") = {shown} rad/s, clockwise" in out

@@ -40,6 +40,7 @@ from kinepoly.engine.velocity import (
     read_rate,
     record_drive_term,
     slide_direction,
+    slide_reference,
 )
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines
@@ -94,10 +95,13 @@ class _Context:
         return self.v.tips[self.b.label(link, point)]
 
     def normal_line(self, known_link: str, known_point: str, point: str, moving: str,
-                    rigid: bool = True, omega: Reals | None = None) -> tuple[Line, DrawnVector | None, str]:
+                    rigid: bool = True, omega: Reals | None = None,
+                    name: str | None = None) -> tuple[Line, DrawnVector | None, str]:
         """a_known + a^n (toward known_point), then the line perpendicular to known_point -> point
         (``rigid``: both are points of ``moving``, so the direction's length is a link length; ``omega``:
-        the turning rate of known_point -> point when it is not ``moving``'s, as an equivalent link's)."""
+        the turning rate of known_point -> point when it is not ``moving``'s, as an equivalent link's;
+        ``name``: the point's name in the terms when it is not ``point``, as ``A@4`` for the point of the
+        guide under the block's pin, so that the normal and the tangential term name it alike)."""
         b = self.b
         start = b.tip(known_link, known_point)
         r, turned = b.positions.chord(known_point, point)
@@ -105,8 +109,9 @@ class _Context:
         normal = (w * w) * r
         end = np.asarray(start - normal if self.rules.normal < 0.0 else start + normal)
         size = link_length(b.mechanism, moving, known_point, point) if rigid else None
-        vector = DrawnVector(f"a^n_{point}/{known_point}", b.vec(start), b.vec(end), "normal") if b.record else None
-        return (end, turned, size), vector, f"a^t_{point}/{known_point} perpendicular to {known_point}{point}"
+        named = name or point
+        vector = DrawnVector(f"a^n_{named}/{known_point}", b.vec(start), b.vec(end), "normal") if b.record else None
+        return (end, turned, size), vector, f"a^t_{named}/{known_point} perpendicular to {known_point}{named}"
 
     def slide_line(self, slider: SliderSpec, other: str, moving: str, point: str) -> tuple[Line, list[DrawnVector]]:
         """a_point@other (+ the Coriolis term where the guide turns), then the line along the slide."""
@@ -178,7 +183,7 @@ def _along_normal(ctx: _Context, term: str, known_link: str, known_point: str, p
 def _along_slide(ctx: _Context, term: str, slider: SliderSpec, other: str, point: str,
                  laid: list[DrawnVector]) -> Direction:
     """What ``slide_line`` draws, as data: the sliding term, after the Coriolis term when there is one."""
-    return Direction(term, "parallel", slider.name, ctx.b.label(other, point).lower(),
+    return Direction(term, *slide_reference(ctx.b, slider), ctx.b.label(other, point).lower(),
                      after=laid[-1].label if laid else "")
 
 
@@ -238,9 +243,9 @@ def _dyad(ctx: _Context, dyad: Dyad) -> None:
     elif dyad.kind == "RPR":
         r = slide_roles(dyad)
         q, p = r.guide_pin, r.block_pin
-        line1, n1, label1 = ctx.normal_line(r.guide_known, q, p, r.guide, rigid=False)
-        a_p = b.tip(r.block_known, p)
         at = b.label(r.guide, p)
+        line1, n1, label1 = ctx.normal_line(r.guide_known, q, p, r.guide, rigid=False, name=at)
+        a_p = b.tip(r.block_known, p)
         end, laid = ctx.lay_coriolis(r.slider, a_p, r.guide, r.block, p)
         vectors = ([n1] if n1 else []) + laid
         line2 = (end, slide_direction(b.positions, r.slider), 1.0)
@@ -255,7 +260,7 @@ def _dyad(ctx: _Context, dyad: Dyad) -> None:
                     labels, crossing, vectors,
                     (_along_normal(ctx, f"a^t_{at}/{q}", r.guide_known, q, p, n1),
                      _along_slide(ctx, f"a_{at}/{p}", r.slider, r.block_known, p, laid)))
-        read_rate(b, r.guide, q, p, crossing.along_first)
+        read_rate(b, r.guide, q, at, crossing.along_first)
         ctx.slide_values(r.slider, r.block, p)
     else:
         t = two_slide_roles(dyad, b.mechanism)

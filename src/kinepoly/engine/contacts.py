@@ -214,9 +214,9 @@ def record_equivalent_links(polygon: Polygon) -> None:
             (x, y) = mechanism.local(cam.equivalent, point)
             length = math.hypot(x, y)
         polygon.step(Step(polygon="velocity", kind="known",
-                          equation=(f"cam {cam.name}: equivalent block {cam.equivalent} pinned at {cam.center_point}, "
-                                    f"sliding on {cam.follower}" if cam.kind == "flat" else
-                                    f"cam {cam.name}: equivalent link {cam.equivalent} from {cam.center_point} to {point}"),
+                          equation=(f"cam {cam.name}: equivalent block at {cam.center_point} on the face of {cam.follower}"
+                                    if cam.kind == "flat" else
+                                    f"cam {cam.name}: equivalent link {cam.center_point}{point}"),
                           result=cam.equivalent, topic="equivalent-link",
                           params=(("pair", cam.name), ("cam", cam.cam), ("follower", cam.follower),
                                   ("link", cam.equivalent), ("centre", cam.center_point), ("point", point),

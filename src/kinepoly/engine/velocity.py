@@ -29,13 +29,13 @@ from kinepoly.engine.plan import (
 )
 from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
 from kinepoly.engine.position import Positions
-from kinepoly.engine.steps import Direction, DrawnVector, Step
+from kinepoly.engine.steps import Direction, DrawnVector, Relation, Step
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines, turn
 from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
 
-__all__ = ["VelocityResult", "construct_velocity", "link_length", "read_rate", "slide_direction"]
+__all__ = ["VelocityResult", "construct_velocity", "link_length", "read_rate", "slide_direction", "slide_reference"]
 
 
 @dataclass(frozen=True)
@@ -178,9 +178,17 @@ def _perpendicular(polygon: Polygon, term: str, known_link: str, known_point: st
     return Direction(term, "perpendicular", f"{known_point}{point}", polygon.label(known_link, known_point).lower())
 
 
+def slide_reference(polygon: Polygon, slider: SliderSpec) -> tuple[Relation, str]:
+    """What a line along ``slider`` is parallel to, as a step says it: the slide of the slider, or the flat face
+    of the follower where the slider is a cam's equivalent block (the block at K on the face)."""
+    if slider.block in polygon.mechanism.scene.equivalent_links:
+        return "face", slider.guide
+    return "parallel", slider.name
+
+
 def _parallel(polygon: Polygon, term: str, slider: SliderSpec, other: str, point: str) -> Direction:
     """What ``_slide_line`` draws, as data."""
-    return Direction(term, "parallel", slider.name, polygon.label(other, point).lower())
+    return Direction(term, *slide_reference(polygon, slider), polygon.label(other, point).lower())
 
 
 def _slide_line(polygon: Polygon, slider: SliderSpec, other: str, point: str) -> Line:

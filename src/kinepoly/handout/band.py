@@ -14,7 +14,7 @@ from kinepoly.handout.content import Column, Page, Paragraph, Table
 from kinepoly.handout.notation import runs_of, text_width, wrap
 from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.primitives import Item, Text
-from kinepoly.render.style import SMALL_MM
+from kinepoly.render.style import INK, SMALL_MM
 from kinepoly.render.text import Run, plain_runs, runs_box
 from kinepoly.render.titleblock import Block, block_items, flow, flow_height
 
@@ -186,7 +186,7 @@ def band_items(page: Page, rect: tuple[float, float, float, float], kinds: Seque
         for (runs, bold, h), role in zip(block.lines, roles, strict=True):
             baseline = _baseline(runs, bold, y, h)
             if role != "handout space":
-                items.append(Text(top[0], baseline, runs, "#000000", role, None, bold))
+                items.append(Text(top[0], baseline, runs, INK, role, None, bold))
             y -= h
     return items
 

@@ -25,6 +25,7 @@ from kinepoly.render.layout import larger_papers, paper_name, paper_size
 from kinepoly.render.primitives import Item, Sheet, Text
 from kinepoly.render.sheet import GAIN as _GAIN
 from kinepoly.render.sheet import MARGIN_MM, build_sheet, readable_values, roomy
+from kinepoly.render.style import NOTE_INK
 from kinepoly.render.text import plain_runs, runs_box
 from kinepoly.solution import Solution
 
@@ -146,7 +147,7 @@ def _note_items(frame: Frame, notes: tuple[str, ...]) -> list[Item]:
     for note in notes:
         runs = plain_runs(note, 2.4)
         x1 = runs_box(runs)[2]
-        items.append(Text(frame.width - MARGIN_MM - x1, y, runs, "#7a1f1f", "paper note"))
+        items.append(Text(frame.width - MARGIN_MM - x1, y, runs, NOTE_INK, "paper note"))
         y += 3.2
     return items
 

@@ -22,7 +22,7 @@ from kinepoly.render.labels import LabelCache
 from kinepoly.render.layout import Panel
 from kinepoly.render.primitives import LAYERS, Arrow, Circle, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.sheet import MARGIN_MM, Layout, build_sheet, layout_sheet
-from kinepoly.render.style import HALO
+from kinepoly.render.style import BORDER, HALO, INK, RULE
 from kinepoly.render.text import Run
 from kinepoly.render.titleblock import fitted_runs, heading_items, space_scale_text
 from kinepoly.solution import Solution
@@ -127,7 +127,7 @@ def _headings(solution: Solution, layout: Layout, say: Catalogue) -> tuple[list[
     for panel in layout.panels:
         name = say.say(f"panel.{panel.name}")
         if panel.name == "centers":
-            titles.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, fitted_runs(name, 2.8, panel.rect[2] - panel.rect[0] - 2.0, True), "#000000",
+            titles.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, fitted_runs(name, 2.8, panel.rect[2] - panel.rect[0] - 2.0, True), INK,
                                f"heading {panel.name}", None, True))
             continue
         text, bar_unit = _scale_text(panel, say, unit, panel.name in layout.reduced)
@@ -227,11 +227,11 @@ def drawing_layers(solution: Solution, frame: Frame, drawing: Drawing, say: Cata
 def page_frame_items(frame: Frame) -> list[Item]:
     """The page's border, and the rule over the band of text."""
     w, h, m = frame.width, frame.height, MARGIN_MM
-    items: list[Item] = [Path(((m, m), (w - m, m), (w - m, h - m), (m, h - m)), Stroke("#000000", 0.5), closed=True,
+    items: list[Item] = [Path(((m, m), (w - m, m), (w - m, h - m), (m, h - m)), BORDER, closed=True,
                               role="border")]
     if frame.band > 0.0:
         y = m + frame.band
-        items.append(Path(((m, y), (w - m, y)), Stroke("#000000", 0.35), role="band rule"))
+        items.append(Path(((m, y), (w - m, y)), RULE, role="band rule"))
     return items
 
 

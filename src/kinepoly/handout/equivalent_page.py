@@ -11,7 +11,7 @@ from __future__ import annotations
 from kinepoly.engine.steps import Step
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
 from kinepoly.present.catalogue import Catalogue
-from kinepoly.present.phrasing import Context, step_words
+from kinepoly.present.phrasing import Context, equivalent_name, step_words
 from kinepoly.solution import Solution
 
 __all__ = ["equivalent_page"]
@@ -54,7 +54,7 @@ def equivalent_page(context: Context, say: Catalogue, step: Step, number: int, t
                   centre=str(p["centre"]), point=str(p["point"]), follower=str(p["follower"]),
                   length=say.number(float(p["length"])), unit=unit)
     at = say.pair(*contact.point) if contact is not None else "?"
-    result = say.say("higher_pairs.equivalent_result", link=str(p["link"]), pair=pair, contact=contact_name, at=at,
+    result = say.say("higher_pairs.equivalent_result", link=equivalent_name(p, say), pair=pair, contact=contact_name, at=at,
                      unit=unit)
     heading = say.say("page.step", number=str(number), total=str(total), polygon=say.say(f"polygon.{step.polygon}"))
     equation = _equation(step, solution, say)

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from kinepoly.render import text as render_text
 from kinepoly.render.text import Run
 
-__all__ = ["Piece", "html_of", "pieces", "plain_of", "runs_of", "text_width", "typographic", "wrap"]
+__all__ = ["Piece", "html_of", "pieces", "plain_of", "quantity_name", "runs_of", "text_width", "typographic", "wrap"]
 
 _SUB = 0.70
 _LETTER = r"[A-Za-zωαθ][\u0300-\u036f]*"
@@ -32,6 +32,21 @@ _NAMED = re.compile(rf"^(?:{_LETTER}′?\d*)+(?:@\d+)?$")
 _GROUP = re.compile(rf"({_LETTER}′?)(\d*)")
 _LEAD = "(|[«„\""
 _TRAIL = ")|].,;:!?»\"²"
+
+
+_COLUMN = re.compile(r"^(theta|omega|alpha|s_ddot|s_dot|s)_(\w+)$")
+_DOTS = {"s": "s", "s_dot": "s\u0307", "s_ddot": "s\u0308"}
+
+
+def quantity_name(column: str, ground: str) -> str:
+    """A sweep's column name as the course writes the quantity, in this notation's plain form: ``omega_3`` is
+    ``omega13`` (link 3's angular velocity relative to the frame ``1``), ``s_dot_14`` is ``ṡ14``; any other
+    name (``|v_B|``, ``mu_T``) as it is."""
+    m = _COLUMN.match(column)
+    if m is None:
+        return column
+    kind, rest = m.groups()
+    return f"{kind}{ground}{rest}" if kind in ("theta", "omega", "alpha") else f"{_DOTS[kind]}{rest}"
 
 
 def text_width(text: str, size: float, bold: bool = False) -> float:

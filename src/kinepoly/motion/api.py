@@ -78,7 +78,7 @@ def _check(positions: int, fps: float, dpi: float) -> None:
 def animate(scene: Scene | str | os.PathLike[str], path: str | os.PathLike[str] | None = None, *,
             format: str | None = None, positions: int | None = None, start: float | None = None,
             stop: float | None = None,
-            fps: float = 24.0, parts: tuple[str, ...] | None = None, dpi: float = 80.0,
+            fps: float = 24.0, parts: tuple[str, ...] | None = None, dpi: float = 160.0,
             progress: Progress | None = None) -> Animation:
     """The mechanism moving over a sweep of ``positions`` positions, with its polygons at fixed scales.
 
@@ -122,7 +122,7 @@ def animate(scene: Scene | str | os.PathLike[str], path: str | os.PathLike[str] 
     return Animation(frames, data, fmt, {"sweep_s": t1 - t0, "drawing_s": t2 - t1, "total_s": t2 - t0})
 
 
-def render(frames: Frames, fmt: str, *, fps: float = 24.0, dpi: float = 80.0,
+def render(frames: Frames, fmt: str, *, fps: float = 24.0, dpi: float = 160.0,
            progress: Progress | None = None) -> bytes:
     """The frames drawn as ``fmt`` (gif, mp4 or html)."""
     if fmt == "html":

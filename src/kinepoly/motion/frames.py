@@ -26,7 +26,7 @@ from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals
-from kinepoly.scene.spec import LinkInput
+from kinepoly.scene.spec import LinkInput, Scene
 from kinepoly.sweep.plots import robust_window
 from kinepoly.sweep.run import PreparedSweep, SweepResult
 from kinepoly.sweep.shown import shown_values
@@ -144,6 +144,8 @@ class Frames:
     box: tuple[float, float, float, float]
     parts: tuple[str, ...]
     periodic: bool
+    scene: Scene | None = None
+    """The scene swept (its frames are drawn as its solutions at each row: ``motion.sheets``)."""
 
     @property
     def count(self) -> int:
@@ -336,4 +338,4 @@ def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, 
                   unit.angle if isinstance(result.scene.input, LinkInput) else unit.length, length,
                   result.input.values, result.status, rows, tuple(int(r) for r in np.flatnonzero(~reach)), links,
                   sliders, paths, centers, v_frames, a_frames, _values(result), _box(links, sliders),
-                  tuple(p for p in PARTS if p in parts), result.periodic)
+                  tuple(p for p in PARTS if p in parts), result.periodic, result.scene)

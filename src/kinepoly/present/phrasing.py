@@ -38,6 +38,7 @@ __all__ = [
     "canonical_text",
     "center_omega_sentence",
     "english",
+    "equivalent_name",
     "kennedy_sentence",
     "kennedy_words",
     "scale_note",
@@ -56,6 +57,17 @@ _FLAT_MM = 0.01
 def english() -> Catalogue:
     """The shipped English catalogue (loaded once): the words of ``solve --steps``, the JSON and the drawings."""
     return load_catalogue("en")
+
+
+def equivalent_name(params: Mapping[str, object], say: Catalogue) -> str:
+    """A circle cam's equivalent link as the course texts name it, from its step's parameters: the equivalent link
+    K23W by its two pins, the block at K on the face of the follower (a spline's, made at one position, keeps
+    the name the construction gave it)."""
+    if params.get("spline") == "yes":
+        return str(params["link"])
+    if params["kind"] == "flat":
+        return say.say("higher_pairs.named_block", centre=str(params["centre"]), follower=str(params["follower"]))
+    return say.say("higher_pairs.named_link", name=f"{params['centre']}{params['point']}")
 
 
 @dataclass(frozen=True)
@@ -527,8 +539,9 @@ class _Phrase:
         key = (f"higher_pairs.equivalent{spline}_block" if p["kind"] == "flat" else
                "higher_pairs.equivalent_spline" if spline else
                "higher_pairs.equivalent_block" if p["kind"] == "flat" else "higher_pairs.equivalent_link")
+        link = str(p["link"]) if spline else f"{p['centre']}{p['point']}"  # the seeds' K23W
         text = self.say.say(key, pair=str(p["pair"]), cam=str(p["cam"]), follower=str(p["follower"]),
-                            link=str(p["link"]), centre=str(p["centre"]), point=str(p["point"]),
+                            link=link, centre=str(p["centre"]), point=str(p["point"]),
                             length=self.w.n(float(p["length"]), "position"), unit=self.w.unit)
         return text, ""
 

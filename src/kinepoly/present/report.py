@@ -18,7 +18,7 @@ from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.scene.spec import GivenInput, LinkInput
 from kinepoly.solution import Solution
 
-__all__ = ["input_text", "readable_json", "steps_text", "table_text", "to_json"]
+__all__ = ["input_text", "named_line", "readable_json", "steps_text", "table_text", "to_json"]
 
 
 def _pair(v: Vec) -> list[float]:
@@ -34,6 +34,23 @@ def _link_angle(solution: Solution, link: str) -> float:
     if solution.driven_link(link) is not None:
         return given_angle(solution.angle(link), solution.scene.units.angle)
     return _angle(solution, solution.angle(link))
+
+
+def named_line(solution: Solution, link: str) -> tuple[str, float]:
+    """The line of ``link`` a reader knows it by, and its angle to the frame (rad, in (-pi, pi]): the line from
+    its first point to its second (``HD``), or, for a link of one point on a slide (a cylinder's barrel or rod),
+    the slide's axis (``axis 34``); else its own x-axis (``theta_1j``)."""
+    points = solution.scene.link(link).point_names
+    if len(points) >= 2:
+        a, b = solution.position(points[0]), solution.position(points[1])
+        if a != b:
+            return f"{points[0]}{points[1]}", math.atan2(b[1] - a[1], b[0] - a[0])
+    for slider in sorted(solution.scene.sliders, key=lambda s: s.guide != link):
+        if link in (slider.guide, slider.block) and slider.guide in solution.pose.links \
+                and slider.block not in solution.scene.equivalent_links:
+            angle = math.remainder(solution.angle(slider.guide) + slider.angle_rad, 2.0 * math.pi)
+            return f"axis {slider.name}", angle
+    return "x-axis", solution.angle(link)
 
 
 def _shown_tips(solution: Solution, kind: str) -> dict[str, Vec]:
@@ -72,7 +89,10 @@ def to_json(solution: Solution, scales: PolygonScales | None = None) -> dict[str
     out: dict[str, Any] = {"title": scene.title, "units": {"length": scene.units.length, "angle": scene.units.angle}}
     links: dict[str, dict[str, float]] = {}
     for name in dict.fromkeys((*asked.omega, *asked.alpha)):
+        line, at = named_line(solution, name)
         link_entry = links.setdefault(name, {"angle": _link_angle(solution, name)})
+        if abs(math.remainder(at - solution.angle(name), 2.0 * math.pi)) > 1e-9:  # theta_1j is not its named line's
+            link_entry["line"] = {"name": line, "angle": _angle(solution, at)}  # type: ignore[assignment]
         driven = solution.driven_link(name)  # its omega and alpha given, not recomputed
         if name in asked.omega and solution.velocity is not None:
             link_entry["omega"] = driven.omega if driven is not None else solution.velocity.omega[name]
@@ -154,6 +174,9 @@ def readable_json(solution: Solution, noise: Noise | None = None,
     degrees = solution.scene.units.angle == "deg"
     for entry in data.get("links", {}).values():
         entry["angle"] = noise.degrees(entry["angle"]) if degrees else noise.value(entry["angle"], "angle")
+        if "line" in entry:
+            at = entry["line"]["angle"]
+            entry["line"]["angle"] = noise.degrees(at) if degrees else noise.value(at, "angle")
         for key in ("omega", "alpha"):
             if key in entry:
                 entry[key] = noise.value(entry[key], key)
@@ -253,6 +276,15 @@ def _rows(header: list[str], rows: list[list[str]]) -> list[str]:
     return [line(header), "  ".join("-" * w for w in widths), *(line(r) for r in rows)]
 
 
+def _link_name(name: str, entry: dict[str, Any]) -> str:
+    """A link's row label: its name and the line its angle is of (``2 (HD)``)."""
+    return f"{name} ({entry['line']['name']})" if "line" in entry else name
+
+
+def _line_angle(entry: dict[str, Any]) -> float:
+    return float(entry["line"]["angle"] if "line" in entry else entry["angle"])
+
+
 def table_text(solution: Solution, scales: PolygonScales | None = None) -> str:
     """A readable summary: links, points, sliders, scales (``to_json``'s), warnings, and the cross-check footer."""
     noise = noise_of(solution)
@@ -260,7 +292,7 @@ def table_text(solution: Solution, scales: PolygonScales | None = None) -> str:
     u, au = solution.scene.units.length, solution.scene.units.angle
     out = [solution.scene.title, f"input: {input_text(solution)}", ""]
     if "links" in data:
-        rows = [[name, _fmt(v["angle"]), _fmt(v["omega"]) if "omega" in v else "",
+        rows = [[_link_name(name, v), _fmt(_line_angle(v)), _fmt(v["omega"]) if "omega" in v else "",
                  _fmt(v["alpha"]) if "alpha" in v else ""] for name, v in data["links"].items()]
         out += _rows(["link", f"angle ({au})", "omega (rad/s)", "alpha (rad/s^2)"], rows) + [""]
     if "points" in data:

@@ -18,6 +18,7 @@ __all__ = [
     "Content",
     "Panel",
     "arrange",
+    "fit_panel",
     "larger_papers",
     "nice_floor",
     "paper_name",
@@ -151,6 +152,11 @@ class Panel:
     def drawing_rect(self) -> Box:
         """The panel without its heading strip."""
         return (self.rect[0], self.rect[1], self.rect[2], self.rect[3] - HEADING_MM)
+
+
+def fit_panel(content: Content, rect: Box, scale: float) -> Panel:
+    """The panel ``rect`` drawing ``content`` at ``scale``, its box centred below the heading strip."""
+    return _panel(content, rect, scale)
 
 
 def _panel(content: Content, rect: Box, scale: float) -> Panel:

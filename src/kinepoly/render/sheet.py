@@ -8,6 +8,7 @@ to that step, the step's new elements highlighted, the step's text in the title 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -17,9 +18,18 @@ from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.render import centers as centers_layer
 from kinepoly.render import higher_pairs as higher_pairs_layer
 from kinepoly.render.labels import FEW, LabelCache, Request, place
-from kinepoly.render.layout import Content, Panel, arrange, larger_papers, paper_name, paper_size
+from kinepoly.render.layout import (
+    Content,
+    Panel,
+    arrange,
+    fit_panel,
+    larger_papers,
+    nice_floor,
+    paper_name,
+    paper_size,
+)
 from kinepoly.render.mechanism import mechanism_box, mechanism_items
-from kinepoly.render.polygons import Figure, FigureDrawing, figure_box, polygon_figure
+from kinepoly.render.polygons import Figure, FigureDrawing, Kind, figure_box, polygon_figure
 from kinepoly.render.primitives import LAYERS, Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.titleblock import (
     STEP_TEXT_MM,
@@ -36,7 +46,8 @@ from kinepoly.render.titleblock import (
 )
 from kinepoly.solution import Solution
 
-__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "readable_values", "roomy", "step_count",
+__all__ = ["GAIN", "Layout", "build_sheet", "crowded", "layout_sheet", "motion_layout", "readable_values", "roomy",
+           "step_count",
            "step_sheets"]
 
 MARGIN_MM = 10.0
@@ -206,6 +217,53 @@ def _layout_on(solution: Solution, size: tuple[float, float], fixed: tuple[str, 
     reduced = frozenset({p.kind for p in decided.reduced} | {p.name for p in panels if p.wanted is not None
                                                              and p.scale < p.wanted * (1 - 1e-12)})
     return Layout(width, height, tuple(panels), figures, title_rect, notes, reduced, tuple(blocks))
+
+
+def _union(boxes: list[tuple[float, float, float, float]]) -> tuple[float, float, float, float]:
+    return (min(b[0] for b in boxes), min(b[1] for b in boxes), max(b[2] for b in boxes), max(b[3] for b in boxes))
+
+
+def motion_layout(solutions: list[Solution], size: tuple[float, float], foot_mm: float) -> Layout:
+    """One layout for every drawing of a motion (``solutions``, one per position shown): the mechanism and each
+    polygon at one scale for all of them, so that sizes compare from frame to frame; each panel holds what any
+    of them draws there, at the largest round scale that fits it. The mechanism takes the left part of the
+    page (the circle diagram, when asked, below it), the polygons a column each. A strip ``foot_mm`` high at
+    the foot takes the place of the title block (the frame's caption). Each frame's sheet is this layout with
+    that frame's figures (``dataclasses.replace(layout, figures=..., labels=LabelCache())``)."""
+    width, height = size
+    x0, y0, x1, y1 = _drawing_area(width, height, foot_mm)
+    mech = _union([mechanism_box(s) for s in solutions] +
+                  [(x, y, x, y) for s in solutions for x, y in higher_pairs_layer.higher_pair_points(s)])
+    both: tuple[Kind, Kind] = ("velocity", "acceleration")
+    kinds = [k for k in both if any((s.velocity if k == "velocity" else s.acceleration) is not None
+                                    for s in solutions)]
+    split = x0 + (x1 - x0) * (_MOTION_MECHANISM if kinds else 1.0)
+    diagram = centers_layer.centers_content(solutions[0])
+    low = y0 + (y1 - y0) * 0.3 if diagram is not None else y0
+    panels = [_fitted(Content("mechanism", mech, None, _PADDING_MM["mechanism"]), (x0, low, split, y1))]
+    if diagram is not None:
+        panels.append(_fitted(diagram, (x0, y0, split, low), diagram.wanted))
+    column = (x1 - split) / max(len(kinds), 1)
+    for n, kind in enumerate(kinds):
+        box = _union([figure_box(polygon_figure(s, kind)) for s in solutions
+                      if (s.velocity if kind == "velocity" else s.acceleration) is not None])
+        rect = (split + n * column, y0, split + (n + 1) * column, y1)
+        panels.append(_fitted(Content(kind, box, 1.0, _PADDING_MM[kind]), rect))
+    title_rect = (MARGIN_MM, MARGIN_MM, width - MARGIN_MM, MARGIN_MM + foot_mm)
+    return Layout(width, height, tuple(panels), (), title_rect, ())
+
+
+_MOTION_MECHANISM = 0.44
+"""The mechanism's share of a motion's page width (the polygons share the rest)."""
+
+
+def _fitted(content: Content, rect: tuple[float, float, float, float], scale: float | None = None) -> Panel:
+    """``content`` in ``rect`` at ``scale``, or at the largest round scale that fits."""
+    if scale is None:
+        fit = content.fit(rect[2] - rect[0], rect[3] - rect[1])
+        scale = nice_floor(fit * (1.0 - 1e-9)) if 0.0 < fit < math.inf else 1.0
+    panel = fit_panel(content, rect, scale)
+    return Panel(panel.name, panel.rect, panel.scale, scale if content.wanted is not None else None, panel.origin)
 
 
 def _mechanism_box(solution: Solution) -> tuple[float, float, float, float]:

@@ -5,13 +5,19 @@ from __future__ import annotations
 from kinepoly.render.primitives import Stroke
 
 __all__ = [
+    "BORDER",
     "DIRECTION_LINE",
     "HALO",
     "HEAD_HALF_WIDTH_MM",
     "HEAD_LENGTH_MM",
+    "INK",
     "LABEL_MM",
     "LINK_STROKE",
+    "MUTED_INK",
+    "NOTE_INK",
+    "PATH",
     "PIN_RADIUS_MM",
+    "RULE",
     "SMALL_MM",
     "TERM_COLORS",
     "TERM_NAMES",
@@ -31,9 +37,20 @@ PIN_RADIUS_MM = 1.1
 VECTOR_WIDTH_MM = 0.35
 HEAD_LENGTH_MM = 2.6
 HEAD_HALF_WIDTH_MM = 0.75
+INK = "#000000"
+"""Text and the sheet's frame."""
+NOTE_INK = "#7a1f1f"
+"""A note on what the layout had to change (a larger paper than asked)."""
+BORDER = Stroke(INK, 0.5)
+RULE = Stroke(INK, 0.35)
+"""The title block's rule, a cursor."""
 LINK_STROKE = Stroke("#1a1a1a", 0.6)
 THIN = Stroke("#000000", 0.18)
-DIRECTION_LINE = Stroke("#6b6b6b", 0.18, (2.0, 1.0))
+MUTED_INK = "#6b6b6b"
+"""What a panel says in place of a drawing it leaves out."""
+DIRECTION_LINE = Stroke(MUTED_INK, 0.18, (2.0, 1.0))
+PATH = Stroke("#8a8a8a", 0.25)
+"""A point's path traced over a motion."""
 HALO = Stroke("#ffe27a", 1.6)
 """Under what the current step adds, in the step-by-step sheets."""
 

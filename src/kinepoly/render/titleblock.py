@@ -133,8 +133,10 @@ def title_blocks(solution: Solution, notes: Sequence[str], width: float,
         head += [(plain_runs(line, SMALL_MM), False) for line in wrap(note, SMALL_MM, left_w)]
     blocks = [_block(head, left_w)]
     if "links" in data:
-        rows: list[list[str | float | None]] = [[f"link {name}", v["angle"], v.get("omega"), v.get("alpha")]
-                                                for name, v in data["links"].items()]
+        rows: list[list[str | float | None]] = [
+            [f"link {name} ({v['line']['name']})" if "line" in v else f"link {name}",
+             v["line"]["angle"] if "line" in v else v["angle"], v.get("omega"), v.get("alpha")]
+            for name, v in data["links"].items()]
         blocks.append(_table(["", f"θ ({au})", "ω (rad/s)", "α (rad/s²)"], rows, "links"))
     if "points" in data:
         rows = []

@@ -12,10 +12,11 @@ position, the same lower-pair linkage:
   direction) from then on; where the guess does not tell, the left is taken (a ``default-assembly``
   warning at the solve).
 
-The equivalent link and its joints are added to the scene (``Scene.equivalent_links``) so that the
-plan's dyads, the polygons and the analytic check use it like any other link. Kennedy's theorem does
-not: it asks centers between the scene's own links and takes the pair's common normal as a line edge
-(``engine.centers``).
+The equivalent link and its joints are added to the scene (``Scene.equivalent_links``), numbered as a
+textbook numbers the link it adds (the next number: block 4 of cam 2 and follower 3; ``eq23`` where the
+links are not numbered), so that the plan's dyads, the polygons and the analytic check use it like any
+other link. Kennedy's theorem does not: it asks centers between the scene's own links and takes the
+pair's common normal as a line edge (``engine.centers``).
 """
 
 from __future__ import annotations
@@ -34,6 +35,16 @@ def _fresh(base: str, taken: set[str]) -> str:
     while name in taken:
         k += 1
         name = f"{base}{k}"
+    taken.add(name)
+    return name
+
+
+def _number(taken: set[str]) -> str:
+    """The next link number, as a textbook numbers the link it adds (the block 4 of a cam 2 and follower 3),
+    where the links are numbered; else empty."""
+    if not taken or not all(name.isdigit() for name in taken):
+        return ""
+    name = str(max(int(name) for name in taken) + 1)
     taken.add(name)
     return name
 
@@ -63,7 +74,7 @@ def with_equivalent_links(scene: Scene) -> Scene:
         if k not in scene.link(cam.cam).point_names:
             owner = links[cam.cam]
             links[cam.cam] = replace(owner, points=(*owner.points, PointSpec(k, cam.center, cam.line)))
-        link = _fresh(f"eq{cam.name}", names)
+        link = _number(names) or _fresh(f"eq{cam.name}", names)
         if cam.kind == "flat":
             assert cam.flat is not None
             if flat_side(scene, cam) == "right":
