@@ -46,7 +46,8 @@ def tidy_column(values: np.ndarray, error: np.ndarray | float) -> np.ndarray:
 
 
 def _natural_sizes(scene: Scene) -> dict[str, float]:
-    """The size of each kind the input sets, whatever the rows give: the mechanism's size, the input's rates."""
+    """The size of each kind the input sets, whatever the rows give: the mechanism's size, the input's rates (a
+    ratio of two rates is of size 1)."""
     size = max((math.hypot(*p.local) for link in scene.links for p in link.points), default=0.0)
     inp = scene.input
     omega = alpha = 0.0
@@ -56,7 +57,7 @@ def _natural_sizes(scene: Scene) -> dict[str, float]:
         omega, alpha = abs(inp.s_dot) / size, abs(inp.s_ddot) / size
     alpha = max(alpha, omega * omega)
     return {"length": size, "angle": 180.0 if scene.units.angle == "deg" else math.pi, "omega": omega,
-            "alpha": alpha, "speed": size * omega, "accel": size * alpha}
+            "alpha": alpha, "speed": size * omega, "accel": size * alpha, "ratio": 1.0}
 
 
 def _dimension(result: SweepResult, col: Column) -> str:
