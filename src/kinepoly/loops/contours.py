@@ -65,6 +65,8 @@ class Loop:
     terms: tuple[Term, ...]
     closing: str
     """The joint this loop alone holds (the one the spanning tree leaves out)."""
+    joints: tuple[str, ...] = ()
+    """Every joint the loop crosses, in order."""
 
     def closure(self) -> complex:
         """The sum of the loop's vectors at the engine's positions: zero to rounding."""
@@ -168,8 +170,16 @@ def _cycle(parent: dict[str, tuple[str, Joint] | None], closing: Joint) -> list[
     a_side, b_side = up_a[: on_a.index(meet)], up_b[: on_b.index(meet)]
     links = [link for link, _ in a_side] + [meet] + [link for link, _ in reversed(b_side)]
     joints = [j for _, j in a_side] + [j for _, j in reversed(b_side)] + [closing]
-    return [(link, joint) for link, joint in zip(links, joints, strict=True) if joint is not None] \
-        if all(j is not None for j in joints) else []
+    cycle = [(link, joint) for link, joint in zip(links, joints, strict=True) if joint is not None]
+    start = links.index(meet)  # the texts start a loop where it leaves the frame (or the link nearest it)
+    return cycle[start:] + cycle[:start]
+
+
+def joint_name(mechanism: Mechanism, joint: Joint) -> str:
+    """A pin by its point, a slider by its name; a pin of a compound hinge with the two links it joins."""
+    if isinstance(joint, Revolute) and len(mechanism.links_of_point(joint.point)) > 2:
+        return f"{joint.point} ({joint.links[0]}-{joint.links[1]})"
+    return joint.name
 
 
 def choose_loops(mechanism: Mechanism, pose: Pose) -> tuple[Loop, ...]:
@@ -182,6 +192,9 @@ def choose_loops(mechanism: Mechanism, pose: Pose) -> tuple[Loop, ...]:
     loops = []
     for number, joint in enumerate(closing, 1):
         cycle = _cycle(parent, joint)
+        order = mechanism.link_names.index
+        if len(cycle) > 2 and order(cycle[-1][0]) < order(cycle[1][0]):  # round it in the scene's order of links
+            cycle = [(cycle[0][0], cycle[-1][1])] + [(cycle[k][0], cycle[k - 1][1]) for k in range(len(cycle) - 1, 0, -1)]
         terms: list[Term] = []
         for k, (link, leave) in enumerate(cycle):
             entry = cycle[k - 1][1]
@@ -190,5 +203,6 @@ def choose_loops(mechanism: Mechanism, pose: Pose) -> tuple[Loop, ...]:
                 terms.append(term)
             if isinstance(leave, SliderSpec):
                 terms.append(_slide_term(mechanism, pose, leave, 1 if link == leave.guide else -1))
-        loops.append(Loop(number, tuple(link for link, _ in cycle), tuple(terms), joint.name))
+        loops.append(Loop(number, tuple(link for link, _ in cycle), tuple(terms), joint_name(mechanism, joint),
+                          tuple(joint_name(mechanism, leave) for _, leave in cycle)))
     return tuple(loops)

@@ -11,6 +11,7 @@ than any one of them can give (a triad's) as one coupled system.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -162,7 +163,7 @@ def _solve_blocks(equations: list[Equation], unknowns: list[str]) -> tuple[dict[
         if inputs:
             take("input", [inputs[0]], open_of(inputs[0]))
             continue
-        pairs = [(eq, other) for eq, other in zip(left[::1], left[1::1], strict=False)
+        pairs = [(eq, other) for eq, other in itertools.pairwise(left)
                  if eq.source.endswith(".re") and other.source == eq.source.replace(".re", ".im")]
         ready = [(re, im) for re, im in pairs if len(set(open_of(re)) | set(open_of(im))) == 2]
         if ready:
