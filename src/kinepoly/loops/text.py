@@ -10,7 +10,8 @@ from kinepoly.present.catalogue import Catalogue
 from kinepoly.present.phrasing import english
 from kinepoly.scene.spec import LinkInput
 
-__all__ = ["derivation_lines", "loop_equation", "loop_unknowns", "variable"]
+__all__ = ["block_lines", "constant_line", "count_line", "derivation_lines", "loop_equation", "loop_lines",
+           "loop_unknowns", "variable"]
 
 
 def variable(loops: LoopSolution, key: str, order: int) -> str:
@@ -159,32 +160,49 @@ def _block_lines(loops: LoopSolution, block: Block, order: int, cat: Catalogue) 
             "    " + delta, "    " + first, "    " + second]
 
 
+def count_line(loops: LoopSolution, cat: Catalogue) -> str:
+    """N = j - n + 1 and why the loops chosen are independent."""
+    mech = loops.mechanism
+    return cat.say("loops.count", j=str(len(mech.joints)), n=str(len(mech.link_names)), count=str(len(loops.loops)),
+                   joints=", ".join(loop.closing for loop in loops.loops))
+
+
+def loop_lines(loops: LoopSolution, loop: Loop, cat: Catalogue) -> list[str]:
+    """One loop: its links, its position equation and values, its first and second derivatives."""
+    out = [cat.say("loops.loop", number=str(loop.number), members=" → ".join(loop.members), joint=loop.closing),
+           cat.say("loops.position", equation=loop_equation(loops, loop, cat)),
+           cat.say("loops.known", values=_knowns(loops, loop, cat), closure=_complex(cat, loop.closure())),
+           cat.say("loops.velocity", equation=_velocity_equation(loops, loop, cat))]
+    if loops.alpha is not None:
+        out.append(cat.say("loops.acceleration", equation=_acceleration_equation(loops, loop, cat)))
+        if any(t.slider is not None and loops.names[t.link] != loops.mechanism.ground for t in loop.terms):
+            out.append(cat.say("loops.coriolis"))
+    return out
+
+
+def block_lines(loops: LoopSolution, block: Block, order: int, cat: Catalogue) -> list[str]:
+    """One block of unknowns: the input's value, a loop's 2x2 system and Cramer's rule, or a coupled system."""
+    return _block_lines(loops, block, order, cat)
+
+
+def constant_line(loops: LoopSolution, number: int, cat: Catalogue) -> str:
+    return cat.say("loops.constant", loop=str(number), value=_complex(cat, loops.acceleration_constants[number]))
+
+
 def derivation_lines(loops: LoopSolution, cat: Catalogue | None = None) -> list[str]:
     """The whole derivation: the loops counted and chosen, each one's equations, the systems and their solutions."""
     cat = cat or english()
-    mech = loops.mechanism
-    n, j = len(mech.link_names), len(mech.joints)
-    out = [cat.say("loops.title"), "",
-           cat.say("loops.count", j=str(j), n=str(n), count=str(len(loops.loops)),
-                   joints=", ".join(loop.closing for loop in loops.loops))]
+    out = [cat.say("loops.title"), "", count_line(loops, cat)]
     for loop in loops.loops:
-        out += ["", cat.say("loops.loop", number=str(loop.number), members=" → ".join(loop.members),
-                            joint=loop.closing)]
-        out.append("    " + cat.say("loops.position", equation=loop_equation(loops, loop, cat)))
-        out.append("    " + cat.say("loops.known", values=_knowns(loops, loop, cat),
-                                    closure=_complex(cat, loop.closure())))
-        out.append("    " + cat.say("loops.velocity", equation=_velocity_equation(loops, loop, cat)))
-        if loops.alpha is not None:
-            out.append("    " + cat.say("loops.acceleration", equation=_acceleration_equation(loops, loop, cat)))
-            if any(t.slider is not None and loops.names[t.link] != mech.ground for t in loop.terms):
-                out.append("    " + cat.say("loops.coriolis"))
+        head, *rest = loop_lines(loops, loop, cat)
+        out += ["", head, *("    " + line for line in rest)]
     out += ["", cat.say("loops.velocities")]
     for block in loops.velocity_blocks:
         out += _block_lines(loops, block, 1, cat)
     if loops.alpha is not None:
         out += ["", cat.say("loops.accelerations")]
-        for number, c in loops.acceleration_constants.items():
-            out.append("    " + cat.say("loops.constant", loop=str(number), value=_complex(cat, c)))
+        for number in loops.acceleration_constants:
+            out.append("    " + constant_line(loops, number, cat))
         for block in loops.acceleration_blocks:
             out += _block_lines(loops, block, 2, cat)
     return out
