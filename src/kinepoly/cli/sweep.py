@@ -35,6 +35,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", metavar="FILE.csv", help="write the CSV here ('-' for standard output)")
     parser.add_argument("--plot", metavar="FILE.png", help="write the plots (PNG) here")
     parser.add_argument("--centrode", metavar="LINK", help="also report the fixed and moving centrodes of LINK")
+    parser.add_argument("--series", action="store_true", help="a slider-crank driven by its crank: add the course "
+                        "text's two-term series of s, s_dot, s_ddot beside the exact ones, and their errors (columns "
+                        "s_series_14, s_series_error_14, ...; plotted with --plot)")
     parser.add_argument("--pole", nargs=2, type=float, metavar=("A", "B"),
                         help="with --centrode LINK: the pole P12 of LINK's finite displacement from input A to input B "
                         "(the crossing of the perpendicular bisectors of A1A2 and B1B2), printed on standard error")
@@ -115,7 +118,7 @@ def run(args: argparse.Namespace) -> int:
     bar = _ProgressBar(sys.stderr) if sys.stderr.isatty() else None
     try:
         result = sweep(scene, steps=args.positions, start=args.start, stop=args.stop, centrode=args.centrode,
-                       progress=bar)
+                       progress=bar, series=args.series)
     finally:
         if bar is not None:
             bar.close()
