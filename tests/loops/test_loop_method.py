@@ -194,3 +194,12 @@ def test_solve_method_loops_refuses_a_gear_train(capsys: pytest.CaptureFixture[s
     code, out, err = run(capsys, "solve", str(EXAMPLES / "gear-pair.toml"), "--method", "loops")
     assert code == 2 and not out
     assert "--method loops" in err and "gears" in err and "Traceback" not in err
+
+
+def test_a_coefficient_that_is_zero_is_written_as_zero() -> None:
+    """The toggle press's block slides square to link 5's loop term: its coefficient is zero to rounding, and is
+    written 0, never −0 or (0)."""
+    _, loops = loop_method_solution(kinepoly.solve(kinepoly.load_scene(EXAMPLES / "toggle-press.toml")))
+    text = "\n".join(derivation_lines(loops))
+    assert "+ 0 ṡ_16" in text
+    assert "− 0 " not in text and "(0)" not in text and "(−0)" not in text

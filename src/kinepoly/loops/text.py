@@ -136,8 +136,10 @@ def _block_lines(loops: LoopSolution, block: Block, order: int, cat: Catalogue) 
     values = ", ".join(f"{n} = {cat.number(v)}" for n, v in zip(names, block.values, strict=True))
     if block.kind == "input":
         return [cat.say("loops.input", unknown=names[0], value=cat.number(block.values[0]))]
+    scale = max((abs(c) for row in block.matrix for c in row), default=0.0)
+    matrix = tuple(tuple(0.0 if abs(c) <= 1e-12 * scale else c for c in row) for row in block.matrix)
     rows = []
-    for row, rhs in zip(block.matrix, block.rhs, strict=True):
+    for row, rhs in zip(matrix, block.rhs, strict=True):
         left = " ".join(f"{'+' if c >= 0 else '−'} {cat.number(abs(c))} {n}" for c, n in zip(row, names, strict=True))
         left = left.removeprefix("+ ") if left.startswith("+") else "−" + left.removeprefix("− ")
         rows.append(f"    {left} = {cat.number(rhs)}")
@@ -145,11 +147,11 @@ def _block_lines(loops: LoopSolution, block: Block, order: int, cat: Catalogue) 
         head = cat.say("loops.coupled", loops=", ".join(str(k) for k in block.loops) or "-",
                        size=str(len(names)), unknowns=", ".join(names))
         return [head, *rows, "    " + values]
-    (a11, a12), (a21, a22) = block.matrix
+    (a11, a12), (a21, a22) = matrix
     b1, b2 = block.rhs
     det = a11 * a22 - a12 * a21
     def times(x: float, y: float) -> str:
-        return "·".join(f"({cat.number(v)})" if v < 0 else cat.number(v) for v in (x, y))
+        return "·".join(f"({cat.number(v)})" if v < 0 and cat.number(v) != "0" else cat.number(v) for v in (x, y))
 
     delta = cat.say("loops.determinant", expression=f"{times(a11, a22)} − {times(a12, a21)}", value=cat.number(det))
     first = cat.say("loops.cramer", unknown=names[0], numerator=f"({times(b1, a22)} − {times(a12, b2)})",
