@@ -54,3 +54,12 @@ def test_the_handout_command_adds_the_pages(capsys: pytest.CaptureFixture[str], 
     assert pages(printed) == pages(plain) + 1  # the four-bar has one loop
     code, _, err = run(capsys, "handout", str(EXAMPLES / "metu-cam.toml"), "--loops", "-o", str(tmp_path / "c.pdf"))
     assert code == 2 and "does not cover" in err and not (tmp_path / "c.pdf").exists()
+
+
+def test_the_web_page_has_the_loop_pages_too(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    page = tmp_path / "h.html"
+    code, printed, _ = run(capsys, "handout", str(EXAMPLES / "shaper.toml"), "--loops", "--html", str(page))
+    _, plain, _ = run(capsys, "handout", str(EXAMPLES / "shaper.toml"), "--html", str(tmp_path / "p.html"))
+    assert code == 0
+    assert int(re.search(r"\((\d+) pages", printed).group(1)) == int(re.search(r"\((\d+) pages", plain).group(1)) + 2  # type: ignore[union-attr]
+    assert "Loop-closure method, loop" in page.read_text()
