@@ -38,9 +38,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--series", action="store_true", help="a slider-crank driven by its crank: add the course "
                         "text's two-term series of s, s_dot, s_ddot beside the exact ones, and their errors (columns "
                         "s_series_14, s_series_error_14, ...; plotted with --plot)")
-    parser.add_argument("--pole", nargs=2, type=float, metavar=("A", "B"),
-                        help="with --centrode LINK: the pole P12 of LINK's finite displacement from input A to input B "
-                        "(the crossing of the perpendicular bisectors of A1A2 and B1B2), printed on standard error")
+    parser.add_argument("--pole", nargs=2, type=float, metavar="INPUT",
+                        help="with --centrode LINK, two inputs A B: the pole P12 of LINK's finite displacement from "
+                        "input A to input B (the crossing of the perpendicular bisectors of A1A2 and B1B2), printed "
+                        "on standard error")
     parser.add_argument("--pole-plot", metavar="FILE.png", help="with --pole: the mechanism at both inputs, the "
                         "bisectors, P12 and the instant center at A (PNG)")
 
