@@ -203,3 +203,11 @@ def test_a_coefficient_that_is_zero_is_written_as_zero() -> None:
     text = "\n".join(derivation_lines(loops))
     assert "+ 0 ṡ_16" in text
     assert "− 0 " not in text and "(0)" not in text and "(−0)" not in text
+
+
+def test_a_motor_between_moving_links_is_said_so() -> None:
+    """motor-on-coupler: the input gives omega_13 - omega_12, so its equation is solved with the loop's."""
+    _, loops = loop_method_solution(kinepoly.solve(kinepoly.load_scene(EXAMPLES / "motor-on-coupler.toml")))
+    text = "\n".join(derivation_lines(loops))
+    assert "loop 1 and the input's equation (a motor between moving links" in text
+    assert "−1 ω_12 + 1 ω_13 + 0 ω_14 = 6" in text

@@ -47,6 +47,8 @@ class Block:
     matrix: tuple[tuple[float, ...], ...]
     rhs: tuple[float, ...]
     values: tuple[float, ...]
+    inputs: int = 0
+    """How many of its equations are inputs' (a motor between moving links: the difference of two rates)."""
 
 
 @dataclass(frozen=True)
@@ -154,7 +156,8 @@ def _solve_blocks(equations: list[Equation], unknowns: list[str]) -> tuple[dict[
         known.update({n: float(v) for n, v in zip(names, x, strict=True)})
         loops = tuple(dict.fromkeys(int(eq.source.split(".")[0]) for eq in eqs if not eq.source.startswith("input")))
         blocks.append(Block(kind, loops, tuple(names), tuple(tuple(float(c) for c in row) for row in a),
-                            tuple(float(v) for v in b), tuple(float(v) for v in x)))
+                            tuple(float(v) for v in b), tuple(float(v) for v in x),
+                            sum(1 for eq in eqs if eq.source.startswith("input"))))
         for eq in eqs:
             left.remove(eq)
 

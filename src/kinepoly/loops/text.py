@@ -144,7 +144,8 @@ def _block_lines(loops: LoopSolution, block: Block, order: int, cat: Catalogue) 
         left = left.removeprefix("+ ") if left.startswith("+") else "−" + left.removeprefix("− ")
         rows.append(f"    {left} = {cat.number(rhs)}")
     if block.kind == "coupled":
-        head = cat.say("loops.coupled", loops=", ".join(str(k) for k in block.loops) or "-",
+        key = "loops.coupled_input" if block.inputs and len(block.loops) == 1 else "loops.coupled"
+        head = cat.say(key, loops=", ".join(str(k) for k in block.loops) or "-",
                        size=str(len(names)), unknowns=", ".join(names))
         return [head, *rows, "    " + values]
     (a11, a12), (a21, a22) = matrix
