@@ -33,6 +33,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "or your wording; see 'Handouts' in the README); overrides --lang")
     parser.add_argument("--paper", default="A4", help="A0..A5, letter, legal, tabloid (landscape; add -portrait), "
                         "or WIDTHxHEIGHT in mm (default A4)")
+    parser.add_argument("--loops", action="store_true", help="add to the PDF and the web page a page per loop of the loop-closure "
+                        "method (each loop's equation in complex numbers, its derivatives, Cramer's rule); gears and "
+                        "cams are not covered: exit 2")
 
 
 def _target(option: str, value: str, suffixes: tuple[str, ...]) -> Path:
@@ -80,13 +83,18 @@ def _handout(args: argparse.Namespace) -> list[str]:
     say = load_catalogue(args.lang, args.messages)
     t0 = time.perf_counter()
     solution = solve(load_scene(args.scene))
+    loops = None
+    if args.loops:
+        from kinepoly.loops import loop_method_solution
+
+        loops = loop_method_solution(solution)[1]
     lines = []
     files: list[tuple[Path, bytes | str, bool]] = []  # made in memory first: both files or neither
     if pdf is not None:
         from kinepoly.handout.build import handout_sheets
         from kinepoly.render.mpl import write_pdf_pages
 
-        handout, sheets = handout_sheets(solution, say, args.paper)
+        handout, sheets = handout_sheets(solution, say, args.paper, loops)
         for note in handout.notes:  # a larger paper than asked: said on the pages and here
             print(f"kinepoly handout: {note}", file=sys.stderr)
         buffer = io.BytesIO()
@@ -99,7 +107,7 @@ def _handout(args: argparse.Namespace) -> list[str]:
     if page is not None:
         from kinepoly.handout.html import handout_html
 
-        handout, text = handout_html(solution, say, paper)
+        handout, text = handout_html(solution, say, paper, loops)
         files.append((page, text, False))
         lines.append(f"wrote {page} ({len(handout.pages)} pages, {say.language})")
     written: list[Path] = []

@@ -37,6 +37,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", metavar="FILE.csv", help="write the CSV here ('-' for standard output)")
     parser.add_argument("--plot", metavar="FILE.png", help="write the plots (PNG) here")
     parser.add_argument("--centrode", metavar="LINK", help="also report the fixed and moving centrodes of LINK")
+    parser.add_argument("--series", action="store_true", help="a slider-crank driven by its crank: add the course "
+                        "text's two-term series of s, s_dot, s_ddot beside the exact ones, and their errors (columns "
+                        "s_series_14, s_series_error_14, ...; plotted with --plot)")
+    parser.add_argument("--pole", nargs=2, type=float, metavar="INPUT",
+                        help="with --centrode LINK, two inputs A B: the pole P12 of LINK's finite displacement from "
+                        "input A to input B (the crossing of the perpendicular bisectors of A1A2 and B1B2), printed "
+                        "on standard error")
+    parser.add_argument("--pole-plot", metavar="FILE.png", help="with --pole: the mechanism at both inputs, the "
+                        "bisectors, P12 and the instant center at A (PNG)")
 
 
 class _ProgressBar:
@@ -77,7 +86,13 @@ def _check(args: argparse.Namespace) -> None:
             raise SceneError(f"{flag}: expected a finite number, got {value}")
     if (args.start is None) != (args.stop is None):
         raise SceneError("--from and --to: give both, or neither for the full turn (or the input's whole range)")
-    for flag, value in (("-o", args.output), ("--plot", args.plot)):
+    if args.pole is not None and args.centrode is None:
+        raise SceneError("--pole A B: give the link too, with --centrode LINK")
+    if args.pole_plot is not None and args.pole is None:
+        raise SceneError("--pole-plot: give the two inputs too, with --pole A B")
+    if args.pole is not None and not all(math.isfinite(x) for x in args.pole):
+        raise SceneError(f"--pole: expected two finite numbers, got {args.pole[0]} {args.pole[1]}")
+    for flag, value in (("-o", args.output), ("--plot", args.plot), ("--pole-plot", args.pole_plot)):
         if value and value != "-" and not Path(value).resolve().parent.is_dir():
             raise SceneError(f"{flag}: the folder of {value} does not exist")
 
@@ -110,7 +125,7 @@ def run(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     bar = _ProgressBar(sys.stderr) if sys.stderr.isatty() else None
     try:
-        prepared = prepare_sweep(scene, args.centrode)
+        prepared = prepare_sweep(scene, args.centrode, args.series)
         steps = args.positions
         if steps is None:
             steps = DEFAULT_POSITIONS * (cycle_turns(prepared) if args.start is None else 1)
@@ -132,4 +147,25 @@ def run(args: argparse.Namespace) -> int:
         print(_summary(result))
     for notice in result.notices:
         print(f"kinepoly: warning [{notice.code}]: {notice.message}", file=sys.stderr)
+    if args.pole is not None:
+        _pole(args, scene, result)
     return 0
+
+
+def _pole(args: argparse.Namespace, scene: Any, result: Any) -> None:
+    """The finite-rotation pole: its line on standard error, its drawing where asked."""
+    from kinepoly.sweep.pole import pole_between
+
+    found = pole_between(scene, args.centrode, args.pole[0], args.pole[1])
+    name, pole = result.input.name, found.found
+    unit = scene.units.length
+    where = (f"({pole.pole.real:.6g}, {pole.pole.imag:.6g}) {unit}" if pole.pole is not None else
+             "at infinity (the link is translated, not turned)")
+    centre = found.instant_center
+    limit = f"; the instant center at {name} = {args.pole[0]:g} is ({centre.real:.6g}, {centre.imag:.6g})" if centre else ""
+    print(f"kinepoly: finite-rotation pole P12 of link {args.centrode} from {name} = {args.pole[0]:g} to "
+          f"{args.pole[1]:g}: {where}, the link turning {math.degrees(pole.turn):.6g} deg{limit}", file=sys.stderr)
+    if args.pole_plot:
+        from kinepoly.sweep.pole_plot import pole_png
+
+        _write(args.pole_plot, pole_png(scene, found, name, unit))

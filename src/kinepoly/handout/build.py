@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from kinepoly.errors import HandoutError
 from kinepoly.handout.answers import answers_page
@@ -29,16 +29,23 @@ from kinepoly.render.style import NOTE_INK
 from kinepoly.render.text import plain_runs, runs_box
 from kinepoly.solution import Solution
 
+if TYPE_CHECKING:
+    from kinepoly.loops.rates import LoopSolution
+
 __all__ = ["crowded_labels", "drawn_kinds", "handout_content", "handout_sheets"]
 
 _MOST_BAND = 0.55
 """The band of text may take at most this share of the page's height."""
 
 
-def handout_content(solution: Solution, say: Catalogue, scales: Mapping[str, float]) -> Handout:
-    """Every page's content; ``scales`` as drawn (``mechanism``, ``velocity``, ``acceleration``)."""
+def handout_content(solution: Solution, say: Catalogue, scales: Mapping[str, float],
+                    loops: LoopSolution | None = None) -> Handout:
+    """Every page's content; ``scales`` as drawn (``mechanism``, ``velocity``, ``acceleration``); with ``loops``
+    the loop-closure method's pages after the answers."""
+    from kinepoly.handout.loop_pages import loop_pages
+
     pages = (problem_page(solution, say, scales), *construction_pages(solution, say, scales),
-             answers_page(solution, say, scales))
+             answers_page(solution, say, scales), *(loop_pages(loops, say) if loops is not None else ()))
     return Handout(solution.scene.title, say.code, pages)
 
 
@@ -67,13 +74,13 @@ def _paper_name(paper: str | tuple[float, float]) -> str:
 
 
 def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float], asked: tuple[float, float],
-               readable: dict[str, Any]) -> tuple[Frame, Handout] | str:
+               readable: dict[str, Any], loops: LoopSolution | None = None) -> tuple[Frame, Handout] | str:
     """The frame and the content on a page of ``size`` at the scales of the paper ``asked``, or why they do not fit."""
     width, height = size
     inner = width - 2 * (MARGIN_MM + GAP_MM)
     frame = band_frame(solution, (width, height), 0.0, asked, readable)
     scales = scales_of(frame.layout)
-    handout = handout_content(solution, say, scales)
+    handout = handout_content(solution, say, scales, loops)
     heights: dict[Page, float] = {}  # a page's text is set once per paper, however often the scales settle
 
     def height_of(page: Page) -> float:
@@ -89,14 +96,14 @@ def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float], as
             frame = band_frame(solution, (width, height), max(need, frame.band), asked, readable)
             if scales_of(frame.layout) != scales:
                 scales = scales_of(frame.layout)
-                handout = handout_content(solution, say, scales)
+                handout = handout_content(solution, say, scales, loops)
             continue
         return frame, handout
     return "the handout's layout does not settle on this paper"
 
 
 def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
-            asked: str) -> tuple[Frame, Handout, str]:
+            asked: str, loops: LoopSolution | None = None) -> tuple[Frame, Handout, str]:
     """The frame and content on the paper asked or the smallest larger A paper that holds them, and its name.
 
     A paper holds the handout when its text's band fits, the drawing is ``roomy`` (each polygon
@@ -111,7 +118,7 @@ def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
     best: tuple[Frame, Handout, str] | None = None
     why = ""
     for name, paper in papers:
-        chosen = _frame_for(solution, say, paper, size, readable)
+        chosen = _frame_for(solution, say, paper, size, readable, loops)
         if isinstance(chosen, str):
             why = chosen
             if best is None:
@@ -152,18 +159,19 @@ def _note_items(frame: Frame, notes: tuple[str, ...]) -> list[Item]:
     return items
 
 
-def handout_sheets(solution: Solution, say: Catalogue,
-                   paper: str | tuple[float, float] = "A4") -> tuple[Handout, list[Sheet]]:
+def handout_sheets(solution: Solution, say: Catalogue, paper: str | tuple[float, float] = "A4",
+                   loops: LoopSolution | None = None) -> tuple[Handout, list[Sheet]]:
     """The handout's content and a sheet per page, the text in a band under the drawing.
 
     When the page asked for is too small (the text's band and the drawing do not both fit), the
     next larger A paper that holds them is taken (A3, A2, ... A0, in the page's orientation), and
     every page and ``Handout.notes`` say so; the drawing reduces its polygons' scales or puts them
-    in cells of their own (``render.layout``) before that. Never fails for want of room.
+    in cells of their own (``render.layout``) before that. Never fails for want of room. With ``loops``
+    (``kinepoly.loops.solve_loops``) a page per loop of the loop-closure method follows the answers.
     """
     size = _paper(paper)
     asked = _paper_name(paper)
-    frame, handout, name = _choose(solution, say, size, asked)
+    frame, handout, name = _choose(solution, say, size, asked, loops)
     notes: tuple[str, ...] = ()
     if name != asked:
         template = say.messages.get("page.larger_paper", _PAPER_NOTE)

@@ -18,7 +18,7 @@ from __future__ import annotations
 import html
 import re
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from kinepoly.handout.build import crowded_labels, drawn_kinds, handout_content
 from kinepoly.handout.content import Column, Handout, Page, Paragraph, Table
@@ -30,6 +30,9 @@ from kinepoly.render.primitives import LAYERS, Item
 from kinepoly.render.sheet import readable_values, roomy
 from kinepoly.render.style import TERM_COLORS
 from kinepoly.solution import Solution
+
+if TYPE_CHECKING:
+    from kinepoly.loops.rates import LoopSolution
 
 __all__ = ["handout_html", "merged_pages", "page_ranges"]
 
@@ -291,11 +294,13 @@ def _frame(solution: Solution, size: tuple[float, float]) -> Frame:
     return band_frame(solution, size, 0.0, size, readable)
 
 
-def handout_html(solution: Solution, say: Catalogue, paper: str | tuple[float, float] = "A4") -> tuple[Handout, str]:
-    """The handout as one HTML page (and its content), in the catalogue's language."""
+def handout_html(solution: Solution, say: Catalogue, paper: str | tuple[float, float] = "A4",
+                 loops: LoopSolution | None = None) -> tuple[Handout, str]:
+    """The handout as one HTML page (and its content), in the catalogue's language; with ``loops`` the
+    loop-closure method's pages after the answers."""
     size = paper if isinstance(paper, tuple) else paper_size(paper)
     frame = _frame(solution, size)
-    handout = handout_content(solution, say, scales_of(frame.layout))
+    handout = handout_content(solution, say, scales_of(frame.layout), loops)
     kinds = drawn_kinds(frame)
     crowded_labels(solution, frame)  # the whole drawing's labels first: each page keeps those it shows
     count = len(handout.pages)

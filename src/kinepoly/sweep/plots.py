@@ -418,6 +418,11 @@ def plot_figure(result: SweepResult) -> Figure:
     if any(c.kind == "pressure" for c in result.columns):
         panels.append(lambda ax: _kind_panel(ax, result, "pressure",
                                              "pressure angles: common normal to the follower's motion", True))
+    for kind, what, unit in (("series-error", "s", length), ("series-rate-error", "s_dot", f"{length}/s"),
+                             ("series-acceleration-error", "s_ddot", f"{length}/s^2")):
+        if any(c.kind == kind for c in result.columns):
+            title = f"error of the course's series: {what} (series - exact, {unit})"
+            panels.append(lambda ax, kind=kind, title=title: _kind_panel(ax, result, kind, title, False))  # type: ignore[misc]
     if any(c.kind == "ratio" for c in result.columns):
         panels.append(lambda ax: _kind_panel(ax, result, "ratio",
                                              "angular velocity ratios (ratio_b_a = omega_b / omega_a)", False))

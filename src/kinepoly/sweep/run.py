@@ -60,10 +60,11 @@ _OK, _NEAR, _SINGULAR, _CANNOT = range(4)
 
 Kind = Literal["input", "angle", "omega", "alpha", "position", "velocity", "acceleration", "slider",
                "slider-rate", "slider-acceleration", "coriolis", "centrode", "centrode-local", "transmission",
-               "pressure", "ratio"]
+               "pressure", "ratio", "series-error", "series-rate-error", "series-acceleration-error"]
 _ORDER = {"input": -1, "angle": 0, "position": 0, "slider": 0, "transmission": 0, "omega": 1, "velocity": 1,
           "slider-rate": 1, "centrode": 1, "centrode-local": 1, "alpha": 2, "acceleration": 2,
-          "slider-acceleration": 2, "coriolis": 2, "pressure": 0, "ratio": 1}
+          "slider-acceleration": 2, "coriolis": 2, "pressure": 0, "ratio": 1, "series-error": 0, "series-rate-error": 1,
+          "series-acceleration-error": 2}
 
 
 class Column(NamedTuple):
@@ -357,13 +358,15 @@ class PreparedSweep:
     plan: PositionPlan
     centrode: str | None
     prepare_s: float
+    series: bool = False
+    """Add the course text's slider-crank series beside the exact slider columns (``sweep.series``)."""
 
     @cached_property
     def seed(self) -> dict[str, LinkPose]:
         return seed_poses(self.mechanism, self.plan)
 
 
-def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
+def prepare_sweep(scene: Scene, centrode: str | None = None, series: bool = False) -> PreparedSweep:
     """Build the mechanism, plan backwards from ``[find]`` and take the assembly at the scene's input."""
     t0 = time.perf_counter()
     mechanism = build_mechanism(scene)
@@ -374,8 +377,14 @@ def prepare_sweep(scene: Scene, centrode: str | None = None) -> PreparedSweep:
         links = ", ".join(n for n in mechanism.link_names if n != mechanism.ground)
         raise SceneError(f"--centrode: expected a moving link of the scene ({links}), got {centrode!r}")
     asked = what_is_asked(mechanism)
-    plan = make_plan(mechanism, needed_links(mechanism, asked) | ({centrode} if centrode else set()))
-    return PreparedSweep(mechanism, asked, plan, centrode, time.perf_counter() - t0)
+    wanted_links = needed_links(mechanism, asked) | ({centrode} if centrode else set())
+    if series:
+        from kinepoly.sweep.series import check_series
+
+        check_series(mechanism)
+        wanted_links |= set(mechanism.link_names)
+    plan = make_plan(mechanism, wanted_links)
+    return PreparedSweep(mechanism, asked, plan, centrode, time.perf_counter() - t0, series)
 
 
 def cycle_turns(prepared: PreparedSweep) -> int:
@@ -419,13 +428,13 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
 
 
 def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float | None = None,
-          centrode: str | None = None, progress: Progress | None = None) -> SweepResult:
+          centrode: str | None = None, progress: Progress | None = None, series: bool = False) -> SweepResult:
     """Sweep the scene's input over ``steps`` rows from ``start`` to ``stop`` (the input's unit).
 
     Without ``start`` and ``stop``: a full turn, or the input's range where the mechanism closes.
     ``centrode`` names a link whose instant center with the frame is reported (both centrodes).
     """
-    return run_sweep(prepare_sweep(scene, centrode), steps=steps, start=start, stop=stop, progress=progress)
+    return run_sweep(prepare_sweep(scene, centrode, series), steps=steps, start=start, stop=stop, progress=progress)
 
 
 def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: InputGrid, prepared: PreparedSweep,
@@ -447,10 +456,10 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     every_ok = bool(ok.all())
     velocity = acceleration = None
     higher = bool(scene.cams or scene.gears)  # a follower's s-v-a and the gear ratios need the polygons
-    if asked.needs_velocity or centrode is not None or higher:
+    if asked.needs_velocity or centrode is not None or higher or prepared.series:
         velocity = construct_velocity(positions, plan, asked.velocity)
         _crossing_flags(flags, ok, every_ok, velocity.polygon.crossings)
-    if (asked.needs_acceleration or scene.cams) and velocity is not None:
+    if (asked.needs_acceleration or scene.cams or prepared.series) and velocity is not None:
         acceleration = construct_acceleration(velocity, plan, asked.acceleration)
         _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings)
     name = input_name(mechanism)
@@ -460,6 +469,13 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     notices = list(grid.notices)
     if centrode is not None and velocity is not None:
         notices += _centrode(out, centrode, velocity, grid.seed_row, flags.level)
+    if prepared.series:
+        from kinepoly.sweep.series import series_columns
+
+        slider = mechanism.sliders[0].name
+        for column, kind, values, valid in series_columns(mechanism, positions, grid.seed_row, velocity, acceleration,
+                                                          slider not in asked.sliders):
+            out.add(column, kind, values, valid)  # type: ignore[arg-type]
     sines = velocity.line_sines if velocity is not None else None
     for transmission in transmission_angles(positions, plan, sines):
         out.add(f"mu_{transmission.point}", "transmission", _angle_unit(scene, transmission.angle))
