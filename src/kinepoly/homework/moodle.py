@@ -31,12 +31,12 @@ _PENALTY = "0.3333333"
 
 
 def cloze_number(x: float) -> str:
-    """A number as the blanks write it: six significant digits, a point for the decimal mark."""
-    return f"{x + 0.0:.6g}"
+    """A number as the blanks write it: eight significant digits, a point for the decimal mark."""
+    return f"{x + 0.0:.8g}"
 
 
 def _tolerance(x: float) -> str:
-    return f"{x:.3g}"
+    return f"{x:.6g}"
 
 
 def _escaped(text: str) -> str:
