@@ -394,3 +394,14 @@ def test_a_quiz_that_fails_leaves_no_file(capsys: pytest.CaptureFixture[str], tm
     code, _, err = run(capsys, "variants", SLOTTED, "--n", "1", "-o", str(tmp_path), "--quiz", "moodle")
     assert code == 70 and "broken" in err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_worked_example_in_the_docs_is_what_the_command_writes(moodle: tuple[Path, str]) -> None:
+    folder, printed = moodle
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "quiz.md").read_text()
+    block = doc[doc.index("<!-- quiz example: begin -->"):doc.index("<!-- quiz example: end -->")]
+    blank = block.split("```text\n", 1)[1].split("\n```", 1)[0]
+    _, questions = _questions(folder)
+    assert f"|a<sub>A@4</sub>| in mm/s²: {blank}</p>" in (questions[0].findtext("questiontext/text") or "")
+    shown = [line for line in doc.splitlines() if line.startswith("  slotted-lever-01 ")]
+    assert len(shown) == 3 and all(line in printed.splitlines() for line in shown)
