@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import base64
 import contextlib
+import html as html_module
 import io
 import math
 import re
@@ -21,6 +22,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from tests.cli_support import run
 from tests.scenes import EXAMPLES
 
@@ -405,3 +408,42 @@ def test_the_worked_example_in_the_docs_is_what_the_command_writes(moodle: tuple
     assert f"|a<sub>A@4</sub>| in mm/s²: {blank}</p>" in (questions[0].findtext("questiontext/text") or "")
     shown = [line for line in doc.splitlines() if line.startswith("  slotted-lever-01 ")]
     assert len(shown) == 3 and all(line in printed.splitlines() for line in shown)
+
+
+# --------------------------------------------------------------------------------------------
+# The embedded-answers text, for any words and numbers
+
+
+_WORDS = st.text(alphabet=st.sampled_from(list("ab }#~/\"\\{<&>%=:;ωα²−")), min_size=1, max_size=30)
+
+
+@settings(max_examples=60, deadline=None)
+@given(value=st.floats(-1e5, 1e5, allow_nan=False), tolerance=st.floats(1e-3, 50.0), angle=st.booleans(),
+       wrong=st.lists(st.tuples(_WORDS, st.floats(-1e5, 1e5, allow_nan=False)), max_size=4), title=_WORDS)
+def test_any_words_and_numbers_read_back_from_the_moodle_xml(value: float, tolerance: float, angle: bool,
+                                                              wrong: list[tuple[str, float]], title: str) -> None:
+    from kinepoly.homework.moodle import moodle_xml
+    from kinepoly.homework.quiz import Quantity, Question, Quiz, Wrong
+
+    if angle:
+        value = math.remainder(value, 360.0)
+    quantity = Quantity("v_A", "direction" if angle else "magnitude", "|v_A| in mm/s:", value, tolerance,
+                        tuple(Wrong("other-point", words, number) for words, number in wrong), (), angle)
+    question = Question("s-01", title, "<p>statement</p>", PNG, (quantity,))
+    root = ET.fromstring(moodle_xml(Quiz("s", title, "en", (question,)), SAY))
+    element = root.find("question[@type='cloze']")
+    assert element is not None and element.findtext("name/text") == title
+    html = element.findtext("questiontext/text") or ""
+    [(_, answers)] = _blanks(html)
+    right = [a for a in answers if a[0] == 100.0]
+    assert right[0][1] == pytest.approx(value, rel=1e-7, abs=1e-9) and right[0][3] == "Right."
+    assert all(a[2] == pytest.approx(tolerance, rel=1e-5) for a in answers)
+    wraps = angle and abs(value) + tolerance > 180.0
+    assert len(right) == (2 if wraps else 1)
+    if wraps:  # the same direction written 360 degrees away is right too
+        assert abs(right[1][1] - right[0][1]) == pytest.approx(360.0)
+    offered = [a for a in answers if a[0] == 0.0]
+    assert len(offered) == len(wrong)
+    for (words, number), (_, read, _, feedback) in zip(wrong, offered, strict=True):
+        assert read == pytest.approx(number, rel=1e-7, abs=1e-9)
+        assert html_module.unescape(feedback) == SAY.say("quiz.mistake", mistake=words)
