@@ -447,3 +447,14 @@ def test_any_words_and_numbers_read_back_from_the_moodle_xml(value: float, toler
     for (words, number), (_, read, _, feedback) in zip(wrong, offered, strict=True):
         assert read == pytest.approx(number, rel=1e-7, abs=1e-9)
         assert html_module.unescape(feedback) == SAY.say("quiz.mistake", mistake=words)
+
+
+def test_a_scene_that_asks_only_instant_centers_has_no_quiz(capsys: pytest.CaptureFixture[str],
+                                                             tmp_path: Path) -> None:
+    text = (EXAMPLES / "four-bar.toml").read_text()
+    scene = tmp_path / "centers.toml"
+    scene.write_text(text[:text.index("[find]")] + '[find]\ninstant_centers = "all"\n')
+    folder = tmp_path / "out"
+    code, _, err = run(capsys, "variants", str(scene), "--n", "1", "-o", str(folder), "--quiz", "moodle")
+    assert code == 2 and "the quiz has no number to ask" in err
+    assert not folder.exists() or list(folder.iterdir()) == []

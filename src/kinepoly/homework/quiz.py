@@ -301,6 +301,9 @@ def make_quiz(variants: Sequence[Variant], stem: str, seed: int, tolerance: Quiz
     for index, variant in enumerate(variants, 1):
         statement = problem_statement(solve(variant.scene), say, paper)
         asked = quantities(variant.scene, variant.answers, tolerance, statement.scales, say, variant.scene_text)
+        if not asked:
+            raise SceneError(f"{variant.scene.source}: find: the quiz has no number to ask (instant centers are not "
+                             "asked); expected a [find] with velocities, accelerations, omega, alpha or sliders")
         title = f"{variant.name}: variant {index} of {len(variants)}, seed {seed}"
         questions.append(Question(variant.name, title, statement.html, statement.png, asked))
     return Quiz(stem, f"{stem}: {len(variants)} variants, seed {seed}", say.code, tuple(questions))
