@@ -266,14 +266,29 @@ def test_moodle_in_turkish_and_with_a_drawing_tolerance(tmp_path: Path) -> None:
     assert "tolerance 0.5 mm on the paper, language tr" in printed
     _, questions = _questions(tmp_path)
     say = load_catalogue("tr")
-    for question in questions:
+    for k, question in enumerate(questions, 1):
         html = question.findtext("questiontext/text") or ""
         assert say.say("problem.find") in html and say.say("quiz.answers") in html
         kv = float(re.search(r"kv = ([0-9,]+) mm", html).group(1).replace(",", "."))  # type: ignore[union-attr]
+        scene = tomllib.loads((tmp_path / f"slotted-lever-{k:02d}.toml").read_text())
+        lever = math.dist(*scene["links"]["4"]["points"].values())  # link 4's longest (only) dimension, B0F
+        velocities = {f"v<sub>{p[2:]}</sub>": math.hypot(*v) for p, v in
+                      (item for item in _key(tmp_path, f"slotted-lever-{k:02d}").items() if item[0].startswith("v_"))}
+        checked = 0
         for label, answers in _blanks(html):
             assert answers[0][3] == say.say("quiz.right")
+            tolerance = answers[0][2]
             if label.startswith("|v<sub>"):  # 0.5 mm of the velocity polygon
-                assert answers[0][2] == pytest.approx(0.5 / kv, rel=1e-3)
+                assert tolerance == pytest.approx(0.5 / kv, rel=1e-5)
+                checked += 1
+            elif label.startswith("ω<sub>14</sub>"):  # omega = v / B0F: 0.5 mm of v over kv B0F
+                assert tolerance == pytest.approx(0.5 / (kv * lever), rel=1e-5)
+                checked += 1
+            elif label.startswith("v<sub>"):  # a direction: the angle 0.5 mm subtends at the tip
+                name = label.split(" ", 1)[0]
+                assert tolerance == pytest.approx(math.degrees(math.atan2(0.5, velocities[name] * kv)), rel=1e-4)
+                checked += 1
+        assert checked == 5
 
 
 # --------------------------------------------------------------------------------------------
