@@ -49,7 +49,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--n", type=int, default=30, help="how many variants (default 30)")
     parser.add_argument("--seed", type=int, default=0, help="the random seed: the same seed, the same variants")
     parser.add_argument("-o", "--output", metavar="DIR", required=True,
-                        help="the folder for NAME.toml and NAME.answers.toml")
+                        help="the folder for NAME.toml and NAME.answers.toml (and --quiz's file)")
     parser.add_argument("--min-transmission", type=float, default=30.0, metavar="DEG",
                         help="the least transmission angle of every dyad, in degrees (default 30)")
     for key, text in _RANGES:
@@ -108,13 +108,13 @@ def run_variants(scene_path: str, count: int, seed: int, out_dir: str, options: 
     report.raise_if_any()
     variants = make_variants(scene, ranges, count, seed, stem=Path(scene_path).stem,
                              min_transmission_deg=min_transmission_deg)
+    made = None if asked is None else _made_quiz(variants, Path(scene_path).stem, seed, *asked)
     folder = Path(out_dir)
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise SceneError([f"{out_dir}: (file): cannot make the folder ({exc.strerror}); expected a writable path"]) \
             from None
-    made = None if asked is None else _made_quiz(variants, Path(scene_path).stem, seed, *asked)
     for variant in variants:
         emit(variant.scene_text, os.fspath(folder / f"{variant.name}.toml"))
         emit(variant.answers_text, os.fspath(folder / f"{variant.name}.answers.toml"))
