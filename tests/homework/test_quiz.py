@@ -474,3 +474,17 @@ def test_a_scene_that_asks_only_instant_centers_has_no_quiz(capsys: pytest.Captu
     code, _, err = run(capsys, "variants", str(scene), "--n", "1", "-o", str(folder), "--quiz", "moodle")
     assert code == 2 and "the quiz has no number to ask" in err
     assert not folder.exists()
+
+
+def test_a_mistake_the_catalogue_does_not_name_keeps_checks_words() -> None:
+    """A mistake code check learns later is offered with check's own words until the catalogues name it."""
+    from kinepoly.homework.diagnose import Candidate
+    from kinepoly.homework.quiz import _words
+    from kinepoly.homework.reference import prepare
+
+    reference = prepare(load_scene(SLOTTED))
+    key = AnswerKey("alpha", "4")
+    new = Candidate("image-reversed", "the image triangle turned the wrong way", 1.0)
+    assert _words(reference, key, new, SAY) == "the image triangle turned the wrong way"
+    known = Candidate("coriolis-left-out", "check's words", 1.0)
+    assert _words(reference, key, known, SAY) == SAY.say("quiz.coriolis_left_out")

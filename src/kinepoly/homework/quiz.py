@@ -178,7 +178,10 @@ def _other(reference: Reference, key: AnswerKey, value: Value) -> str:
 
 
 def _words(reference: Reference, key: AnswerKey, candidate: Candidate, say: Catalogue) -> str:
+    """The catalogue's words for the mistake; check's own (English) words for a mistake the catalogue does not name."""
     code = candidate.code
+    if f"quiz.{code.replace('-', '_').replace('/', '_')}" not in say.messages:
+        return candidate.text
     params = {}
     if code == "kv-not-divided":
         params["scale"] = say.number(reference.kv or 0.0)
