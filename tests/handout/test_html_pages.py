@@ -24,7 +24,7 @@ from kinepoly.handout import handout_html, load_catalogue
 from kinepoly.handout.build import crowded_labels
 from kinepoly.handout.content import Handout
 from kinepoly.handout.drawing import blank_sheet, drawing_layers, page_frame_items
-from kinepoly.handout.html import _frame, merged_pages, page_ranges
+from kinepoly.handout.html import drawing_frame, merged_pages, page_ranges
 from kinepoly.render.layout import paper_size
 from kinepoly.render.primitives import LAYERS, Stroke
 from kinepoly.render.primitives import Path as PathItem
@@ -50,7 +50,7 @@ def _leaf(element: ET.Element) -> Element:
 def _alone(solution: Solution, handout: Handout, lang: str) -> list[tuple[str, dict[str, list[Element]]]]:
     """Each page's (title, drawing layer by layer) as the pages were made before, each on a sheet of its own."""
     say = load_catalogue(lang)
-    frame = _frame(solution, paper_size("A4"))
+    frame = drawing_frame(solution, paper_size("A4"))
     crowded_labels(solution, frame)
     pages = []
     for page in handout.pages:

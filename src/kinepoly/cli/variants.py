@@ -2,7 +2,9 @@
 
 The homework package makes the variants (pure); this module reads the scene and its ``[vary]``
 table, takes the ranges given on the command line, writes ``NAME.toml`` and
-``NAME.answers.toml`` whole or not at all and prints what it wrote.
+``NAME.answers.toml`` whole or not at all and prints what it wrote. With ``--quiz moodle`` (``qti``)
+it writes beside them ``STEM.moodle.xml`` (``STEM.qti.zip``), a question per variant
+(``homework.quiz``), made in memory before any file is written.
 """
 
 from __future__ import annotations
@@ -11,16 +13,22 @@ import argparse
 import math
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import IO, TYPE_CHECKING, Any
 
-from kinepoly.cli.files import emit, scene_file
-from kinepoly.errors import EXIT_OK, SceneError
+from kinepoly.cli.files import emit, scene_file, write_atomically
+from kinepoly.errors import EXIT_OK, OutputError, SceneError
 
 if TYPE_CHECKING:
+    from kinepoly.homework.quiz import Quiz, QuizTolerance
+    from kinepoly.homework.variants import Variant
     from kinepoly.homework.vary import Range
+    from kinepoly.present.catalogue import Catalogue
     from kinepoly.scene.spec import Scene
 
-__all__ = ["add_arguments", "parse_range", "run", "run_variants"]
+__all__ = ["QUIZ_KINDS", "add_arguments", "parse_range", "run", "run_variants"]
+
+QUIZ_KINDS = {"moodle": "moodle.xml", "qti": "qti.zip"}
+"""What ``--quiz`` writes: the file's ending beside the variants (``STEM.moodle.xml``, ``STEM.qti.zip``)."""
 
 _RANGES = (
     ("lengths", "each link's dimensions times a factor in LO,HI (e.g. 0.9,1.1), drawn link by link"),
@@ -41,17 +49,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--n", type=int, default=30, help="how many variants (default 30)")
     parser.add_argument("--seed", type=int, default=0, help="the random seed: the same seed, the same variants")
     parser.add_argument("-o", "--output", metavar="DIR", required=True,
-                        help="the folder for NAME.toml and NAME.answers.toml")
+                        help="the folder for NAME.toml and NAME.answers.toml (and --quiz's file)")
     parser.add_argument("--min-transmission", type=float, default=30.0, metavar="DEG",
                         help="the least transmission angle of every dyad, in degrees (default 30)")
     for key, text in _RANGES:
         parser.add_argument(f"--{key.replace('_', '-')}", dest=f"vary_{key}", metavar="LO,HI", help=text)
+    parser.add_argument("--quiz", choices=tuple(QUIZ_KINDS), help=(
+        "also write the variants as a quiz a learning platform imports, a question per variant with the typical "
+        "mistakes' numbers as wrong answers: moodle (STEM.moodle.xml, Moodle XML) or qti (STEM.qti.zip, Canvas; "
+        "needs pip install 'kinepoly[quiz]')"))
+    parser.add_argument("--tolerance", default="2%", metavar="TOL", help=(
+        "the quiz's tolerance: a percentage of each value like 2%%, or the length a hand construction holds on the "
+        "paper at the drawn scales like 0.5mm (default 2%%)"))
+    parser.add_argument("--lang", default="en", help="the quiz's language: en, tr or ro (default en)")
 
 
 def run(args: argparse.Namespace) -> int:
     """Run ``kinepoly variants``; the exit status."""
     options = {key: getattr(args, f"vary_{key}") for key, _ in _RANGES}
-    return run_variants(args.scene, args.n, args.seed, args.output, options, args.min_transmission)
+    return run_variants(args.scene, args.n, args.seed, args.output, options, args.min_transmission,
+                        quiz=args.quiz, tolerance=args.tolerance, lang=args.lang)
 
 
 def parse_range(option: str, text: str) -> tuple[float, float]:
@@ -67,16 +84,19 @@ def parse_range(option: str, text: str) -> tuple[float, float]:
 
 
 def run_variants(scene_path: str, count: int, seed: int, out_dir: str, options: dict[str, str | None],
-                 min_transmission_deg: float = 30.0) -> int:
+                 min_transmission_deg: float = 30.0, *, quiz: str | None = None, tolerance: str = "2%",
+                 lang: str = "en") -> int:
     """Make ``count`` variants with their keys in ``out_dir``; print what was written.
 
     ``options`` maps a [vary] key (``lengths``, ``angle``, ``omega``, ...) to its ``LO,HI`` text
-    from the command line (None: not given); they override the scene's [vary] table.
+    from the command line (None: not given); they override the scene's [vary] table. ``quiz``
+    (``moodle`` or ``qti``) also writes the quiz, at ``tolerance`` (``2%``, ``0.5mm``), in ``lang``.
     """
     if count < 1:
         raise SceneError([f"--n: {count} variants; expected at least 1"])
     if not 0.0 <= min_transmission_deg < 90.0:
         raise SceneError([f"--min-transmission: {min_transmission_deg:g}; expected degrees from 0 to below 90"])
+    asked = _quiz_options(quiz, tolerance, lang)  # every option checked before the variants are made
     from kinepoly.homework.variants import GEARS_NOTE, make_variants
     from kinepoly.homework.vary import read_vary
     from kinepoly.scene.loader import parse_located
@@ -88,6 +108,7 @@ def run_variants(scene_path: str, count: int, seed: int, out_dir: str, options: 
     report.raise_if_any()
     variants = make_variants(scene, ranges, count, seed, stem=Path(scene_path).stem,
                              min_transmission_deg=min_transmission_deg)
+    made = None if asked is None else _made_quiz(variants, Path(scene_path).stem, seed, *asked)
     folder = Path(out_dir)
     try:
         folder.mkdir(parents=True, exist_ok=True)
@@ -104,6 +125,9 @@ def run_variants(scene_path: str, count: int, seed: int, out_dir: str, options: 
         shown = variant.min_transmission_deg
         angle = "-" if shown is None else f"{shown:.0f} deg"
         print(f"  {variant.name}  smallest transmission angle {angle}, {len(variant.answers)} answers")
+    if made is not None and asked is not None:
+        content, questions = made
+        _write_quiz(folder / f"{questions.category}.{QUIZ_KINDS[asked[0]]}", content, questions, asked[1].text)
     return EXIT_OK
 
 
@@ -118,3 +142,58 @@ def _option_range(key: str, text: str, scene: Scene) -> Range:
     if key == "angle" and scene.units.angle == "deg":
         low, high = math.radians(low), math.radians(high)
     return Range(low, high)
+
+
+def _quiz_options(kind: str | None, tolerance: str, lang: str) -> tuple[str, QuizTolerance, Catalogue] | None:
+    """The quiz asked for, its tolerance and catalogue; exit 2 for a bad one, or for qti without text2qti."""
+    if kind is None:
+        return None
+    if kind not in QUIZ_KINDS:  # argparse's choices say it on the command line; this, from Python
+        raise OutputError(f"--quiz {kind}: not a kind of quiz; expected one of {', '.join(QUIZ_KINDS)}")
+    from kinepoly.homework.quiz import parse_tolerance
+    from kinepoly.present.catalogue import load_catalogue
+
+    parsed = parse_tolerance(tolerance)
+    say = load_catalogue(lang)
+    if kind == "qti":
+        from kinepoly.homework.canvas import text2qti_module
+
+        text2qti_module()
+    return kind, parsed, say
+
+
+def _made_quiz(variants: list[Variant], stem: str, seed: int, kind: str, tolerance: QuizTolerance,
+               say: Catalogue) -> tuple[bytes, Quiz]:
+    """The quiz and its file's bytes, made before any file is written."""
+    from kinepoly.homework.quiz import make_quiz
+
+    quiz = make_quiz(variants, stem, seed, tolerance, say)
+    if kind == "moodle":
+        from kinepoly.homework.moodle import moodle_xml
+
+        return moodle_xml(quiz, say), quiz
+    from kinepoly.homework.canvas import qti_package
+
+    return qti_package(quiz, say), quiz
+
+
+def _write_quiz(path: Path, content: bytes, quiz: Quiz, tolerance: str) -> None:
+    def write(stream: IO[Any]) -> None:
+        stream.write(content)
+
+    try:
+        write_atomically(path, write, binary=True)
+    except OSError as exc:
+        raise OutputError(f"{path}: (file): cannot be written ({exc.strerror}); expected a path in a folder that "
+                          "exists and can be written") from None
+    count = sum(len(q.quantities) for q in quiz.questions)
+    print(f"quiz {path}: {len(quiz.questions)} questions, {count} numbers, tolerance {tolerance}, "
+          f"language {quiz.language}, question bank category {quiz.category}")
+    for question in quiz.questions:
+        for quantity in question.quantities:
+            name = quantity.key if quantity.part == "value" else f"{quantity.key} {quantity.part}"
+            codes = ", ".join(dict.fromkeys(w.code for w in quantity.wrong)) or "none"
+            left = "; ".join(f"{o.code} (= {'the right value' if o.with_ == 'right' else o.with_})"
+                             for o in quantity.omitted)
+            print(f"  {question.name} {name}: mistakes {codes}" + (f"; left out, within the tolerance: {left}"
+                                                                    if left else ""))

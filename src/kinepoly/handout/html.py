@@ -34,7 +34,7 @@ from kinepoly.solution import Solution
 if TYPE_CHECKING:
     from kinepoly.loops.rates import LoopSolution
 
-__all__ = ["handout_html", "merged_pages", "page_ranges"]
+__all__ = ["drawing_frame", "handout_html", "merged_pages", "page_ranges", "text_html"]
 
 _LEGEND_ORDER = ("absolute", "relative", "sliding", "normal", "tangential", "coriolis")
 
@@ -167,6 +167,11 @@ def _column(column: Column, kinds: list[str], say: Catalogue) -> str:
     return "".join(_paragraph(p) if isinstance(p, Paragraph) else _table(p) for p in column.parts)
 
 
+def text_html(page: Page, kinds: list[str], say: Catalogue) -> str:
+    """A page's text as the web page shows it beside the drawing (``kinds``: the drawn vectors, for the legend)."""
+    return "".join(_column(c, kinds, say) for c in page.columns)
+
+
 def merged_pages(pages: Sequence[Sequence[Item]]) -> list[tuple[Item, list[int]]]:
     """One layer's items of every page (page 1 first) merged into one sequence of (item, the pages showing it).
 
@@ -275,7 +280,7 @@ def _label(page: Page, say: Catalogue) -> str:
 
 def _section(solution: Solution, page: Page, number: int, kinds: list[str], say: Catalogue, drawing: str) -> str:
     """A page's section; ``drawing`` (the one SVG) in the first, which the script moves to the page shown."""
-    text = "".join(_column(c, kinds, say) for c in page.columns)
+    text = text_html(page, kinds, say)
     return (f'<section class="page" id="page-{number}" data-kind="{page.kind}" '
             f'data-label="{html.escape(_label(page, say))}" data-equation="{html.escape(page.equation)}" '
             f'data-title="{html.escape(_title(solution, page))}"'
@@ -283,7 +288,7 @@ def _section(solution: Solution, page: Page, number: int, kinds: list[str], say:
             f'<div class="text">{text}</div>\n</section>\n')
 
 
-def _frame(solution: Solution, size: tuple[float, float]) -> Frame:
+def drawing_frame(solution: Solution, size: tuple[float, float]) -> Frame:
     """The drawing on the paper asked, or the smallest larger A paper that gives each polygon its scale and the
     mechanism its size (``render.sheet.roomy``), as the PDF's drawing; the scales are the paper asked's."""
     readable = readable_values(solution, size)
@@ -299,7 +304,7 @@ def handout_html(solution: Solution, say: Catalogue, paper: str | tuple[float, f
     """The handout as one HTML page (and its content), in the catalogue's language; with ``loops`` the
     loop-closure method's pages after the answers."""
     size = paper if isinstance(paper, tuple) else paper_size(paper)
-    frame = _frame(solution, size)
+    frame = drawing_frame(solution, size)
     handout = handout_content(solution, say, scales_of(frame.layout), loops)
     kinds = drawn_kinds(frame)
     crowded_labels(solution, frame)  # the whole drawing's labels first: each page keeps those it shows
