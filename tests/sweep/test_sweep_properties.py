@@ -48,6 +48,9 @@ def test_random_four_bar_rows_equal_solve(a1, a2, a3, a4, th, w, al, picks) -> N
 @settings(max_examples=25, deadline=None)
 @given(lengths, lengths, st.floats(min_value=-60.0, max_value=60.0), angles, speeds, accels, rows)
 def test_random_slider_crank_rows_equal_solve(a2, a3, offset, th, w, al, picks) -> None:  # type: ignore[no-untyped-def]
+    # away from the change point |a3 - a2| = |offset|, where the rod folds onto the crank and both assemblies meet
+    # (a2 = a3 = 13, offset 6e-5 had no definite assembly to follow)
+    assume(abs(abs(a3 - a2) - abs(offset)) > 1.0)
     text, result = _sweep(slider_crank(a2, a3, offset, th, w, al))
     for row in picks:
         assert compare_row(text, result, row % result.rows) < RANDOM_ROW_TOLERANCE
