@@ -9,7 +9,8 @@ drags (a draft sheet per move, its labels at their first places, and the whole s
 and, as the reference, with drafts off (the whole sheet, its labels searched clear, at every move:
 how the page dragged before drafts). Printed for each: the median and 95th percentile of that time;
 what the server spent (its own timing of the solve, the layout, the labels' placement and the SVG);
-what was left for the websocket, the JSON and the browser's parsing and painting of the SVG; the
+what was left for the edit of the text, the websocket and the JSON; the page's work from the answer's
+arrival (parsing it, replacing the sheet and the tables, painting); the
 drafts' figures as ratios to the reference's; the time from the release to the whole sheet shown;
 and, measured in the same run on the same machine, ``evaluate`` called in-process (the solve and
 drawing the server makes for each move, with no browser), whole and draft, with its processor time
@@ -129,8 +130,8 @@ def _line(name: str, f: dict[str, Any]) -> None:
     print(f"  {name}: {f['count']} drag moves, drag to redrawn polygons: median {f['median']:.1f} ms, "
           f"95th percentile {f['p95']:.1f} ms")
     print("    of the median move: server " + ", ".join(f"{k} {v:.1f}" for k, v in f["parts"].items())
-          + f" (sum {f['server']:.1f} ms); websocket and JSON {f['transport']:.1f} ms;"
-          f" browser parsing and painting the SVG {f['browser']:.1f} ms")
+          + f" (sum {f['server']:.1f} ms); the text's edit, websocket and JSON {f['transport']:.1f} ms;"
+          f" the page parsing the answer, replacing the sheet and painting {f['browser']:.1f} ms")
 
 
 def report(example: str, drafted: dict[str, Any], whole: dict[str, Any], moves: int) -> None:

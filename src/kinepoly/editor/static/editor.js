@@ -17,6 +17,7 @@ const editor = {
   drafts: true,       // while dragging, ask for draft sheets (labels unsearched); the whole sheet when it stops
   drafted: false,     // whether the sheet shown, or one asked for, is a draft not yet asked whole
   pause: null,        // the timer that asks for the whole sheet when a drag pauses
+  pauseMs: 150,       // a drag still this long gets its whole sheet
   timings: [],        // per answered drag move: milliseconds from the pointer event to the redrawn sheet
   fullTimings: [],    // per whole sheet after a drag: milliseconds from the release (or pause) to it redrawn
   adding: null,       // {slider, clicks}: a dyad being added by clicks
@@ -29,11 +30,10 @@ function connect() {
   const socket = new WebSocket(url.href);
   editor.socket = socket;
   socket.addEventListener("open", () => send({op: "state"}));
-  socket.addEventListener("message", (event) => receive(JSON.parse(event.data)));
+  socket.addEventListener("message", (event) => { const arrived = performance.now(); receive(JSON.parse(event.data), arrived); });
   socket.addEventListener("close", () => status("disconnected: is kinepoly edit still running?"));
 }
 
-const PAUSE_MS = 150;  // a drag still this long gets its whole sheet
 
 const isMove = (message) => message.op === "edit" && message.merge === true;
 
@@ -62,7 +62,7 @@ function dragMove(message, started) {
   if (!editor.drafts) return;
   editor.drafted = true;
   clearTimeout(editor.pause);
-  editor.pause = setTimeout(wholeSheet, PAUSE_MS);
+  editor.pause = setTimeout(wholeSheet, editor.pauseMs);
 }
 
 function wholeSheet() {
@@ -73,12 +73,12 @@ function wholeSheet() {
   send({op: "full"});
 }
 
-function receive(state) {
+function receive(state, arrived) {
   const flight = editor.inFlight;
   editor.inFlight = null;
   render(state);
   if (flight && (flight.drag || flight.full) && state.seq === flight.seq) {
-    const received = performance.now();
+    const received = arrived ?? performance.now();  // the answer's arrival, before the page parsed and drew it
     const into = flight.drag ? editor.timings : editor.fullTimings;
     // the frame that shows the new sheet is painted before a task queued from its animation callback runs
     requestAnimationFrame(() => setTimeout(() => {
