@@ -249,15 +249,23 @@ def arrange(contents: Sequence[Content], area: Box) -> list[Panel]:
     deepest = max((max(levels, default=0) for levels in levels_tried), default=0)
     # each wanted scale's round steps down, made once for every arrangement and level that takes them
     ladders = {k: _ladder(contents[k].wanted or 1.0, deepest) for k in fixed}
+    # Where levels fit with the mechanism large enough, every level as low or lower in each panel scores less
+    # (the same first term, smaller scale ratios): it cannot be the best, and is not tried.
+    prune = all(contents[k].wanted for k in fixed)
     best: list[Panel] | None = None
     best_score: tuple[bool, float, float, float] | None = None
     for columns in _columns(len(contents)):
+        settled: list[tuple[int, ...]] = []
         for levels in levels_tried:
+            if any(all(n >= m for n, m in zip(levels, done, strict=True)) for done in settled):
+                continue
             scales = {k: ladders[k][n] for k, n in zip(fixed, levels, strict=True)}
             panels = _try(contents, area, columns, scales)
             if panels is None:
                 continue
             score = _score(panels, contents, area)
+            if prune and score[0]:
+                settled.append(levels)
             if best_score is None or score > best_score:
                 best, best_score = panels, score
     if best is None:  # nothing fits a few steps down: everything in one row, each polygon at the scale that fits
