@@ -34,7 +34,6 @@ function connect() {
   socket.addEventListener("close", () => status("disconnected: is kinepoly edit still running?"));
 }
 
-
 const isMove = (message) => message.op === "edit" && message.merge === true;
 
 function send(message, started) {
