@@ -4,12 +4,17 @@ The editor's page is opened in headless chromium (Debian's, driven by playwright
 on a copy of an example; the mouse drags the crank's point through a sweep of angles, each move
 waiting for its redraw. The page records, for every move, the milliseconds from the pointer event
 to the first task after the frame that shows the new sheet (``window.kinepolyEditor.timings``),
-and when the server's answer arrived. Printed: the median and 95th percentile of that time; what
-the server spent (its own timing of the solve, the layout, the labels' placement and the SVG);
-what was left for the websocket, the JSON and the browser's parsing and painting of the SVG; and,
-as the reference measured in the same run on the same machine, ``evaluate`` called in-process
-(the solve and drawing the server makes for each move, with no browser), as a ratio, with its
-processor time (what the move costs on an idle machine, nearly whatever else runs).
+and when the server's answer arrived. Each scene is dragged twice in the same run: as the page
+drags (a draft sheet per move, its labels at their first places, and the whole sheet on release),
+and, as the reference, with drafts off (the whole sheet, its labels searched clear, at every move:
+how the page dragged before drafts). Printed for each: the median and 95th percentile of that time;
+what the server spent (its own timing of the solve, the layout, the labels' placement and the SVG);
+what was left for the edit of the text, the websocket and the JSON; the page's work from the answer's
+arrival (parsing it, replacing the sheet and the tables, painting); the
+drafts' figures as ratios to the reference's; the time from the release to the whole sheet shown;
+and, measured in the same run on the same machine, ``evaluate`` called in-process (the solve and
+drawing the server makes for each move, with no browser), whole and draft, with its processor time
+(what the move costs on an idle machine, nearly whatever else runs).
 
     python benchmarks/bench_editor.py [--moves 60] [--scenes four-bar centers-six-bar]
 """
@@ -44,7 +49,7 @@ def _percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, max(0, math.ceil(q * len(ordered)) - 1))]
 
 
-def _in_process(path: Path, moves: int) -> tuple[list[float], list[float]]:
+def _in_process(path: Path, moves: int, draft: bool) -> tuple[list[float], list[float]]:
     """The reference: the server's work for each move (the edit, the solve, the drawing), with no browser: its
     wall-clock and its processor milliseconds (the latter hardly moved by other processes on the machine)."""
     text = path.read_text(encoding="utf-8")
@@ -58,7 +63,7 @@ def _in_process(path: Path, moves: int) -> tuple[list[float], list[float]]:
         assert current.solution is not None
         text = apply_edit(text, {"op": "drive", "to": [radius * math.cos(angle), radius * math.sin(angle)]},
                           current.solution)
-        new = evaluate(text, str(path))
+        new = evaluate(text, str(path), draft=draft)
         times.append(1e3 * (time.perf_counter() - t0))
         cpu.append(1e3 * (time.process_time() - c0))
         current = new if new.ok else current
@@ -75,7 +80,9 @@ def _crank(page: Any) -> tuple[tuple[float, float], float]:
     return (pivot[0], pivot[1]), math.hypot(at[0] - pivot[0], at[1] - pivot[1])
 
 
-def bench(page: Any, example: str, moves: int) -> dict[str, Any]:
+def bench(page: Any, example: str, moves: int, drafts: bool) -> dict[str, Any]:
+    """One drag of ``example``'s crank through a quarter turn in ``moves`` awaited moves; ``drafts``: as the page
+    drags (draft sheets, the whole one on release), else the whole sheet at every move."""
     folder = Path(tempfile.mkdtemp())
     path = folder / f"{example}.toml"
     shutil.copy(ROOT / "examples" / f"{example}.toml", path)
@@ -84,6 +91,7 @@ def bench(page: Any, example: str, moves: int) -> dict[str, Any]:
             page.goto(served.url)
             page.wait_for_selector("#sheet svg #handles")
             wait_settled(page)
+            page.evaluate(f"() => {{ window.kinepolyEditor.drafts = {'true' if drafts else 'false'}; }}")
             (px, py), r = _crank(page)
             point = page.evaluate("() => window.kinepolyEditor.good.handles.input.point")
             start = handle(page, point)
@@ -96,30 +104,51 @@ def bench(page: Any, example: str, moves: int) -> dict[str, Any]:
                 wait_settled(page)
             page.mouse.up()
             page.wait_for_function(f"() => window.kinepolyEditor.timings.length >= {moves}")
+            if drafts:
+                page.wait_for_function("() => window.kinepolyEditor.fullTimings.length >= 1")
             timings = page.evaluate("() => window.kinepolyEditor.timings")
+            whole = page.evaluate("() => window.kinepolyEditor.fullTimings")
     finally:
         shutil.rmtree(folder, ignore_errors=True)
-    reference, cpu = _in_process(ROOT / "examples" / f"{example}.toml", moves)
-    return {"timings": timings, "reference": reference, "cpu": cpu}
+    return {"timings": timings, "whole": whole}
 
 
-def report(example: str, data: dict[str, Any]) -> None:
-    timings = [t for t in data["timings"] if t["ok"]]
+def _figures(timings: list[dict[str, Any]]) -> dict[str, Any]:
+    timings = [t for t in timings if t["ok"]]
     total = [t["ms"] for t in timings]
-    parts = {key: [t["server"][key] for t in timings] for key in ("solve", "layout", "labels", "svg")}
     server = [sum(t["server"].values()) for t in timings]
-    transport = [t["received"] - s for t, s in zip(timings, server, strict=True)]
-    browser = [t["ms"] - t["received"] for t in timings]
-    reference = statistics.median(data["reference"])
-    median = statistics.median(total)
-    print(f"{example}: {len(total)} drag moves, drag to redrawn polygons: median {median:.1f} ms, "
-          f"95th percentile {_percentile(total, 0.95):.1f} ms")
-    print("  of the median move: server " + ", ".join(f"{k} {statistics.median(v):.1f}" for k, v in parts.items())
-          + f" (sum {statistics.median(server):.1f} ms); websocket and JSON {statistics.median(transport):.1f} ms;"
-          f" browser parsing and painting the SVG {statistics.median(browser):.1f} ms")
-    print(f"  reference, the same work in-process (edit, solve, draw): median {reference:.1f} ms "
-          f"({statistics.median(data['cpu']):.1f} ms of processor time); the page takes {median / reference:.2f} "
-          "times that")
+    return {
+        "count": len(total), "median": statistics.median(total), "p95": _percentile(total, 0.95),
+        "parts": {key: statistics.median(t["server"][key] for t in timings) for key in ("solve", "layout", "labels", "svg")},
+        "server": statistics.median(server),
+        "transport": statistics.median(t["received"] - s for t, s in zip(timings, server, strict=True)),
+        "browser": statistics.median(t["ms"] - t["received"] for t in timings),
+    }
+
+
+def _line(name: str, f: dict[str, Any]) -> None:
+    print(f"  {name}: {f['count']} drag moves, drag to redrawn polygons: median {f['median']:.1f} ms, "
+          f"95th percentile {f['p95']:.1f} ms")
+    print("    of the median move: server " + ", ".join(f"{k} {v:.1f}" for k, v in f["parts"].items())
+          + f" (sum {f['server']:.1f} ms); the text's edit, websocket and JSON {f['transport']:.1f} ms;"
+          f" the page parsing the answer, replacing the sheet and painting {f['browser']:.1f} ms")
+
+
+def report(example: str, drafted: dict[str, Any], whole: dict[str, Any], moves: int) -> None:
+    path = ROOT / "examples" / f"{example}.toml"
+    (full_ms, full_cpu), (draft_ms, draft_cpu) = (_in_process(path, moves, draft) for draft in (False, True))
+    new, old = _figures(drafted["timings"]), _figures(whole["timings"])
+    print(f"{example}:")
+    _line("as the page drags (draft sheets, the whole one on release)", new)
+    _line("reference, drafts off (the whole sheet at every move)", old)
+    print(f"  drafts / reference: median {new['median'] / old['median']:.2f}, 95th percentile "
+          f"{new['p95'] / old['p95']:.2f}, server {new['server'] / old['server']:.2f}")
+    release = [t["ms"] for t in drafted["whole"]]
+    if release:
+        print(f"  release to the whole sheet shown: {statistics.median(release):.1f} ms")
+    print(f"  in-process (edit, solve, draw): whole sheet median {statistics.median(full_ms):.1f} ms "
+          f"({statistics.median(full_cpu):.1f} ms of processor time), draft {statistics.median(draft_ms):.1f} ms "
+          f"({statistics.median(draft_cpu):.1f} ms of processor time)")
 
 
 def main(argv: list[str]) -> int:
@@ -138,7 +167,9 @@ def main(argv: list[str]) -> int:
         try:
             page = browser.new_page(viewport={"width": 1400, "height": 1000})
             for example in args.scenes:
-                report(example, bench(page, example, args.moves))
+                drafted = bench(page, example, args.moves, drafts=True)
+                whole = bench(page, example, args.moves, drafts=False)
+                report(example, drafted, whole, args.moves)
         finally:
             browser.close()
     return 0

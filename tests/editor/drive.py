@@ -23,12 +23,15 @@ def screen(page: Any, at: tuple[float, float]) -> tuple[float, float]:
     return float(x), float(y)
 
 
+_SETTLED = "() => !window.kinepolyEditor.inFlight && window.kinepolyEditor.pending.length === 0"
+
+
 def settled(page: Any) -> bool:
-    return bool(page.evaluate("() => !window.kinepolyEditor.inFlight && !window.kinepolyEditor.pending"))
+    return bool(page.evaluate(_SETTLED))
 
 
 def wait_settled(page: Any) -> None:
-    page.wait_for_function("() => !window.kinepolyEditor.inFlight && !window.kinepolyEditor.pending")
+    page.wait_for_function(_SETTLED)
 
 
 def handle(page: Any, name: str) -> tuple[float, float]:

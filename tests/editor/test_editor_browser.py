@@ -8,12 +8,14 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+import httpx
 import pytest
 from tests.cli_support import run
 from tests.editor.drive import drag, handle, screen, wait_settled
 from tests.editor.server import Served, serving
 
 from kinepoly.editor.document import Document, template_text
+from kinepoly.editor.evaluate import evaluate
 
 
 @pytest.fixture
@@ -184,3 +186,65 @@ def test_the_other_assembly_is_taken_by_dragging_the_guess_across(browser: Any,
     drag(browser, (b[0] + ring, b[1]), [((b[0] + other[0]) / 2 + ring, (b[1] + other[1]) / 2), (other[0] + ring, other[1])])
     assert handle(browser, "B") == pytest.approx(other, abs=0.5)
     assert _state(browser)["ok"] and browser.errors == []
+
+
+def test_a_drag_shows_draft_sheets_and_the_release_or_a_pause_the_whole_one(browser: Any,
+                                                                            new_four_bar: tuple[Served, Path]) -> None:
+    served, _ = new_four_bar
+    _open(browser, served)
+    source = served.document.source
+    assert _state(browser)["draft"] is False
+    browser.evaluate("() => { window.kinepolyEditor.pauseMs = 60000; }")  # no pause while the test looks
+    browser.mouse.move(*screen(browser, _turn(60)))
+    browser.mouse.down()
+    for a in (75, 90, 105):
+        browser.mouse.move(*screen(browser, _turn(a)))
+        wait_settled(browser)
+        state = _state(browser)
+        assert state["ok"] and state["draft"] is True and "draft" in (browser.get_attribute("#sheet", "class") or "")
+    # the draft is the sheet of the text as dragged, its labels at their first places: not the whole sheet
+    assert state["svg"] == evaluate(state["text"], source, draft=True).svg != evaluate(state["text"], source).svg
+    browser.mouse.up()
+    wait_settled(browser)
+    released = _state(browser)
+    whole = evaluate(released["text"], source).svg
+    assert released["text"] == state["text"] and released["draft"] is False and released["svg"] == whole
+    assert httpx.get(served.url + "api/drawing.svg").text == whole
+    assert "draft" not in (browser.get_attribute("#sheet", "class") or "")
+    assert browser.evaluate("() => window.kinepolyEditor.fullTimings.length") == 1
+    # a drag that pauses gets the whole sheet without being released
+    browser.evaluate("() => { window.kinepolyEditor.pauseMs = 150; }")
+    browser.mouse.move(*screen(browser, _turn(105)))  # onto the crank's point, on the whole sheet
+    browser.mouse.down()
+    browser.mouse.move(*screen(browser, _turn(120)))
+    browser.wait_for_function("() => window.kinepolyEditor.fullTimings.length === 2")
+    wait_settled(browser)
+    paused = _state(browser)
+    assert browser.evaluate("() => window.kinepolyEditor.drag") is not None  # still held
+    assert paused["draft"] is False and paused["svg"] == evaluate(paused["text"], source).svg
+    assert "angle = 120" in paused["text"]
+    browser.mouse.up()
+    wait_settled(browser)
+    assert browser.evaluate("() => window.kinepolyEditor.fullTimings.length") == 2  # nothing left to draw whole
+    assert browser.errors == []
+
+
+def test_a_drag_never_queues_a_stale_move(browser: Any, new_four_bar: tuple[Served, Path]) -> None:
+    served, _ = new_four_bar
+    _open(browser, served)
+    browser.mouse.move(*screen(browser, _turn(60)))
+    browser.mouse.down()
+    places = [screen(browser, _turn(a)) for a in range(65, 125, 5)]
+    # twelve moves in one task, faster than any answer: the first is sent, each later one replaces the one waiting
+    waiting = browser.evaluate("""(places) => places.map(([x, y]) => {
+        document.querySelector('#sheet').dispatchEvent(new PointerEvent('pointermove', {clientX: x, clientY: y,
+            bubbles: true, pointerId: 1}));
+        return window.kinepolyEditor.pending.length;
+    })""", places)
+    assert waiting == [0] + [1] * 11
+    browser.mouse.up()
+    wait_settled(browser)
+    state = _state(browser)
+    assert "angle = 120" in state["text"] and state["draft"] is False
+    assert len(browser.evaluate("() => window.kinepolyEditor.timings")) == 2  # the ten stale moves never sent
+    assert browser.errors == []

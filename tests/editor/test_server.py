@@ -338,3 +338,24 @@ def test_a_file_that_does_not_solve_opens_with_its_errors_and_is_mended_through_
         assert httpx.get(served.url + "api/drawing.svg").status_code == 404
         assert httpx.put(served.url + "api/scene", json={"text": good}).status_code == 200
         assert httpx.get(served.url + "api/drawing.svg").status_code == 200
+
+
+def test_draft_moves_answer_draft_sheets_and_full_draws_the_last_whole(served: Served, four_bar: Path,
+                                                                       tmp_path: Path,
+                                                                       capsys: pytest.CaptureFixture[str]) -> None:
+    first, moved, full, state = _live(
+        served,
+        {"op": "edit", "edit": {"op": "drive", "to": [-20, 30]}, "draft": True},
+        {"op": "edit", "edit": {"op": "drive", "to": [-30, 10]}, "merge": True, "draft": True},
+        {"op": "full"}, {"op": "state"})
+    assert first["draft"] is moved["draft"] is True and moved["ok"]
+    assert full["draft"] is False and full["text"] == moved["text"] and full["can_undo"]
+    assert full["svg"] != moved["svg"] and full["svg"] == state["svg"]
+    assert full["result"] == moved["result"] and full["handles"] == moved["handles"]  # only the sheet redrawn
+    four_bar.write_text(str(full["text"]), encoding="utf-8")
+    code, _, err = run(capsys, "draw", str(four_bar), "-o", str(tmp_path / "out.svg"))
+    assert code == 0, err
+    assert full["svg"] == (tmp_path / "out.svg").read_text(encoding="utf-8")  # the whole sheet: kinepoly draw's
+    assert httpx.get(served.url + "api/drawing.svg").text == full["svg"]
+    (undone,) = _live(served, {"op": "undo"})
+    assert undone["draft"] is False and not undone["can_undo"]  # the drag was one step

@@ -17,9 +17,13 @@ from typing import IO, Any
 
 from kinepoly.editor import TEMPLATES
 from kinepoly.editor.edits import apply_edit
-from kinepoly.editor.evaluate import PAPER, Evaluation, evaluate, step_svg
+from kinepoly.editor.evaluate import PAPER, Evaluation, evaluate, redrawn, step_svg
 
 __all__ = ["TEMPLATES", "ChangedOnDisk", "Document", "template_text"]
+
+
+_WRITTEN_MOST = 20000
+"""The most items' SVG kept between changes (a few sheets' worth)."""
 
 
 class ChangedOnDisk(Exception):
@@ -65,14 +69,16 @@ class Document:
         assert first is not None
         self._history = _History([first])
         self._lock = threading.Lock()
-        self.current = evaluate(first, self.source, paper=paper)
+        self._written: dict[Any, str] = {}
+        """The SVG of the sheets' items written so far (``evaluate``'s ``written``), emptied when it grows large."""
+        self.current = evaluate(first, self.source, paper=paper, written=self._written)
         self.good: Evaluation | None = self.current if self.current.ok else None
 
     @property
     def text(self) -> str:
         return self._history.texts[self._history.index]
 
-    def _set(self, text: str, merge: bool, mergeable: bool) -> Evaluation:
+    def _set(self, text: str, merge: bool, mergeable: bool, draft: bool = False) -> Evaluation:
         history = self._history
         if merge and history.merging and history.index > 0:
             history.texts[history.index] = text
@@ -81,10 +87,12 @@ class Document:
             history.texts.append(text)
             history.index += 1
         history.merging = mergeable
-        return self._evaluate()
+        return self._evaluate(draft)
 
-    def _evaluate(self) -> Evaluation:
-        self.current = evaluate(self.text, self.source, paper=self.paper)
+    def _evaluate(self, draft: bool = False) -> Evaluation:
+        if len(self._written) > _WRITTEN_MOST:
+            self._written.clear()
+        self.current = evaluate(self.text, self.source, paper=self.paper, draft=draft, written=self._written)
         if self.current.ok:
             self.good = self.current
         return self.current
@@ -94,12 +102,21 @@ class Document:
         with self._lock:
             return self._set(text, merge=False, mergeable=False)
 
-    def edit(self, edit: dict[str, Any], merge: bool = False) -> Evaluation:
+    def edit(self, edit: dict[str, Any], merge: bool = False, draft: bool = False) -> Evaluation:
         """One edit (``edits.apply_edit``) on the current text, from the last solved position; EditError when it
-        cannot be made. ``merge``: a move of the same drag as the change before (one step to undo)."""
+        cannot be made. ``merge``: a move of the same drag as the change before (one step to undo); ``draft``: its
+        sheet drawn as a draft (labels unsearched: a move of a drag), which ``full`` draws whole."""
         with self._lock:
             solution = self.good.solution if self.good is not None else None
-            return self._set(apply_edit(self.text, edit, solution), merge, mergeable=True)
+            return self._set(apply_edit(self.text, edit, solution), merge, mergeable=True, draft=draft)
+
+    def full(self) -> Evaluation:
+        """The drawings shown (the current one, the last good one) drawn whole where they are drafts."""
+        with self._lock:
+            current, good = self.current, self.good
+            self.current = redrawn(current, self._written)
+            self.good = self.current if good is current else redrawn(good, self._written) if good is not None else None
+            return self.current
 
     def undo(self) -> Evaluation:
         with self._lock:
@@ -149,7 +166,7 @@ class Document:
             "timing_ms": current.timing_ms,
         }
         if good is not None:
-            out.update(svg=good.svg, view=good.view, handles=good.handles,
+            out.update(svg=good.svg, draft=good.draft, view=good.view, handles=good.handles,
                        good_result=good.result if good is not current else None)
         return out
 

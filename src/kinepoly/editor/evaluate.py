@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from kinepoly.errors import KinepolyError
@@ -21,7 +21,7 @@ if TYPE_CHECKING:
     from kinepoly.solution import Solution
 
 __all__ = ["PAPER", "Evaluation", "assembly_joints", "evaluate", "handles", "input_fields", "input_handle", "lengths",
-           "step_svg"]
+           "redrawn", "step_svg"]
 
 PAPER = (297.0, 210.0)
 """The editor's default sheet: A4 landscape, ``kinepoly draw``'s and ``solve``'s default paper."""
@@ -40,15 +40,21 @@ class Evaluation:
     solution: Solution | None = field(default=None, compare=False, repr=False)
     layout: Layout | None = field(default=None, compare=False, repr=False)
     timing_ms: dict[str, float] = field(default_factory=dict)
+    draft: bool = False
+    """Whether ``svg`` is a draft: its labels at their first places, not searched clear (``render.labels.draft_place``)."""
 
     @property
     def ok(self) -> bool:
         return self.result is not None
 
 
-def evaluate(text: str, source: str, *, paper: tuple[float, float] = PAPER, draw: bool = True) -> Evaluation:
+def evaluate(text: str, source: str, *, paper: tuple[float, float] = PAPER, draw: bool = True,
+             draft: bool = False, written: dict[Any, str] | None = None) -> Evaluation:
     """``text`` loaded, solved and (with ``draw``) drawn on ``paper`` (the polygon scales of ``solve --paper``);
-    a user's error or an internal one as the CLI prints it."""
+    a user's error or an internal one as the CLI prints it. ``draft``: the sheet's labels at their first places
+    (``render.sheet.build_sheet``'s draft), the sheet drawn while the user drags; ``redrawn`` draws it whole.
+    ``written``: the SVG of the items drawn before (``render.svg.svg_text``'s ``made``), shared by the texts of one
+    document: what a move leaves unchanged is not written again."""
     from kinepoly.cli import EXIT_INTERNAL, error_text, internal_error_text
     from kinepoly.cli.solve import solved
     from kinepoly.scene.loader import loads_scene
@@ -66,18 +72,39 @@ def evaluate(text: str, source: str, *, paper: tuple[float, float] = PAPER, draw
     timing = {"solve": 1e3 * (t2 - t0)}
     if not draw:
         return Evaluation(text, result, solution=solution, timing_ms=timing)
-    from kinepoly.render.sheet import build_sheet, layout_sheet
-    from kinepoly.render.svg import svg_text
+    from kinepoly.render.sheet import layout_sheet
 
     layout = layout_sheet(solution, paper, grow=False)
     t3 = time.perf_counter()
-    sheet = build_sheet(solution, paper, layout=layout)
-    t4 = time.perf_counter()
-    svg = svg_text(sheet)
-    t5 = time.perf_counter()
-    timing.update(layout=1e3 * (t3 - t2), labels=1e3 * (t4 - t3), svg=1e3 * (t5 - t4))
+    timing["layout"] = 1e3 * (t3 - t2)
+    svg = _drawn(solution, layout, draft, timing, written)
     return Evaluation(text, result, svg=svg, view=_view(layout), handles=handles(solution), solution=solution,
-                      layout=layout, timing_ms=timing)
+                      layout=layout, timing_ms=timing, draft=draft)
+
+
+def redrawn(evaluation: Evaluation, written: dict[Any, str] | None = None) -> Evaluation:
+    """A draft ``evaluation`` drawn whole (its labels searched clear), as ``evaluate`` without ``draft`` draws it:
+    the same layout, no new solve. Any other evaluation as it is."""
+    if not evaluation.draft or evaluation.solution is None or evaluation.layout is None:
+        return evaluation
+    timing = {"solve": 0.0, "layout": 0.0}
+    svg = _drawn(evaluation.solution, evaluation.layout, False, timing, written)
+    return replace(evaluation, svg=svg, timing_ms=timing, draft=False)
+
+
+def _drawn(solution: Solution, layout: Layout, draft: bool, timing: dict[str, float],
+           written: dict[Any, str] | None) -> str:
+    """The SVG of the sheet on ``layout`` (a draft's: labels unsearched); the milliseconds of its labels (the
+    sheet built, its labels placed) and of its SVG added to ``timing``."""
+    from kinepoly.render.sheet import build_sheet
+    from kinepoly.render.svg import svg_text
+
+    t0 = time.perf_counter()
+    sheet = build_sheet(solution, (layout.width, layout.height), layout=layout, draft=draft)
+    t1 = time.perf_counter()
+    svg = svg_text(sheet, written)
+    timing.update(labels=1e3 * (t1 - t0), svg=1e3 * (time.perf_counter() - t1))
+    return svg
 
 
 def step_svg(evaluation: Evaluation, number: int) -> str | None:

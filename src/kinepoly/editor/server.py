@@ -209,14 +209,15 @@ def _answer_change(document: Document, message: object) -> dict[str, Any]:
 
 
 def _change(document: Document, message: dict[str, Any]) -> None:
-    """One change asked by the page or a script: ``{"op": "edit", "edit": {...}, "merge": false}``, ``{"op": "text",
-    "text": ...}``, ``{"op": "undo"}``, ``{"op": "redo"}`` or ``{"op": "state"}``."""
+    """One change asked by the page or a script: ``{"op": "edit", "edit": {...}, "merge": false, "draft": false}``,
+    ``{"op": "text", "text": ...}``, ``{"op": "undo"}``, ``{"op": "redo"}``, ``{"op": "full"}`` (a draft sheet drawn
+    whole) or ``{"op": "state"}``."""
     op = message.get("op")
     if op == "edit":
         edit = message.get("edit")
         if not isinstance(edit, dict):
             raise EditError("edit: expected {\"edit\": {\"op\": ...}}")
-        document.edit(edit, merge=message.get("merge") is True)
+        document.edit(edit, merge=message.get("merge") is True, draft=message.get("draft") is True)
     elif op == "text":
         text = message.get("text")
         if not isinstance(text, str):
@@ -226,5 +227,7 @@ def _change(document: Document, message: dict[str, Any]) -> None:
         document.undo()
     elif op == "redo":
         document.redo()
+    elif op == "full":
+        document.full()
     elif op != "state":
-        raise EditError(f"unknown change {op!r}; expected edit, text, undo, redo or state")
+        raise EditError(f"unknown change {op!r}; expected edit, text, undo, redo, full or state")

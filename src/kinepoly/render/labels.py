@@ -21,7 +21,8 @@ from kinepoly.render.text import Run, runs_box, text_width
 if TYPE_CHECKING:
     from shapely.geometry.base import BaseGeometry
 
-__all__ = ["BACKGROUND_ROLES", "CLEARANCE_MM", "FEW", "LEADER", "LabelCache", "Placer", "Request", "fill_geometry", "item_geometry", "place", "wrapped"]
+__all__ = ["BACKGROUND_ROLES", "CLEARANCE_MM", "FEW", "LEADER", "LabelCache", "Placer", "Request", "draft_place",
+           "fill_geometry", "item_geometry", "place", "wrapped"]
 
 Point = tuple[float, float]
 Box = tuple[float, float, float, float]
@@ -35,6 +36,8 @@ _LEADER_FREE_MM = 2.0
 _FAR_RINGS_MM = (5.0, 7.5, 10.0, 14.0, 19.0, 25.0, 32.0, 40.0)
 _DIRECTIONS_DEG = (45, 135, -45, -135, 0, 180, 90, -90, 22.5, 157.5, -22.5, -157.5, 67.5, 112.5, -67.5, -112.5)
 _DIRECTIONS = tuple((math.cos(math.radians(angle)), math.sin(math.radians(angle))) for angle in _DIRECTIONS_DEG)
+_ALONG_T = (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85)
+"""Where along a vector's shaft its label is tried, the middle first."""
 _FAR_RING_GROUPS = (_FAR_RINGS_MM[:2], _FAR_RINGS_MM[2:4], _FAR_RINGS_MM[4:])
 """The far rings in the groups tested together: a label that finds a place near stops the search there."""
 
@@ -234,6 +237,9 @@ class _Placed:
 class Placer:
     """Places labels one after another in one region, avoiding what is drawn and what is placed."""
 
+    _candidates: int | None = None
+    """How many of a label's near places are made, nearest first (None: all)."""
+
     def __init__(self, region: Box, hard: list[Any], soft: list[Any], placed: _Placed) -> None:
         """``hard``: what is drawn near the region (``item_pieces``), which a label may not touch; ``soft``: the
         light shading there, which it avoids where it can; ``placed``: the labels placed so far."""
@@ -354,11 +360,8 @@ class Placer:
         size = (x1 - x0, y1 - y0)
         radius = math.hypot(*size) / 2 + 0.35
         outer = (2 * radius, 2 * radius) if ring else size
-        candidates = []
-        for distance in _RINGS_MM:
-            for angle in _DIRECTIONS_DEG:
-                u = (math.cos(math.radians(angle)), math.sin(math.radians(angle)))
-                candidates.append(_pushed_box(anchor, u, outer, gap + distance))
+        candidates = list(itertools.islice((_pushed_box(anchor, u, outer, gap + distance) for distance in _RINGS_MM
+                                            for u in _DIRECTIONS), self._candidates))
         found = None if far else self._near(candidates)
         if found is None:
             items = self._far(runs, color, role, anchor, bold, outer, (0.0, 0.0), optional)
@@ -385,12 +388,11 @@ class Placer:
         if length == 0.0:
             return self.at_point(start, runs, color, role)
         ux, uy = (end[0] - start[0]) / length, (end[1] - start[1]) / length
-        candidates = []
-        for ring in _RINGS_MM[:3]:
-            for t in (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85):
-                at = (start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1]))
-                for side in (1.0, -1.0):
-                    candidates.append(_pushed_box(at, (-side * uy, side * ux), size, ring))
+        candidates = list(itertools.islice((_pushed_box((start[0] + t * (end[0] - start[0]),
+                                                         start[1] + t * (end[1] - start[1])),
+                                                        (-side * uy, side * ux), size, ring)
+                                            for ring in _RINGS_MM[:3] for t in _ALONG_T for side in (1.0, -1.0)),
+                                           self._candidates))
         found = self._near(candidates)
         if found is not None:
             return self._accept(found, runs, color, role, _mid(start, end), False)
@@ -717,6 +719,43 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
         layer, items, _, _ = results[request.region][k]
         counters[request.region] = k + 1
         out.setdefault(layer, []).extend(items)
+    return out
+
+
+class _DraftPlacer(Placer):
+    """A placer that takes every label's first place (``Placer._near``'s first candidate) and tests nothing."""
+
+    _candidates = 1
+
+    def __init__(self, region: Box) -> None:
+        self.region = region
+        self._placed = _Placed()
+        self.crowded = []
+
+    def _near(self, candidates: Sequence[Box]) -> Box | None:
+        return candidates[0]
+
+    def _accept(self, b: Box, runs: tuple[Run, ...], color: str, role: str, anchor: Point,
+                bold: bool, leader: Any = None) -> list[Item]:
+        return [self._text(b, runs, color, role, anchor, bold)]
+
+
+def draft_place(requests: Sequence[Request], cache: LabelCache | None = None) -> dict[str, list[Item]]:
+    """The labels of ``requests`` each at the first place ``place`` tries (beside its point or the middle of its
+    shaft), with no search for a free one: the same labels, items and layers as ``place`` gives, in the same
+    order, made without testing them against the drawing or each other. A sheet drawn in a hurry (the editor's,
+    while the user drags) and drawn whole once the drag stops."""
+    cache = cache if cache is not None else LabelCache()
+    placers: dict[Box, _DraftPlacer] = {}
+    out: dict[str, list[Item]] = {}
+    for request in sorted((cache.fitted(r) for r in requests), key=lambda r: r.priority):
+        placer = placers.setdefault(request.region, _DraftPlacer(request.region))
+        if request.end is None:
+            items = placer.at_point(request.anchor, request.runs, request.color, request.role, request.bold,
+                                    request.gap, request.ring, request.optional)
+        else:
+            items = placer.along(request.anchor, request.end, request.runs, request.color, request.role)
+        out.setdefault(request.layer, []).extend(items)
     return out
 
 

@@ -173,6 +173,14 @@ def _step_down(scale: float, steps: int) -> float:
     return scale
 
 
+def _ladder(scale: float, steps: int) -> list[float]:
+    """``scale`` and its first ``steps`` round steps down: ``_step_down(scale, n)`` for n = 0 .. steps."""
+    out = [scale]
+    for _ in range(steps):
+        out.append(_step_down(out[-1], 1))
+    return out
+
+
 def _columns(count: int) -> list[list[list[int]]]:
     """Ways to put contents 0..count-1 into contiguous columns, the mechanism (0) in the first."""
     out: list[list[list[int]]] = [[[k] for k in range(count)]]
@@ -243,15 +251,27 @@ def arrange(contents: Sequence[Content], area: Box) -> list[Panel]:
     mechanism largest.
     """
     fixed = [k for k, c in enumerate(contents) if c.wanted is not None]
+    levels_tried = _levels(len(fixed))
+    deepest = max((max(levels, default=0) for levels in levels_tried), default=0)
+    # each wanted scale's round steps down, made once for every arrangement and level that takes them
+    ladders = {k: _ladder(contents[k].wanted or 1.0, deepest) for k in fixed}
+    # Where levels fit with the mechanism large enough, every level as low or lower in each panel scores less
+    # (the same first term, smaller scale ratios): it cannot be the best, and is not tried.
+    prune = all(contents[k].wanted for k in fixed)
     best: list[Panel] | None = None
     best_score: tuple[bool, float, float, float] | None = None
     for columns in _columns(len(contents)):
-        for levels in _levels(len(fixed)):
-            scales = {k: _step_down(contents[k].wanted or 1.0, n) for k, n in zip(fixed, levels, strict=True)}
+        settled: list[tuple[int, ...]] = []
+        for levels in levels_tried:
+            if any(all(n >= m for n, m in zip(levels, done, strict=True)) for done in settled):
+                continue
+            scales = {k: ladders[k][n] for k, n in zip(fixed, levels, strict=True)}
             panels = _try(contents, area, columns, scales)
             if panels is None:
                 continue
             score = _score(panels, contents, area)
+            if prune and score[0]:
+                settled.append(levels)
             if best_score is None or score > best_score:
                 best, best_score = panels, score
     if best is None:  # nothing fits a few steps down: everything in one row, each polygon at the scale that fits

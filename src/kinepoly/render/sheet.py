@@ -17,7 +17,7 @@ from kinepoly.present.phrasing import Context, english, kennedy_sentence, step_s
 from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.render import centers as centers_layer
 from kinepoly.render import higher_pairs as higher_pairs_layer
-from kinepoly.render.labels import FEW, LabelCache, Request, place
+from kinepoly.render.labels import FEW, LabelCache, Request, draft_place, place
 from kinepoly.render.layout import (
     Content,
     Panel,
@@ -211,6 +211,8 @@ def _layout_on(solution: Solution, size: tuple[float, float], fixed: tuple[str, 
         panels = arrange(contents, area)
         notes = fixed + tuple(_scale_note(p) for p in panels if p.name in ("velocity", "acceleration")
                               and p.wanted is not None and p.scale < p.wanted * (1 - 1e-12))
+        if notes == used:
+            break  # the notes the title block was made with: a second pass would make the same blocks and panels
     if notes != used:
         blocks = _title_blocks(solution, figures, notes, inner_w, data)
     title_rect = (MARGIN_MM, MARGIN_MM, width - MARGIN_MM, MARGIN_MM + title_h)
@@ -364,12 +366,15 @@ def _step_blocks(solution: Solution, layout: Layout, step: int, width: float) ->
 
 
 def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, step: int | None = None,
-                layout: Layout | None = None, labels: LabelCache | None = None, title_block: bool = True) -> Sheet:
+                layout: Layout | None = None, labels: LabelCache | None = None, title_block: bool = True,
+                draft: bool = False) -> Sheet:
     """The drawing of ``solution``; with ``step``, the sheet of that construction step (1-based).
 
     ``labels``, shared by the sheets of one layout, places the labels of the parts that do not
     change from sheet to sheet once (``render.labels.LabelCache``); ``title_block=False`` leaves the
-    title block's text out (a handout writes its own).
+    title block's text out (a handout writes its own). ``draft``: every label at the first place the
+    search tries, not searched clear of the rest (``render.labels.draft_place``): the same sheet but
+    for where its labels sit, made in a fraction of the time (the editor's, while the user drags).
     """
     layout = layout if layout is not None else layout_sheet(solution, paper)
     labels = labels if labels is not None else layout.labels
@@ -405,8 +410,11 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
     headings, bars = parts["headings"]
     layers["title"] += _frame_items(layout) + headings + (_title_items(solution, layout, step) if title_block else [])
     layers["scales"] += bars
-    drawn = [item for name in LAYERS for item in layers[name]]
-    for name, placed in place(requests, drawn, labels).items():
+    if draft:
+        labelled = draft_place(requests, labels)
+    else:
+        labelled = place(requests, [item for name in LAYERS for item in layers[name]], labels)
+    for name, placed in labelled.items():
         layers[name] += placed
     title = solution.scene.title if step is None else f"{solution.scene.title}: step {step}"
     return Sheet(layout.width, layout.height, title, tuple(Layer(name, tuple(layers[name])) for name in LAYERS))

@@ -92,9 +92,21 @@ def _group_text(dwg: Any, layer: Layer, height: float, made: dict[Any, str]) -> 
     for item in layer.items:
         text = made.get((item, height))
         if text is None:
-            text = made[item, height] = "".join(element.tostring() for element in _element(dwg, item, height))
+            text = made[item, height] = "".join(_tostring(element) for element in _element(dwg, item, height))
         parts.append(text)
     return _lines(shell.removesuffix(" />") + ">" + "".join(parts) + "</g>")
+
+
+_SURROGATE = re.compile("[\ud800-\udfff]")
+
+
+def _tostring(element: Any) -> str:
+    """``element.tostring()`` (svgwrite's: ElementTree's UTF-8 bytes, decoded), made by ElementTree as text at once;
+    a lone surrogate, which UTF-8 cannot hold, left to svgwrite's (a character reference)."""
+    from xml.etree import ElementTree
+
+    text = ElementTree.tostring(element.get_xml(), encoding="unicode")
+    return element.tostring() if _SURROGATE.search(text) else text
 
 
 def _lines(text: str) -> str:

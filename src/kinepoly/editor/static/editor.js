@@ -12,9 +12,14 @@ const editor = {
   good: null,         // the last state that had a drawing
   seq: 0,
   inFlight: null,     // {seq, started}: the message awaiting its answer
-  pending: null,      // the latest edit made while one was in flight (older ones are superseded)
+  pending: [],        // the messages made while one was in flight; a drag's moves coalesce: the latest wins
   drag: null,         // {kind, name, first}
+  drafts: true,       // while dragging, ask for draft sheets (labels unsearched); the whole sheet when it stops
+  drafted: false,     // whether the sheet shown, or one asked for, is a draft not yet asked whole
+  pause: null,        // the timer that asks for the whole sheet when a drag pauses
+  pauseMs: 150,       // a drag still this long gets its whole sheet
   timings: [],        // per answered drag move: milliseconds from the pointer event to the redrawn sheet
+  fullTimings: [],    // per whole sheet after a drag: milliseconds from the release (or pause) to it redrawn
   adding: null,       // {slider, clicks}: a dyad being added by clicks
 };
 window.kinepolyEditor = editor;
@@ -25,35 +30,63 @@ function connect() {
   const socket = new WebSocket(url.href);
   editor.socket = socket;
   socket.addEventListener("open", () => send({op: "state"}));
-  socket.addEventListener("message", (event) => receive(JSON.parse(event.data)));
+  socket.addEventListener("message", (event) => { const arrived = performance.now(); receive(JSON.parse(event.data), arrived); });
   socket.addEventListener("close", () => status("disconnected: is kinepoly edit still running?"));
 }
 
+const isMove = (message) => message.op === "edit" && message.merge === true;
+
 function send(message, started) {
   if (editor.inFlight) {
-    editor.pending = {message, started};
+    // never queue a stale move: a drag's move replaces the move waiting before it (and a whole sheet asked
+    // before it, which the move would supersede); any other change waits its turn
+    const pending = editor.pending;
+    if (isMove(message)) {
+      while (pending.length && (isMove(pending.at(-1).message) || pending.at(-1).message.op === "full")) pending.pop();
+    }
+    if (!(message.op === "full" && pending.length && pending.at(-1).message.op === "full")) {
+      pending.push({message, started});
+    }
     return;
   }
   editor.seq += 1;
-  editor.inFlight = {seq: editor.seq, started: started ?? performance.now(), drag: message.op === "edit"};
+  editor.inFlight = {seq: editor.seq, started: started ?? performance.now(), drag: message.op === "edit",
+    full: message.op === "full"};
   editor.socket.send(JSON.stringify({...message, seq: editor.seq}));
 }
 
-function receive(state) {
+function dragMove(message, started) {
+  // a move of a drag (or of the input's slider): a draft sheet, and the whole one once it stops
+  send({...message, draft: editor.drafts}, started);
+  if (!editor.drafts) return;
+  editor.drafted = true;
+  clearTimeout(editor.pause);
+  editor.pause = setTimeout(wholeSheet, editor.pauseMs);
+}
+
+function wholeSheet() {
+  clearTimeout(editor.pause);
+  editor.pause = null;
+  if (!editor.drafted) return;
+  editor.drafted = false;
+  send({op: "full"});
+}
+
+function receive(state, arrived) {
   const flight = editor.inFlight;
   editor.inFlight = null;
   render(state);
-  if (flight && flight.drag && state.seq === flight.seq) {
-    const received = performance.now();
+  if (flight && (flight.drag || flight.full) && state.seq === flight.seq) {
+    const received = arrived ?? performance.now();  // the answer's arrival, before the page parsed and drew it
+    const into = flight.drag ? editor.timings : editor.fullTimings;
     // the frame that shows the new sheet is painted before a task queued from its animation callback runs
     requestAnimationFrame(() => setTimeout(() => {
-      editor.timings.push({ms: performance.now() - flight.started, received: received - flight.started,
-        server: state.timing_ms, ok: state.ok});
+      into.push({ms: performance.now() - flight.started, received: received - flight.started,
+        server: state.timing_ms, ok: state.ok, draft: Boolean(state.draft)});
     }, 0));
   }
-  if (editor.pending) {
-    const {message, started} = editor.pending;
-    editor.pending = null;
+  if (editor.pending.length) {
+    const {message, started} = editor.pending.shift();
     send(message, started);
   }
 }
@@ -80,6 +113,7 @@ function render(state) {
     values(state.ok ? state.result : state.good_result);
   }
   $("sheet").classList.toggle("stale", !state.ok);
+  $("sheet").classList.toggle("draft", Boolean(state.draft));
 }
 
 function drawSheet(state) {
@@ -221,11 +255,15 @@ function onPointerMove(event) {
   const pointer = toScene(editor.good.view, svg, event);
   const at = [pointer[0] + drag.offset[0], pointer[1] + drag.offset[1]];
   const started = event.timeStamp || performance.now();  // the event's time, on performance.now()'s clock
-  send({op: "edit", edit: editFor(drag.kind, drag.name, at, drag.shift), merge: !drag.first}, started);
+  dragMove({op: "edit", edit: editFor(drag.kind, drag.name, at, drag.shift), merge: !drag.first}, started);
   drag.first = false;
 }
 
-function onPointerUp() { editor.drag = null; }
+function onPointerUp() {
+  if (!editor.drag) return;
+  editor.drag = null;
+  wholeSheet();  // released: the whole sheet at once
+}
 
 function number(x) {
   if (typeof x !== "number") return String(x);
@@ -253,8 +291,8 @@ function field(container, label, value, onChange, range) {
     slider.value = value;
     slider.dataset.key = `${label}-range`;
     let first = true;
-    slider.addEventListener("input", () => { onChange(Number(slider.value), !first); first = false; });
-    slider.addEventListener("change", () => { first = true; });
+    slider.addEventListener("input", () => { onChange(Number(slider.value), !first, true); first = false; });
+    slider.addEventListener("change", () => { first = true; wholeSheet(); });
     container.appendChild(slider);
   }
 }
@@ -269,7 +307,10 @@ function fields(handles) {
   } else {
     for (const [key, value] of Object.entries(values)) {
       const range = key === "angle" ? {min: -180, max: 180, step: 0.5} : null;
-      field(box, key, value, (v, merge) => send({op: "edit", edit: {op: "set", key: ["input", key], value: v}, merge}),
+      field(box, key, value, (v, merge, sliding) => {
+        const message = {op: "edit", edit: {op: "set", key: ["input", key], value: v}, merge};
+        if (sliding) dragMove(message); else send(message);
+      },
         range && editor.state.result?.units?.angle === "deg" ? range : null);
     }
   }
