@@ -11,13 +11,13 @@ cell ``td[data-name=NAME]`` with its exact number in ``data-value`` (empty where
 from __future__ import annotations
 
 import html
-import json
 import math
 from typing import Any
 
 import numpy as np
 
 from kinepoly.motion.frames import NO_POLYGON, PANEL_MM, Frames, PolygonFrames
+from kinepoly.present.script_json import script_json
 from kinepoly.sweep.run import STATUS
 
 __all__ = ["html_page"]
@@ -290,7 +290,7 @@ show(0);
 
 def html_page(frames: Frames, fps: float = 24.0) -> str:
     """The page: data, style and script inline; it draws frame 0 on load."""
-    data = json.dumps(frames_data(frames), separators=(",", ":"), allow_nan=False).replace("</", "<\\/")
+    data = script_json(frames_data(frames))
     title = html.escape(frames.title)
     return (f'<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n<title>{title}: motion</title>\n'
             f"<style>{_STYLE}</style>\n</head>\n"
