@@ -17,7 +17,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
 
-from kinepoly.cli.files import write_atomically
+from kinepoly.cli.files import output_path, write_atomically
 from kinepoly.errors import OutputError
 
 __all__ = ["FORMATS", "add_arguments", "run"]
@@ -36,7 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _targets(output: str, stem: str) -> list[tuple[Path, str]]:
-    path = Path(output)
+    path = output_path(output, "-o")
     if output.endswith(("/", "\\")) or path.is_dir():  # made once the drawing is (a failed run leaves none)
         _check_folder(path, "-o")
         return [(path / f"{stem}.{fmt}", fmt) for fmt in FORMATS]

@@ -66,6 +66,8 @@ class MechanismTables(ReaderState):
         line = self.report.line(path)
         if not name:
             self.report.add(path, 'empty link name; expected a name like "2"')
+        elif "@" in name:
+            self.report.add(path, 'bad link name; expected a name without "@" (A@4 names the point of link 4 under A)')
         else:
             check_showable(self.report, path, name, "the link name")
         table = read_table(self.report, path, body, "{ points = { NAME = [x, y], ... } }")
@@ -89,6 +91,9 @@ class MechanismTables(ReaderState):
         line = self.report.line(path)
         if not name or "@" in name:
             self.report.add(path, 'bad point name; expected a name without "@" (kept for coincident points)')
+        elif "/" in name:
+            self.report.add(path, 'bad point name; expected a name without "/" (v_B/A names the velocity of B '
+                            'relative to A)')
         else:
             check_showable(self.report, path, name, "the point name")
         local = self.read_point_value(path, value)

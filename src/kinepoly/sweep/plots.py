@@ -50,7 +50,8 @@ def _wrapped(x: np.ndarray, col: Column, period: float) -> tuple[np.ndarray, np.
 
 
 def _finite(values: list[np.ndarray]) -> np.ndarray:
-    return np.concatenate([v[np.isfinite(v)] for v in values if v.size]) if values else np.zeros(0)
+    kept = [v[np.isfinite(v)] for v in values if v.size]
+    return np.concatenate(kept) if kept else np.zeros(0)
 
 
 def robust_window(values: list[np.ndarray], bulk: list[np.ndarray]) -> tuple[float, float] | None:
