@@ -325,3 +325,106 @@ def test_a_dotted_key_ten_thousand_deep_is_refused_in_linear_memory(capsys: pyte
     deep = BASE + "[draw]\n" + ".".join(["a"] * 64) + " = 1\n"  # as deep as allowed: an unknown key, no more
     code, _, err = run_on(capsys, tmp_path, deep, "solve")
     assert code == 2 and "draw.a: unknown key" in err, err
+
+
+def test_ten_thousand_unknown_names_stop_after_the_first_problems(capsys: pytest.CaptureFixture[str],
+                                                                  tmp_path: Path,
+                                                                  monkeypatch: pytest.MonkeyPatch) -> None:
+    import difflib
+
+    from kinepoly.scene.problems import SHOWN
+
+    looked: list[str] = []
+    close_matches = difflib.get_close_matches
+
+    def counted(word: str, *args: Any, **kwargs: Any) -> list[str]:
+        looked.append(word)
+        return close_matches(word, *args, **kwargs)
+
+    monkeypatch.setattr(difflib, "get_close_matches", counted)
+    text = BASE + "".join(f"G{k} = [1, 2]\n" for k in range(10_000))
+    code, _, err = run_on(capsys, tmp_path, text, "solve")
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == SHOWN + 1 == 21
+    assert lines[0].startswith("kinepoly: error: ") and "guess.G0: no point \"G0\"" in lines[0]
+    assert lines[-1] == f"{tmp_path / 's.toml'}: (file): and 9980 more problems, not shown; expected these fixed first"
+    assert len(looked) == SHOWN  # a did-you-mean for the problems shown only
+
+
+def _extra_points(text: str, link_line: str, count: int, spread: float) -> str:
+    """``text`` with ``count`` points Q0.. added to the link written ``link_line`` (ending in " }"), within
+    ``spread`` of the origin."""
+    points = ", ".join(f"Q{k} = [{spread * ((k * 37) % 101) / 101:.3f}, {spread * ((k * 61) % 103) / 103:.3f}]"
+                       for k in range(count))
+    assert link_line in text
+    return text.replace(link_line, link_line.removesuffix(" }") + ", " + points + " }")
+
+
+def test_check_of_a_cam_with_points_not_asked_about_costs_per_point(capsys: pytest.CaptureFixture[str],
+                                                                     tmp_path: Path,
+                                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    from kinepoly.engine import polygon
+
+    calls = 0
+    key = polygon._key
+
+    def counted(*args: Any) -> Any:
+        nonlocal calls
+        calls += 1
+        return key(*args)
+
+    monkeypatch.setattr(polygon, "_key", counted)
+    (tmp_path / "a.toml").write_text("omega_3 = -4.1152\nalpha_3 = 78.32\nv_W = [90.99, 229.5]\n"
+                                     "a_W = [-787.1, -4743]\nI_23 = [12.8, 5.973]\n", encoding="utf-8")
+    cam = (EXAMPLES / "cam-roller-rocker.toml").read_text(encoding="utf-8")
+    per_point = []
+    for count in (50, 100):
+        calls = 0
+        code, out, err = run_on(capsys, tmp_path, _extra_points(cam, "W = [-60, 0] }", count, 60.0), "check",
+                                "{tmp}/a.toml")
+        assert code == 0 and "5 of 5 correct" in out, out + err
+        per_point.append(calls / count)
+    assert per_point[1] <= 1.2 * per_point[0], per_point  # before: each image chose among all pairs of known tips
+
+
+def test_finding_the_crowded_labels_costs_what_the_labels_do(monkeypatch: pytest.MonkeyPatch) -> None:
+    import math
+
+    from kinepoly.render import labels
+
+    measured = 0
+    dist = math.dist
+
+    def counted(a: Any, b: Any) -> float:
+        nonlocal measured
+        measured += 1
+        return dist(a, b)
+
+    monkeypatch.setattr(math, "dist", counted)
+    per_label = []
+    for count in (500, 1000):
+        requests = [labels.Request("polygon", (0.0, 0.0, 200.0, 200.0), (), (100 + (k % 7) / 7, 100 + (k % 11) / 11))
+                    for k in range(count)]
+        measured = 0
+        crowded = labels._crowd(requests)
+        assert len(crowded) == count  # every one among many others
+        per_label.append(measured / count)
+    assert per_label[1] <= 1.1 * per_label[0], per_label  # before: each label measured to every other
+
+
+def test_one_labels_search_stops_at_its_budget() -> None:
+    from shapely.geometry import box
+
+    from kinepoly.render import labels
+    from kinepoly.render.text import Run
+
+    placed = labels._Placed()
+    for k in range(12_000):  # specks of other labels all round the spot: few places free, every test a look
+        x, y = 40.0 + 120.0 * ((k * 0.6180339887) % 1.0), 40.0 + 120.0 * ((k * 0.7548776662) % 1.0)
+        placed.append(box(x, y, x + 0.01, y + 0.01))
+    placer = labels.Placer((0.0, 0.0, 200.0, 200.0), [], [], placed)
+    before = placed.scanned
+    items = placer.at_point((100.0, 100.0), (Run("P", 0.0, 0.0, 2.5),), role="P")
+    assert items and placer.crowded == ["P"]
+    assert placed.scanned - before <= labels._SEARCH_BUDGET + 500  # the last test may look beyond it a little

@@ -71,6 +71,11 @@ class JointSolve:
     condition: Reals
 
 
+_IMAGE_MEMBERS = 8
+"""An image is built from two of its link's first 8 known tips (the best pair of them): each tip found joins
+the link's known ones, so that choosing among all would cost the n-th point of a link n² pairs (200 points on
+one link: 60 s). No example has a link with more than 8 known tips where an image is built."""
+
 class Member(NamedTuple):
     """A known tip of a link: its label, where the point is at every row, whether it is fixed on the link
     (a named tuple, frozen and cheap to make: a polygon makes one per tip and link)."""
@@ -243,7 +248,8 @@ class Polygon:
     # -- Mehmke's image ---------------------------------------------------------------------------------
     def _image(self, link: str, point: str, label: str, members: list[Member]) -> Points:
         at = self.world(point)
-        pairs = [(m, k) for i, m in enumerate(members) for k in members[i + 1:]]
+        known = members[:_IMAGE_MEMBERS]
+        pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
         if self.mechanism.has_point(link, point) and all(m.fixed for m in members):
             local = {m.label: self._local(link, m.label) for m in members}
             here = self._local(link, label)

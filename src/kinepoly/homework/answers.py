@@ -29,10 +29,12 @@ import os
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Literal, NoReturn
 
 from kinepoly.errors import SceneError
 from kinepoly.scene.loader import ProblemReport, parse_located, read_quantity, show_value, suggest
+from kinepoly.scene.problems import unknown_key
 from kinepoly.scene.source import read_text
 from kinepoly.scene.spec import GivenInput, Scene, Units
 from kinepoly.scene.values import read_finite
@@ -304,7 +306,7 @@ def _center(report: ProblemReport, path: KeyPath, value: object, units: Units) -
 def _known_keys(report: ProblemReport, path: KeyPath, table: Mapping[str, object], allowed: tuple[str, ...]) -> bool:
     unknown = [key for key in table if key not in allowed]
     for key in unknown:
-        report.add(path + (key,), f"unknown key; {suggest(key, allowed)}")
+        report.add(path + (key,), partial(unknown_key, key, allowed))
     return not unknown
 
 

@@ -146,7 +146,7 @@ class _SceneReader(MechanismTables, HigherPairTables, InputTables, RequestTables
             return value
         shown = show_value(value)
         if isinstance(value, str):
-            self.report.add(path, f"unknown unit {shown}; {suggest(value, allowed)}")
+            self.report.add(path, lambda: f"unknown unit {shown}; {suggest(value, allowed)}")
         else:
             self.report.add(path, f"expected one of {quoted(allowed)}, got {shown}")
         return default

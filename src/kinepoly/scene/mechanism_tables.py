@@ -45,7 +45,7 @@ class MechanismTables(ReaderState):
             return "1"
         name = read_name(self.report, path, value, "a link name", "1")
         if name is not None and not self.has_link(name):
-            self.report.add(path, no_such("link", name, self.links or {}))
+            self.report.add(path, lambda: no_such("link", name, self.links or {}))
         return name
 
     # -- links and their points
@@ -171,7 +171,7 @@ class MechanismTables(ReaderState):
             return None
         name = read_name(self.report, path, value, "a link name", "4")
         if name is not None and not self.has_link(name):
-            self.report.add(path, no_such("link", name, self.links or {}))
+            self.report.add(path, lambda: no_such("link", name, self.links or {}))
         return name
 
     def read_slider_point(self, path: KeyPath, table: Table, block: str | None) -> str | None:
@@ -183,7 +183,7 @@ class MechanismTables(ReaderState):
         if name is not None and block in links:
             known = links[block].point_names
             if name not in known:
-                self.report.add(path, f'no point "{name}" in link "{block}" (the block); {suggest(name, known)}')
+                self.report.add(path, lambda: f'no point "{name}" in link "{block}" (the block); {suggest(name, known)}')
         return name
 
     def read_slider_line(self, path: KeyPath, value: object) -> tuple[Vector, float]:
