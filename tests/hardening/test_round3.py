@@ -428,3 +428,15 @@ def test_one_labels_search_stops_at_its_budget() -> None:
     items = placer.at_point((100.0, 100.0), (Run("P", 0.0, 0.0, 2.5),), role="P")
     assert items and placer.crowded == ["P"]
     assert placed.scanned - before <= labels._SEARCH_BUDGET + 500  # the last test may look beyond it a little
+
+
+# -- 5. found by the fuzzer (tools/fuzz.py) --------------------------------------------------------------------------
+
+def test_a_sweep_plot_of_values_near_the_end_of_double_precision_says_nothing_on_stderr(
+        capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    text = (EXAMPLES / "metu-cam.toml").read_text(encoding="utf-8").replace("center = [20, 0]", "center = [20, 1e308]")
+    assert "1e308" in text
+    code, _, err = run_on(capsys, tmp_path, text, "sweep", "--steps", "12", "--plot", "{tmp}/p.png")
+    assert code == 0, err
+    assert "Warning" not in err
+    assert (tmp_path / "p.png").read_bytes().startswith(b"\x89PNG")

@@ -342,15 +342,21 @@ def _seed_pose(result: SweepResult, link: str) -> tuple[complex, complex] | None
 
 def plot_png(result: SweepResult, dpi: int = 110) -> bytes:
     """All the sweep's plots on one sheet, as PNG bytes."""
+    import warnings
+
     import matplotlib.pyplot as plt
 
-    fig = plot_figure(result)
-    try:
-        buffer = io.BytesIO()
-        fig.savefig(buffer, format="png", dpi=dpi)
-        return buffer.getvalue()
-    finally:
-        plt.close(fig)
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        # values near the end of double precision (a cam's centre at 1e308) overflow matplotlib's own tick
+        # arithmetic, which says so on standard error; the plot is drawn all the same
+        warnings.simplefilter("ignore", RuntimeWarning)
+        fig = plot_figure(result)
+        try:
+            buffer = io.BytesIO()
+            fig.savefig(buffer, format="png", dpi=dpi)
+            return buffer.getvalue()
+        finally:
+            plt.close(fig)
 
 
 def plot_figure(result: SweepResult) -> Figure:
