@@ -440,3 +440,11 @@ def test_a_sweep_plot_of_values_near_the_end_of_double_precision_says_nothing_on
     assert code == 0, err
     assert "Warning" not in err
     assert (tmp_path / "p.png").read_bytes().startswith(b"\x89PNG")
+
+
+def test_a_sweep_plot_of_a_point_named_in_chinese_says_nothing_on_stderr(capsys: pytest.CaptureFixture[str],
+                                                                         tmp_path: Path) -> None:
+    text = _renamed(BASE, "B", "中")
+    code, _, err = run_on(capsys, tmp_path, text, "sweep", "--steps", "12", "--plot", "{tmp}/p.png")
+    assert code == 0, err
+    assert "Warning" not in err and "Glyph" not in err

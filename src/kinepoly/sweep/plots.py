@@ -346,7 +346,9 @@ def plot_png(result: SweepResult, dpi: int = 110) -> bytes:
 
     import matplotlib.pyplot as plt
 
-    with warnings.catch_warnings(), np.errstate(all="ignore"):
+    from kinepoly.render.mpl import _quiet_warnings  # a letter the font lacks (a point named 中) drawn as a box
+
+    with _quiet_warnings(), warnings.catch_warnings(), np.errstate(all="ignore"):
         # values near the end of double precision (a cam's centre at 1e308) overflow matplotlib's own tick
         # arithmetic, which says so on standard error; the plot is drawn all the same
         warnings.simplefilter("ignore", RuntimeWarning)
