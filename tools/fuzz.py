@@ -273,18 +273,21 @@ def run_case(case: Case, folder: Path, limit_s: float = 120.0) -> Outcome:
 
 
 def _write_answers(answers: Path, outcome: Outcome, folder: Path) -> None:
-    """An answers file from the solve's JSON (some values changed), or a broken one when it did not solve."""
+    """An answers file from the solve's JSON (right, or with a velocity's x turned round: wrong), or a broken one
+    when it did not solve."""
     solved = folder / "solve.json"
     if outcome.codes.get("solve") != 0 or not solved.exists():
         answers.write_text("omega_3 = 1\nv_Q = [1, 2]\nnonsense = true\n", encoding="utf-8")
         return
-    data = json.loads(solved.read_text(encoding="utf-8"))
+    text = solved.read_text(encoding="utf-8")
+    sign = -1.0 if len(text) % 2 else 1.0
+    data = json.loads(text)
     lines = [f"omega_{name} = {values['omega']!r}" for name, values in data.get("links", {}).items()
              if isinstance(values, dict) and isinstance(values.get("omega"), float)][:3]
     for name, values in list(data.get("points", {}).items())[:2]:
         v = values.get("velocity") if isinstance(values, dict) else None
         if isinstance(v, list) and len(v) == 2:
-            lines.append(f'"v_{name}" = [{-v[0]!r}, {v[1]!r}]')
+            lines.append(f'"v_{name}" = [{sign * v[0]!r}, {v[1]!r}]')
     answers.write_text("\n".join(lines or ["omega_3 = 1"]) + "\n", encoding="utf-8")
 
 
