@@ -159,7 +159,9 @@ def test_sweep_and_draw_write_the_same_file_mode(capsys: pytest.CaptureFixture[s
     assert run_on(capsys, tmp_path, BASE, "sweep", "--steps", "24", "-o", "{tmp}/x.csv", "--plot", "{tmp}/x.png")[0] == 0
     assert run_on(capsys, tmp_path, BASE, "draw", "-o", "{tmp}/d.svg")[0] == 0
     modes = {p.name: stat.S_IMODE(p.stat().st_mode) for p in tmp_path.iterdir() if p.name != "s.toml"}
-    assert set(modes.values()) == {0o644}, modes
+    umask = os.umask(0o022)
+    os.umask(umask)
+    assert set(modes.values()) == {0o666 & ~umask}, modes  # new files follow the umask (issue 30)
 
 
 def test_ctrl_c_is_a_message_not_a_traceback(capsys: pytest.CaptureFixture[str], tmp_path: Path,

@@ -6,25 +6,38 @@ modules import their heavy dependencies inside ``run``, so building the parser s
 ``files`` writes a file whole or not at all.
 
 Exit status: 0 solved; 1 an answer was wrong (``check``); 2 the scene or the command is wrong;
-3 the mechanism cannot be assembled or is singular at that input; 70 an internal error; 130 interrupted (Ctrl-C).
+3 the mechanism cannot be assembled or is singular at that input; 70 an internal error; 130 interrupted (Ctrl-C);
+143 terminated (SIGTERM). Interrupted or terminated, a run leaves every file whole or as it was, and no temporary file.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
+import threading
 from collections.abc import Callable, Sequence
 
 from kinepoly.cli import animate, bench, check, draw, edit, handout, solve, sweep, variants
 from kinepoly.errors import EXIT_SCENE, KinepolyError
 
-__all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "HelpFormatter", "error_text", "internal_error_text", "main", "main_exit",
-           "parser", "version"]
+__all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "EXIT_TERMINATED", "HelpFormatter", "error_text", "internal_error_text",
+           "main", "main_exit", "parser", "version"]
 
 EXIT_INTERNAL = 70
 EXIT_INTERRUPTED = 130
 """Ctrl-C, as a shell reports a process stopped by SIGINT (128 + 2)."""
+EXIT_TERMINATED = 143
+"""SIGTERM (``kill``, a job's time limit), as a shell reports a process stopped by it (128 + 15)."""
+
+
+class _Terminated(BaseException):
+    """Raised in the main thread by SIGTERM: it unwinds like Ctrl-C, so temporary files are removed."""
+
+
+def _terminate(signum: int, frame: object) -> None:
+    raise _Terminated
 
 _COMMANDS: tuple[tuple[str, str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]],
                  ...] = (
@@ -93,7 +106,8 @@ def _usage_exit(message: str) -> int:
 
 
 _EXIT_STATUS = ("exit status: 0 solved; 1 an answer was wrong (check); 2 the scene or the command is wrong; 3 the "
-                "mechanism cannot be assembled or is singular at that input; 70 an internal error; 130 interrupted")
+                "mechanism cannot be assembled or is singular at that input; 70 an internal error; 130 interrupted; 143 "
+                "terminated")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -116,11 +130,21 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; return the exit status."""
+    """Run the command line; return the exit status. SIGTERM ends it as Ctrl-C does (exit 143)."""
     try:
         args = _parser().parse_args(argv)
     except SystemExit as stop:
         return int(stop.code or 0)
+    if threading.current_thread() is not threading.main_thread():  # a signal handler is the main thread's only
+        return _run(args)
+    previous = signal.signal(signal.SIGTERM, _terminate)
+    try:
+        return _run(args)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _run(args: argparse.Namespace) -> int:
     try:
         status: int = args.run(args)
         return status
@@ -130,6 +154,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:  # Ctrl-C: no traceback; every file is written whole or not at all, so none is half
         print("kinepoly: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except _Terminated:
+        print("kinepoly: terminated", file=sys.stderr)
+        return EXIT_TERMINATED
     except BrokenPipeError:  # the reader (``| head``) left early: what it read is all it wanted
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())

@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from kinepoly.cli.files import PAPER_HELP, emit, paper_of, scene_file
+from kinepoly.cli.files import PAPER_HELP, emit, output_path, paper_of, scene_file
 from kinepoly.errors import EXIT_OK, EXIT_SCENE, EXIT_WRONG_ANSWERS, SceneError
 from kinepoly.present.scales import A4
 
@@ -71,6 +71,10 @@ def run_check(scene_path: str, answers_path: str, *, as_json: bool = False, outp
     from kinepoly.homework.checking import check, make_checker
     from kinepoly.homework.report import result_json, result_text
 
+    if output is not None:
+        folder = Path(answers_path)
+        read = [scene_path, *(map(str, folder.iterdir()) if folder.is_dir() else [answers_path])]
+        output_path(output, "-o", read)
     scene, text = scene_file(scene_path)
     if not Path(answers_path).is_dir():
         answers = load_answers(answers_path, scene)

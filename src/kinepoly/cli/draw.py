@@ -17,7 +17,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
 
-from kinepoly.cli.files import write_atomically
+from kinepoly.cli.files import output_path, write_atomically
 from kinepoly.errors import OutputError
 
 __all__ = ["FORMATS", "add_arguments", "run"]
@@ -37,7 +37,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _targets(output: str, stem: str, steps: str | None = None) -> list[tuple[Path, str]]:
     """The files of ``-o``; a file in the ``--steps`` folder is made with it, as the steps are."""
-    path = Path(output)
+    path = output_path(output, "-o")
     if output.endswith(("/", "\\")) or path.is_dir():  # made once the drawing is (a failed run leaves none)
         _check_folder(path, "-o")
         return [(path / f"{stem}.{fmt}", fmt) for fmt in FORMATS]

@@ -1,16 +1,19 @@
 """Files written whole or not at all: a temporary name in the same folder, then one rename.
 
 Every file the command line writes goes through ``write_atomically``; ``emit`` prints a text or
-writes it to a file; ``scene_file`` reads a scene with its text.
+writes it to a file; ``scene_file`` reads a scene with its text; ``output_path`` refuses, before
+any work, an output name the file system cannot hold or that names one of the command's inputs.
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
+import stat
 import sys
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
 
@@ -19,7 +22,7 @@ from kinepoly.errors import OutputError, SceneError
 if TYPE_CHECKING:
     from kinepoly.scene.spec import Scene
 
-__all__ = ["PAPER_HELP", "emit", "paper_of", "scene_file", "write_atomically"]
+__all__ = ["PAPER_HELP", "emit", "output_path", "paper_of", "scene_file", "write_atomically"]
 
 PAPER_HELP = "A0..A5, letter, legal, tabloid (landscape; add -portrait), or WIDTHxHEIGHT in mm (default A4)"
 """The help of every ``--paper``: the paper decides the polygon scales (``present.scales``) of every command."""
@@ -35,25 +38,63 @@ def paper_of(spec: str) -> tuple[float, float]:
         raise OutputError(str(error)) from error
 
 
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 def write_atomically(path: str | os.PathLike[str], write: Callable[[IO[Any]], None], *, binary: bool) -> None:
     """Call ``write`` on a temporary file beside ``path``, then rename it to ``path``.
 
     An interrupted or failed run leaves ``path`` as it was (absent or the previous file) and no
-    temporary file behind. OSError (no such folder, no permission) propagates to the caller.
+    temporary file behind. A new file gets the mode the umask leaves of 0666, a file replaced keeps
+    its mode; a symbolic link is kept and the file it names replaced. An existing ``path`` that is
+    not a regular file (a device such as /dev/null, a FIFO) is written directly: it cannot be replaced.
+    OSError (no such folder, no permission, no space left) propagates to the caller.
     """
-    target = Path(path)
-    handle, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent)
+    target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
+    try:
+        mode = os.stat(target).st_mode
+    except FileNotFoundError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
+        with open(target, "wb") if binary else open(target, "w", encoding="utf-8", newline="\n") as stream:
+            write(stream)
+        return
+    # the temporary name shortened: any name the file system holds can be written
+    handle, temporary = tempfile.mkstemp(prefix=f".{target.name[:64]}.", suffix=".part", dir=target.parent)
     try:
         with os.fdopen(handle, "wb") if binary else os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
             write(stream)
             stream.flush()
             os.fsync(stream.fileno())
-        os.chmod(temporary, 0o644)
+        os.chmod(temporary, stat.S_IMODE(mode) if mode is not None else 0o666 & ~_umask())
         os.replace(temporary, target)
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(temporary)
         raise
+
+
+def output_path(value: str, option: str, inputs: Iterable[str] = ()) -> Path:
+    """``value`` as a path to write, or OutputError (exit 2): a name longer than the file system allows, or the
+    same file as one of ``inputs`` (also through a link: same device and inode), which writing would replace."""
+    path = Path(value)
+    try:
+        written = os.stat(path)
+    except OSError as error:
+        if error.errno == errno.ENAMETOOLONG:
+            raise OutputError(f"{option} {value}: cannot be written ({error.strerror}); expected a shorter "
+                              "name") from None
+        return path
+    for source in inputs:
+        with contextlib.suppress(OSError):
+            read = os.stat(source)
+            if (read.st_dev, read.st_ino) == (written.st_dev, written.st_ino) and stat.S_ISREG(written.st_mode):
+                raise OutputError(f"{option} {value}: is the input {source}; writing it would replace it: "
+                                  "expected another file name")
+    return path
 
 
 def _write(stream: IO[Any], text: str) -> None:
@@ -75,7 +116,8 @@ def emit(text: str, output: str | None) -> None:
 
 def scene_file(path: str) -> tuple[Scene, str]:
     """The scene and its text (for [vary] and an input given as "300 rpm")."""
-    from kinepoly.scene.loader import load_scene
+    from kinepoly.scene.loader import loads_scene
+    from kinepoly.scene.source import read_text
 
-    scene = load_scene(path)
-    return scene, Path(path).read_text(encoding="utf-8")
+    text = read_text(path)  # read once: the scene and the text are the same file's, byte-order mark removed
+    return loads_scene(text, path), text

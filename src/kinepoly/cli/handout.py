@@ -16,7 +16,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
 
-from kinepoly.cli.files import write_atomically
+from kinepoly.cli.files import output_path, write_atomically
 from kinepoly.errors import OutputError
 
 __all__ = ["add_arguments", "run"]
@@ -39,7 +39,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _target(option: str, value: str, suffixes: tuple[str, ...]) -> Path:
-    path = Path(value)
+    path = output_path(value, option)
     if path.suffix.lower() not in suffixes:
         other = "; for the web page use --html FILE.html" if option == "-o" else "; for the PDF use -o FILE.pdf"
         raise OutputError(f"{option} {value}: expected a file ending in {' or '.join(suffixes)}{other}")

@@ -11,11 +11,10 @@ import argparse
 import math
 import sys
 import time
-from pathlib import Path
 from typing import IO, Any, TextIO
 
-from kinepoly.cli.files import write_atomically
-from kinepoly.errors import SceneError
+from kinepoly.cli.files import output_path, write_atomically
+from kinepoly.errors import OutputError, SceneError
 
 __all__ = ["DEFAULT_POSITIONS", "add_arguments", "run"]
 
@@ -77,7 +76,10 @@ def _write(path: str, data: bytes) -> None:
     def write(stream: IO[Any]) -> None:
         stream.write(data)
 
-    write_atomically(path, write, binary=True)
+    try:
+        write_atomically(path, write, binary=True)
+    except OSError as error:
+        raise OutputError(f"cannot write {path}: {error.strerror or error}") from error
 
 
 def _check(args: argparse.Namespace) -> None:
@@ -93,7 +95,7 @@ def _check(args: argparse.Namespace) -> None:
     if args.pole is not None and not all(math.isfinite(x) for x in args.pole):
         raise SceneError(f"--pole: expected two finite numbers, got {args.pole[0]} {args.pole[1]}")
     for flag, value in (("-o", args.output), ("--plot", args.plot), ("--pole-plot", args.pole_plot)):
-        if value and value != "-" and not Path(value).resolve().parent.is_dir():
+        if value and value != "-" and not output_path(value, flag, [args.scene]).resolve().parent.is_dir():
             raise SceneError(f"{flag}: the folder of {value} does not exist")
 
 

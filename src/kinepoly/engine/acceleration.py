@@ -44,6 +44,7 @@ from kinepoly.engine.velocity import (
 )
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines
+from kinepoly.geom.vec import magnitude
 from kinepoly.model.mechanism import Revolute
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
 
@@ -145,7 +146,7 @@ class _Context:
                     value=b.vec(term), topic="coriolis",
                     params=(("term", label), ("guide", slider.guide), ("ground", b.ground_name()),
                             ("omega", abs(omega)), ("relative", f"v_{on_moving}/{on_frame}"),
-                            ("speed", abs(complex(v_rel[0]))), ("magnitude", abs(complex(term[0]))),
+                            ("speed", magnitude(complex(v_rel[0]))), ("magnitude", magnitude(complex(term[0]))),
                             ("sense", sense(omega)), ("start", on_frame))))
         return end, [vector]
 

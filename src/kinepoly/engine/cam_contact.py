@@ -39,6 +39,7 @@ from kinepoly.engine.steps import Step
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline, roots_by_row
+from kinepoly.geom.vec import magnitude
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import Pose
@@ -320,7 +321,7 @@ def record_spline_equivalent(polygon: Polygon, cam: CamSpec) -> None:
     if k not in polygon.positions.marks:
         return
     w = cam.point or contact_label(cam)
-    length = abs(complex(polygon.world(w)[0]) - complex(polygon.world(k)[0]))
+    length = magnitude(complex(polygon.world(w)[0]) - complex(polygon.world(k)[0]))
     flat = cam.kind == "flat"
     polygon.step(Step(polygon="velocity", kind="known",
                       equation=(f"cam {cam.name}: equivalent block {k} pinned at {k}, sliding on {cam.follower}" if flat

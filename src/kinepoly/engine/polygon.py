@@ -32,7 +32,7 @@ from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross, cross_lines
 from kinepoly.geom.lines import Line as StepLine
 from kinepoly.geom.tolerances import COLLINEAR_SIN, PARALLEL_SIN
-from kinepoly.geom.vec import phase
+from kinepoly.geom.vec import magnitude, phase
 from kinepoly.model.mechanism import Mechanism, point_label
 
 __all__ = ["CrossLines", "JointSolve", "Line", "LineCrossing", "Polygon", "sense"]
@@ -70,6 +70,11 @@ class JointSolve:
     group: str
     condition: Reals
 
+
+_IMAGE_MEMBERS = 8
+"""An image is built from two of its link's first 8 known tips (the best pair of them): each tip found joins
+the link's known ones, so that choosing among all would cost the n-th point of a link n² pairs (200 points on
+one link: 60 s). No example has a link with more than 8 known tips where an image is built."""
 
 class Member(NamedTuple):
     """A known tip of a link: its label, where the point is at every row, whether it is fixed on the link
@@ -213,8 +218,8 @@ class Polygon:
     def _record_relative_velocity(self, link: str, label: str, ref: str, r: Points, start: Points, end: Points,
                                   rate: Reals) -> None:
         name = f"{label}/{ref}"
-        w, length = self.num(rate), abs(complex(r[0]))
-        size = abs(complex(end[0]) - complex(start[0]))
+        w, length = self.num(rate), magnitude(complex(r[0]))
+        size = magnitude(complex(end[0]) - complex(start[0]))
         self.step(Step(polygon="velocity", kind="known", equation=f"v_{label} = v_{ref} + v_{name}",
                        result=self.tip_name(label),
                        known=((f"v_{ref}", "magnitude and direction"), (f"v_{name}", "magnitude and direction")),
@@ -226,7 +231,7 @@ class Polygon:
     def _record_relative_acceleration(self, link: str, label: str, ref: str, r: Points, start: Points,
                                       middle: Points, end: Points, omega: Reals, rate: Reals) -> None:
         name = f"{label}/{ref}"
-        w, alpha, length = self.num(omega), self.num(rate), abs(complex(r[0]))
+        w, alpha, length = self.num(omega), self.num(rate), magnitude(complex(r[0]))
         a, m, e = complex(start[0]), complex(middle[0]), complex(end[0])
         self.step(Step(polygon="acceleration", kind="known", equation=f"a_{label} = a_{ref} + a_{name}",
                        result=self.tip_name(label),
@@ -236,14 +241,15 @@ class Polygon:
                                 DrawnVector(f"a^t_{name}", self.vec(middle), self.vec(end), "tangential")),
                        value=self.vec(end), topic="relative",
                        params=(("point", label), ("reference", ref), ("link", link), ("ground", self.ground_name()),
-                               ("length", length), ("magnitude", abs(e - a)), ("rate", abs(alpha)),
-                               ("sense", sense(alpha)), ("omega", abs(w)), ("normal", abs(m - a)),
-                               ("tangential", abs(e - m)))))
+                               ("length", length), ("magnitude", magnitude(e - a)), ("rate", abs(alpha)),
+                               ("sense", sense(alpha)), ("omega", abs(w)), ("normal", magnitude(m - a)),
+                               ("tangential", magnitude(e - m)))))
 
     # -- Mehmke's image ---------------------------------------------------------------------------------
     def _image(self, link: str, point: str, label: str, members: list[Member]) -> Points:
         at = self.world(point)
-        pairs = [(m, k) for i, m in enumerate(members) for k in members[i + 1:]]
+        known = members[:_IMAGE_MEMBERS]
+        pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
         if self.mechanism.has_point(link, point) and all(m.fixed for m in members):
             local = {m.label: self._local(link, m.label) for m in members}
             here = self._local(link, label)
@@ -330,7 +336,7 @@ class Polygon:
         self.crossings.append(LineCrossing(self.kind, group, what, crossing.sin_angle, crossing.along_first))
         if self.strict and not abs(float(crossing.sin_angle[0])) > PARALLEL_SIN:
             where = f"of group {group} at {describe_input(self.mechanism)}"
-            lengths = [abs(complex(d if isinstance(d, complex) else d[0])) for d in (first[1], second[1])]
+            lengths = [magnitude(complex(d if isinstance(d, complex) else d[0])) for d in (first[1], second[1])]
             if min(lengths) == 0.0:
                 raise SingularityError(
                     f"singular position {where}: at joint {what} the {self.kind} construction fails because "

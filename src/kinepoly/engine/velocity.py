@@ -32,6 +32,7 @@ from kinepoly.engine.position import Positions
 from kinepoly.engine.steps import Direction, DrawnVector, Relation, Step
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines, turn
+from kinepoly.geom.vec import magnitude
 from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
 
@@ -79,7 +80,7 @@ def read_rate(polygon: Polygon, link: str, first: str, second: str, along: Reals
     if not polygon.record:
         return
     value = polygon.num(along)
-    length = abs(complex(polygon.world(second.partition("@")[0])[0] - polygon.world(first)[0]))
+    length = magnitude(complex(polygon.world(second.partition("@")[0])[0] - polygon.world(first)[0]))
     symbol = "omega" if polygon.kind == "velocity" else "alpha"
     term = f"v_{second}/{first}" if polygon.kind == "velocity" else f"a^t_{second}/{first}"
     ground = polygon.ground_name()
@@ -405,7 +406,7 @@ def record_drive_term(polygon: Polygon, drive: Drive, term: str, start: Points, 
                       vectors=(DrawnVector(term, polygon.vec(start), polygon.vec(end), "relative"),),
                       value=polygon.vec(np.asarray(end - start)), topic="drive-term",
                       params=(("term", term), ("drive", drive.name), ("point", point), ("carrier", carrier),
-                              ("after", after), ("magnitude", abs(complex(end[0]) - complex(start[0]))))))
+                              ("after", after), ("magnitude", magnitude(complex(end[0]) - complex(start[0]))))))
 
 
 def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[tuple[str, str], ...] = (), *,

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["Vec", "add", "angle_of", "cross", "dot", "norm", "perp", "phase", "rotate", "scale", "sub", "unit"]
+__all__ = ["Vec", "add", "angle_of", "cross", "dot", "magnitude", "norm", "perp", "phase", "rotate", "scale", "sub",
+           "unit"]
 
 Vec = tuple[float, float]
 
@@ -12,6 +13,11 @@ Vec = tuple[float, float]
 def phase(z: complex) -> float:
     """The angle of ``z`` in (-pi, pi]: ``cmath.phase`` without its OverflowError on a subnormal part."""
     return math.atan2(z.imag, z.real)
+
+
+def magnitude(z: complex) -> float:
+    """|z|, infinity where it overflows double precision (``abs`` of a complex raises OverflowError there)."""
+    return math.hypot(z.real, z.imag)
 
 
 def add(a: Vec, b: Vec) -> Vec:

@@ -29,11 +29,13 @@ import os
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
+from functools import partial
 from typing import Literal, NoReturn
 
 from kinepoly.errors import SceneError
 from kinepoly.scene.loader import ProblemReport, parse_located, read_quantity, show_value, suggest
+from kinepoly.scene.problems import unknown_key
+from kinepoly.scene.source import read_text
 from kinepoly.scene.spec import GivenInput, Scene, Units
 from kinepoly.scene.values import read_finite
 
@@ -304,7 +306,7 @@ def _center(report: ProblemReport, path: KeyPath, value: object, units: Units) -
 def _known_keys(report: ProblemReport, path: KeyPath, table: Mapping[str, object], allowed: tuple[str, ...]) -> bool:
     unknown = [key for key in table if key not in allowed]
     for key in unknown:
-        report.add(path + (key,), f"unknown key; {suggest(key, allowed)}")
+        report.add(path + (key,), partial(unknown_key, key, allowed))
     return not unknown
 
 
@@ -355,29 +357,10 @@ def _fail(source: str, line: int | None, message: str) -> NoReturn:
     raise SceneError([f"{where}: (file): {message}"])
 
 
-def _read_text(source: str) -> str:
-    try:
-        data = Path(source).read_bytes()
-    except FileNotFoundError:
-        _fail(source, None, "no such file; expected the path of an answers .toml file")
-    except IsADirectoryError:
-        _fail(source, None, "is a directory; expected the path of an answers .toml file")
-    except OSError as exc:
-        _fail(source, None, f"cannot be read ({exc.strerror}); expected a readable answers .toml file")
-    nul = data.find(b"\x00")
-    if nul >= 0:
-        _fail(source, data.count(b"\n", 0, nul) + 1, "binary data (a NUL byte); expected a UTF-8 TOML answers file")
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        _fail(source, data.count(b"\n", 0, exc.start) + 1,
-              f"not UTF-8 text (byte 0x{data[exc.start]:02x}); expected a UTF-8 TOML answers file")
-
-
 def load_answers(path: str | os.PathLike[str], scene: Scene) -> Answers:
     """Read and check the answers file at ``path`` against ``scene``; problems name the path as given."""
     source = os.fspath(path)
-    return loads_answers(_read_text(source), scene, source)
+    return loads_answers(read_text(source, "an answers"), scene, source)
 
 
 def loads_answers(text: str, scene: Scene, source: str = "<answers>") -> Answers:

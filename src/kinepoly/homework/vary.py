@@ -20,9 +20,11 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Literal
 
 from kinepoly.scene.loader import ProblemReport, read_quantity, show_value, suggest
+from kinepoly.scene.problems import no_such
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 
 __all__ = ["Range", "Ranges", "default_ranges", "read_vary"]
@@ -153,7 +155,7 @@ def _link_factors(report: ProblemReport, value: object, scene: Scene) -> dict[st
     out = {}
     for name, item in value.items():
         if name not in names:
-            report.add(path + (name,), f'no link "{name}"; {suggest(name, names)}')
+            report.add(path + (name,), partial(no_such, "link", name, names))
             continue
         drawn = _range(report, path + (name,), item, "factor", scene, "[0.8, 1.2]")
         if drawn is not None:

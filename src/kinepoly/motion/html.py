@@ -13,7 +13,6 @@ keys; the table shows the asked quantities at the position shown. Hooks for test
 from __future__ import annotations
 
 import html
-import json
 import math
 from collections.abc import Iterator
 from typing import Any
@@ -21,17 +20,11 @@ from typing import Any
 from kinepoly.handout.notation import html_of, quantity_name, typographic
 from kinepoly.motion.frames import Frames
 from kinepoly.motion.sheets import frame_sheets, frame_solutions
+from kinepoly.present.script_json import script_json
 from kinepoly.render.svg import svg_text
 from kinepoly.sweep.run import STATUS
 
-__all__ = ["frames_data", "html_page", "script_json"]
-
-
-def script_json(data: Any) -> str:
-    """``data`` as JSON to embed in a ``<script>`` element: ``<``, ``>`` and ``&`` written as ``\\u003c``,
-    ``\\u003e`` and ``\\u0026`` (the same JSON to a parser; no ``</script>`` or ``<!--`` in the page's text)."""
-    text = json.dumps(data, separators=(",", ":"), allow_nan=False, ensure_ascii=False)
-    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+__all__ = ["frames_data", "html_page"]
 
 
 def _number(x: float) -> float | None:

@@ -22,8 +22,9 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Any
 
-from kinepoly.errors import CatalogueError
+from kinepoly.errors import CatalogueError, SceneError
 from kinepoly.present.clean import format_number
+from kinepoly.scene.source import read_text
 
 __all__ = ["Catalogue", "load_catalogue", "packaged_languages", "placeholders"]
 
@@ -164,10 +165,9 @@ def load_catalogue(lang: str = "en", messages: str | Path | None = None) -> Cata
     else:
         source = str(messages)
         try:
-            text = Path(messages).read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as error:
-            reason = error.strerror if isinstance(error, OSError) and error.strerror else str(error)
-            raise CatalogueError(f"--messages {messages}: cannot read the catalogue ({reason})") from None
+            text = read_text(source, "a message catalogue")
+        except SceneError as error:
+            raise CatalogueError(f"--messages {messages}: cannot read the catalogue: {error}") from None
     data = _read(text, source)
     problems = _check(data, reference, text, source)
     base: dict[str, Any] = {}

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from functools import cache, cached_property
 
@@ -149,10 +149,15 @@ def canonical_terms(solution: Solution) -> dict[str, str]:
     return out
 
 
+def _literal(text: str) -> Callable[[re.Match[str]], str]:
+    """A replacement that is ``text`` as written (a point name with a backslash is no group reference)."""
+    return lambda _: text
+
+
 def canonical_text(text: str, terms: Mapping[str, str]) -> str:
     """``text`` with every term of ``terms`` (``canonical_terms``) written as the steps write it."""
     for label, canonical in terms.items():
-        text = re.sub(rf"(?<![\w@^]){re.escape(label)}(?![\w@])", canonical, text)
+        text = re.sub(rf"(?<![\w@^]){re.escape(label)}(?![\w@])", _literal(canonical), text)
     return text
 
 

@@ -56,7 +56,7 @@ def nice_scale(extent: float, target_mm: float = 100.0) -> float:
     """A round scale (1, 2, 2.5 or 5 times a power of ten) that draws ``extent`` about ``target_mm`` long."""
     if not (extent > 0.0 and math.isfinite(extent)):
         return 1.0
-    raw = target_mm / extent
+    raw = min(target_mm / extent, 1e300)  # a polygon too small for any scale (subnormal: omega = 5e-324) is a dot
     exponent = math.floor(math.log10(raw))
     candidates = [m * 10.0 ** (exponent + k) for k in (-1, 0, 1) for m in _NICE]
     return min(candidates, key=lambda c: abs(math.log(c / raw)))

@@ -48,7 +48,7 @@ class HigherPairTables(ReaderState):
     def _link(self, path: KeyPath, value: object, role: str) -> str | None:
         name = read_name(self.report, path, value, "a link name", "2")
         if name is not None and not self.has_link(name):
-            self.report.add(path, no_such("link", name, self.links or {}))
+            self.report.add(path, lambda: no_such("link", name, self.links or {}))
             return None
         return name
 
@@ -265,7 +265,7 @@ class HigherPairTables(ReaderState):
         if name is not None and self.links is not None and follower in self.links:
             known = self.links[follower].point_names
             if name not in known:
-                self.report.add(path, f'no point "{name}" in link "{follower}" (the follower); {suggest(name, known)}')
+                self.report.add(path, lambda: f'no point "{name}" in link "{follower}" (the follower); {suggest(name, known)}')
                 return None
         return name
 

@@ -118,7 +118,7 @@ class InputTables(ReaderState):
         if base is None:
             return None
         if not self.has_link(base):
-            self.report.add(key, no_such("link", base, self.links or {}))
+            self.report.add(key, lambda: no_such("link", base, self.links or {}))
             return None
         if base == link:
             self.report.add(key, f'link "{base}" cannot turn relative to itself; expected the link it turns on')
@@ -172,7 +172,7 @@ class InputTables(ReaderState):
 
     def read_given_point(self, path: KeyPath, name: str, value: object) -> GivenPoint | None:
         if name not in self.point_names and self.links is not None:
-            self.report.add(path, no_such("point", name, self.point_names))
+            self.report.add(path, lambda: no_such("point", name, self.point_names))
         table = read_table(self.report, path, value, "a table { velocity = [x, y], acceleration = [x, y] }")
         if table is None:
             return None

@@ -13,11 +13,15 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 
-__all__ = ["KeyPath", "LineMap", "dotted", "scan_lines"]
+__all__ = ["DEPTH", "KeyPath", "LineMap", "dotted", "scan_lines"]
 
 KeyPath = tuple[str, ...]
 
 _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+DEPTH = 64
+"""The deepest dotted key a file may have. A deeper one is mapped by its first 64 parts (the map stays linear
+in the text: each prefix of a key is a key of the map) and noted in ``LineMap.too_deep``: the parser
+refuses it before tomllib, whose memory grows with the square of a key's depth, reads it."""
 
 
 @dataclass
@@ -26,6 +30,8 @@ class LineMap:
 
     first: dict[KeyPath, int] = field(default_factory=dict)
     owner: dict[int, KeyPath] = field(default_factory=dict)
+    too_deep: tuple[int, int] | None = None
+    """The first line with a key deeper than ``DEPTH``, and that key's depth."""
 
     def note(self, path: KeyPath, line: int) -> None:
         for end in range(1, len(path) + 1):
@@ -84,7 +90,7 @@ def _scan_line_start(state: _ScanState, line: str, number: int) -> int:
         return _scan_header(state, line, number, i + 2, array=True)
     if line[i] == "[":
         return _scan_header(state, line, number, i + 1, array=False)
-    parts, end = _parse_key(line, i)
+    parts, end = _deep_key(state, _parse_key(line, i), number)
     if parts and end < len(line) and line[end] == "=":
         state.last_key = state.table + parts
         state.lines.note(state.last_key, number)
@@ -92,8 +98,18 @@ def _scan_line_start(state: _ScanState, line: str, number: int) -> int:
     return i
 
 
+def _deep_key(state: _ScanState, key: tuple[KeyPath, int], number: int) -> tuple[KeyPath, int]:
+    """The key, its first ``DEPTH`` parts where it is deeper (noted in the map)."""
+    parts, end = key
+    if len(parts) > DEPTH:
+        if state.lines.too_deep is None:
+            state.lines.too_deep = (number, len(parts))
+        parts = parts[:DEPTH]
+    return parts, end
+
+
 def _scan_header(state: _ScanState, line: str, number: int, start: int, *, array: bool) -> int:
-    parts, _ = _parse_key(line, start)
+    parts, _ = _deep_key(state, _parse_key(line, start), number)
     if not parts:
         return len(line)
     if array:

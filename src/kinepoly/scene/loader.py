@@ -35,7 +35,7 @@ from kinepoly.scene.lines import KeyPath, scan_lines
 from kinepoly.scene.mechanism_tables import MechanismTables
 from kinepoly.scene.problems import ProblemReport, quoted, show_value, suggest
 from kinepoly.scene.request_tables import RequestTables
-from kinepoly.scene.source import Table, decode_text, fail, parse_toml, read_bytes
+from kinepoly.scene.source import Table, fail, parse_toml, read_text
 from kinepoly.scene.spec import GivenInput, Scene, Units
 from kinepoly.scene.units import ANGLE_UNITS, LENGTH_UNITS, kinds_for, quantity
 from kinepoly.scene.values import check_keys, check_showable, read_table
@@ -54,8 +54,7 @@ _UNITS_KEYS = ("length", "angle")
 def load_scene(path: str | os.PathLike[str]) -> Scene:
     """Read and check the scene file at ``path``; problems name the path as given."""
     source = os.fspath(path)
-    text = decode_text(source, read_bytes(source))
-    return loads_scene(text, source)
+    return loads_scene(read_text(source), source)
 
 
 def loads_scene(text: str, source: str = "<string>") -> Scene:
@@ -147,7 +146,7 @@ class _SceneReader(MechanismTables, HigherPairTables, InputTables, RequestTables
             return value
         shown = show_value(value)
         if isinstance(value, str):
-            self.report.add(path, f"unknown unit {shown}; {suggest(value, allowed)}")
+            self.report.add(path, lambda: f"unknown unit {shown}; {suggest(value, allowed)}")
         else:
             self.report.add(path, f"expected one of {quoted(allowed)}, got {shown}")
         return default

@@ -44,7 +44,7 @@ class MechanismTables(ReaderState):
             return "1"
         name = read_name(self.report, path, value, "a link name", "1")
         if name is not None and not self.has_link(name):
-            self.report.add(path, no_such("link", name, self.links or {}))
+            self.report.add(path, lambda: no_such("link", name, self.links or {}))
         return name
 
     # -- links and their points
@@ -65,6 +65,8 @@ class MechanismTables(ReaderState):
         line = self.report.line(path)
         if not name:
             self.report.add(path, 'empty link name; expected a name like "2"')
+        elif "@" in name:
+            self.report.add(path, 'bad link name; expected a name without "@" (A@4 names the point of link 4 under A)')
         else:
             check_showable(self.report, path, name, "the link name")
         table = read_table(self.report, path, body, "{ points = { NAME = [x, y], ... } }")
@@ -88,6 +90,9 @@ class MechanismTables(ReaderState):
         line = self.report.line(path)
         if not name or "@" in name:
             self.report.add(path, 'bad point name; expected a name without "@" (kept for coincident points)')
+        elif "/" in name:
+            self.report.add(path, 'bad point name; expected a name without "/" (v_B/A names the velocity of B '
+                            'relative to A)')
         else:
             check_showable(self.report, path, name, "the point name")
         local, polar = self.read_point_value(path, value)
@@ -148,7 +153,7 @@ class MechanismTables(ReaderState):
             return None
         name = read_name(self.report, path, value, "a link name", "4")
         if name is not None and not self.has_link(name):
-            self.report.add(path, no_such("link", name, self.links or {}))
+            self.report.add(path, lambda: no_such("link", name, self.links or {}))
         return name
 
     def read_slider_point(self, path: KeyPath, table: Table, block: str | None) -> str | None:
@@ -160,7 +165,7 @@ class MechanismTables(ReaderState):
         if name is not None and block in links:
             known = links[block].point_names
             if name not in known:
-                self.report.add(path, f'no point "{name}" in link "{block}" (the block); {suggest(name, known)}')
+                self.report.add(path, lambda: f'no point "{name}" in link "{block}" (the block); {suggest(name, known)}')
         return name
 
     def read_slider_line(self, path: KeyPath, value: object) -> tuple[Vector, float]:

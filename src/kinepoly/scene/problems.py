@@ -10,13 +10,18 @@ from __future__ import annotations
 import difflib
 import json
 import math
-from collections.abc import Collection, Iterable
+from collections.abc import Callable, Collection, Iterable
 from dataclasses import dataclass, field
 
 from kinepoly.errors import SceneError
 from kinepoly.scene.lines import KeyPath, LineMap, dotted
 
-__all__ = ["ProblemReport", "no_such", "quoted", "show_value", "suggest"]
+__all__ = ["SHOWN", "ProblemReport", "no_such", "quoted", "show_value", "suggest", "unknown_key"]
+
+SHOWN = 20
+"""The most problems one report words. Beyond, problems are only counted ("and 9980 more problems"), and a
+message given as a function (a did-you-mean each, a search of every name) is not made: refusing a file of
+10,000 unknown names costs what refusing 20 does."""
 
 
 @dataclass
@@ -26,11 +31,18 @@ class ProblemReport:
     source: str
     lines: LineMap
     problems: list[tuple[int, str]] = field(default_factory=list)
+    more: int = 0
+    """Problems found beyond the first ``SHOWN``: counted, not worded."""
 
-    def add(self, path: KeyPath, message: str) -> None:
+    def add(self, path: KeyPath, message: str | Callable[[], str]) -> None:
+        """Place the problem at its line; ``message`` may be a function, called only for the first ``SHOWN``."""
+        if len(self.problems) >= SHOWN:
+            self.more += 1
+            return
         line = self.lines.line_of(path)
         where = self.source if line is None else f"{self.source}:{line}"
-        self.problems.append((line or 0, f"{where}: {dotted(path)}: {message}"))
+        text = message if isinstance(message, str) else message()
+        self.problems.append((line or 0, f"{where}: {dotted(path)}: {text}"))
 
     def line(self, path: KeyPath) -> int:
         return self.lines.line_of(path) or 0
@@ -38,7 +50,8 @@ class ProblemReport:
     def raise_if_any(self) -> None:
         if self.problems:
             ordered = sorted(dict.fromkeys(self.problems), key=lambda item: item[0])
-            raise SceneError([text for _, text in ordered])
+            more = [f"{self.source}: (file): and {self.more} more problems, not shown; expected these fixed first"]
+            raise SceneError([text for _, text in ordered] + (more if self.more else []))
 
 
 def show_value(value: object, limit: int = 60) -> str:
@@ -78,3 +91,7 @@ def suggest(word: str, options: Collection[str]) -> str:
 
 def no_such(kind: str, name: str, known: Collection[str]) -> str:
     return f'no {kind} "{name}"; {suggest(name, known)}'
+
+
+def unknown_key(key: str, allowed: Collection[str]) -> str:
+    return f"unknown key; {suggest(key, allowed)}"

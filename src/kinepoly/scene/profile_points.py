@@ -9,6 +9,8 @@ makes a loop or a figure eight turns twice or not at all, which no cam profile d
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from kinepoly.geom.spline import periodic_spline, signed_area
@@ -23,6 +25,8 @@ MIN_PROFILE_POINTS = 4
 """The fewest points a ``points`` profile may have."""
 _TURN_SAMPLES_PER_PIECE = 16
 """Samples of each spline piece when its turning is counted."""
+_OVERFLOW = ("the area or the spline of these points overflows double precision (a coordinate too large); "
+             "expected coordinates of ordinary size, in the scene's length unit")
 
 
 def read_profile_points(report: ProblemReport, path: KeyPath, value: object, kind: Kind) -> tuple[Vector, ...] | None:
@@ -48,11 +52,19 @@ def read_profile_points(report: ProblemReport, path: KeyPath, value: object, kin
                 report.add(path + (str(k + 2),), f"repeats point {k + 1} {show_value(list(points[k]))}; "
                            "expected each point once")
             return None
-    if signed_area(points) <= 0.0:
+    with np.errstate(all="ignore"):
+        area = signed_area(points)
+    if not math.isfinite(area):
+        report.add(path, _OVERFLOW)
+        return None
+    if area <= 0.0:
         report.add(path, "the points run clockwise (or enclose no area); expected them counter-clockwise: "
                    "list them in the reverse order")
         return None
     turns = _turns(points)
+    if turns is None:
+        report.add(path, _OVERFLOW)
+        return None
     if turns != 1:
         report.add(path, f"the spline through these points turns {turns} times round instead of once (it makes a "
                    "loop or crosses itself); expected the points in order along one closed curve")
@@ -60,10 +72,11 @@ def read_profile_points(report: ProblemReport, path: KeyPath, value: object, kin
     return tuple(points)
 
 
-def _turns(points: list[Vector]) -> int:
-    """How many times the spline's tangent turns round along the curve."""
-    spline = periodic_spline(points)
-    count = _TURN_SAMPLES_PER_PIECE * spline.pieces
-    tangent = spline.frame(spline.period * np.arange(count + 1) / count).tangent
-    turning = np.sum(np.angle(tangent[1:] / tangent[:-1]))
-    return round(float(turning) / (2.0 * np.pi))
+def _turns(points: list[Vector]) -> int | None:
+    """How many times the spline's tangent turns round along the curve; None where it overflows."""
+    with np.errstate(all="ignore"):
+        spline = periodic_spline(points)
+        count = _TURN_SAMPLES_PER_PIECE * spline.pieces
+        tangent = spline.frame(spline.period * np.arange(count + 1) / count).tangent
+        turning = float(np.sum(np.angle(tangent[1:] / tangent[:-1])))
+    return round(turning / (2.0 * np.pi)) if math.isfinite(turning) else None

@@ -7,6 +7,7 @@ or ``"1-13"``.
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Literal
 
 from kinepoly.scene.lines import KeyPath
@@ -37,7 +38,7 @@ class RequestTables(ReaderState):
         guesses: list[tuple[str, Vector]] = []
         for name, spot in table.items():
             if self.links is not None and name not in self.point_names:
-                self.report.add(path + (name,), no_such("point", name, self.point_names))
+                self.report.add(path + (name,), partial(no_such, "point", name, self.point_names))
             position = quantity_pair(self.report, path + (name,), spot, self.kinds.length)
             if position is not None:
                 guesses.append((name, position))
@@ -89,7 +90,7 @@ class RequestTables(ReaderState):
         point, at, link = name.partition("@")
         ok = True
         if point not in self.point_names:
-            self.report.add(path, no_such("point", point, self.point_names))
+            self.report.add(path, lambda: no_such("point", point, self.point_names))
             ok = False
         if at and link not in self.links:
             self.report.add(path, f'in "{name}": {no_such("link", link, self.links)}')
@@ -105,7 +106,7 @@ class RequestTables(ReaderState):
         kept: list[str] = []
         for name in names:
             if not self.has_link(name):
-                self.report.add(path, no_such("link", name, self.links or {}))
+                self.report.add(path, partial(no_such, "link", name, self.links or {}))
             elif name == self.ground:
                 self.report.add(path, f'link "{name}" is the ground, it does not move; expected moving links only')
             else:
@@ -117,7 +118,7 @@ class RequestTables(ReaderState):
         known = self.slider_names
         for name in names:
             if name not in known:
-                self.report.add(path, no_such("slider", name, known))
+                self.report.add(path, partial(no_such, "slider", name, known))
         return tuple(name for name in names if name in known)
 
     def find_centers(self, path: KeyPath, value: object) -> tuple[str, ...] | Literal["all"]:

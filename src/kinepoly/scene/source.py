@@ -10,13 +10,12 @@ from __future__ import annotations
 import re
 import tomllib
 from collections.abc import Mapping
-from pathlib import Path
 from typing import NoReturn
 
 from kinepoly.errors import SceneError
-from kinepoly.scene.lines import LineMap, dotted
+from kinepoly.scene.lines import DEPTH, LineMap, dotted
 
-__all__ = ["Table", "decode_text", "fail", "parse_toml", "read_bytes"]
+__all__ = ["MAX_INPUT_BYTES", "Table", "decode_text", "fail", "parse_toml", "read_bytes", "read_text"]
 
 Table = Mapping[str, object]
 
@@ -26,22 +25,33 @@ def fail(source: str, line: int | None, message: str, path: str = "(file)") -> N
     raise SceneError([f"{where}: {path}: {message}"])
 
 
-def read_bytes(source: str) -> bytes:
+MAX_INPUT_BYTES = 8 * 2**20
+"""The most kinepoly reads of an input file (a scene, an answers file, a message catalogue): 8 MiB. A larger
+file (or a device such as /dev/zero) is refused at once rather than read until memory runs out."""
+
+
+def read_bytes(source: str, what: str = "a scene") -> bytes:
+    """The bytes of ``what`` (a scene, an answers file, ...) at ``source``, at most ``MAX_INPUT_BYTES``."""
     try:
-        return Path(source).read_bytes()
+        with open(source, "rb") as stream:
+            data = stream.read(MAX_INPUT_BYTES + 1)
     except FileNotFoundError:
-        fail(source, None, "no such file; expected the path of a scene .toml file")
+        fail(source, None, f"no such file; expected the path of {what} .toml file")
     except IsADirectoryError:
-        fail(source, None, "is a directory; expected the path of a scene .toml file")
+        fail(source, None, f"is a directory; expected the path of {what} .toml file")
     except OSError as exc:
-        fail(source, None, f"cannot be read ({exc.strerror}); expected a readable scene .toml file")
+        fail(source, None, f"cannot be read ({exc.strerror}); expected {what} .toml file that can be read")
+    if len(data) > MAX_INPUT_BYTES:
+        fail(source, None, f"longer than {MAX_INPUT_BYTES // 2**20} MiB, the most kinepoly reads of a file; "
+             f"expected {what} .toml file of ordinary size")
+    return data
 
 
-def decode_text(source: str, data: bytes) -> str:
+def decode_text(source: str, data: bytes, what: str = "a scene") -> str:
     nul = data.find(b"\x00")
     if nul >= 0:
         line = data.count(b"\n", 0, nul) + 1
-        fail(source, line, "binary data (a NUL byte); expected a UTF-8 text TOML scene")
+        fail(source, line, f"binary data (a NUL byte); expected {what} .toml file in UTF-8 text")
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -50,14 +60,23 @@ def decode_text(source: str, data: bytes) -> str:
         fail(
             source,
             line,
-            f"not UTF-8 text (byte 0x{bad:02x} at offset {exc.start}); expected a UTF-8 TOML scene",
+            f"not UTF-8 text (byte 0x{bad:02x} at offset {exc.start}); expected {what} .toml file in UTF-8",
         )
+
+
+def read_text(source: str, what: str = "a scene") -> str:
+    """The text of the ``what`` file at ``source`` (read_bytes, decode_text), a byte-order mark removed."""
+    return decode_text(source, read_bytes(source, what), what).removeprefix("\ufeff")
 
 
 _TOML_WHERE = re.compile(r"\s*\((?:at line (\d+), column (\d+)|at end of document)\)\s*$")
 
 
 def parse_toml(text: str, source: str, lines: LineMap) -> Table:
+    if lines.too_deep is not None:
+        line, depth = lines.too_deep
+        path = dotted(lines.owner.get(line, ())[:3]) + "..."
+        fail(source, line, f"a dotted key {depth} levels deep; expected at most {DEPTH} levels", path)
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

@@ -9,10 +9,11 @@ from __future__ import annotations
 import math
 import unicodedata
 from collections.abc import Collection
+from functools import partial
 from typing import cast
 
 from kinepoly.scene.lines import KeyPath
-from kinepoly.scene.problems import ProblemReport, show_value, suggest
+from kinepoly.scene.problems import ProblemReport, show_value, unknown_key
 from kinepoly.scene.source import Table
 
 __all__ = ["Vector", "check_keys", "check_showable", "pair_name", "read_finite", "read_name", "read_table", "require",
@@ -80,7 +81,7 @@ def read_table(report: ProblemReport, path: KeyPath, value: object, expected: st
 def check_keys(report: ProblemReport, path: KeyPath, table: Table, allowed: Collection[str]) -> None:
     for key in table:
         if key not in allowed:
-            report.add(path + (key,), f"unknown key; {suggest(key, allowed)}")
+            report.add(path + (key,), partial(unknown_key, key, allowed))
 
 
 def require(report: ProblemReport, path: KeyPath, table: Table, key: str, expected: str) -> object | None:

@@ -52,7 +52,8 @@ def _wrapped(x: np.ndarray, col: Column, period: float) -> tuple[np.ndarray, np.
 
 
 def _finite(values: list[np.ndarray]) -> np.ndarray:
-    return np.concatenate([v[np.isfinite(v)] for v in values if v.size]) if values else np.zeros(0)
+    kept = [v[np.isfinite(v)] for v in values if v.size]
+    return np.concatenate(kept) if kept else np.zeros(0)
 
 
 def robust_window(values: list[np.ndarray], bulk: list[np.ndarray]) -> tuple[float, float] | None:
@@ -372,15 +373,23 @@ def _as_shown(result: SweepResult) -> SweepResult:
 
 def plot_png(result: SweepResult, dpi: int = 110) -> bytes:
     """All the sweep's plots on one sheet, as PNG bytes."""
+    import warnings
+
     import matplotlib.pyplot as plt
 
-    fig = plot_figure(result)
-    try:
-        buffer = io.BytesIO()
-        fig.savefig(buffer, format="png", dpi=dpi)
-        return buffer.getvalue()
-    finally:
-        plt.close(fig)
+    from kinepoly.render.mpl import _quiet_warnings  # a letter the font lacks (a point named 中) drawn as a box
+
+    with _quiet_warnings(), warnings.catch_warnings(), np.errstate(all="ignore"):
+        # values near the end of double precision (a cam's centre at 1e308) overflow matplotlib's own tick
+        # arithmetic, which says so on standard error; the plot is drawn all the same
+        warnings.simplefilter("ignore", RuntimeWarning)
+        fig = plot_figure(result)
+        try:
+            buffer = io.BytesIO()
+            fig.savefig(buffer, format="png", dpi=dpi)
+            return buffer.getvalue()
+        finally:
+            plt.close(fig)
 
 
 def plot_figure(result: SweepResult) -> Figure:
