@@ -123,7 +123,8 @@ def frame_solutions(frames: Frames, scene: Scene) -> list[Solution]:
 
 def _solve(scene: Scene, toward: float) -> Solution:
     """The solution of ``scene``; at a dead point, where the solve refuses a position whose rates are not
-    determined, the input moved a little ``toward`` the frame before it (the polygons are left out there)."""
+    determined, the input moved a little ``toward`` the frame before it (the polygons are left out there); where
+    no nudge helps (rates beyond double precision), the position alone, without polygons."""
     try:
         return solve(scene)
     except KinepolyError:
@@ -136,7 +137,10 @@ def _solve(scene: Scene, toward: float) -> Solution:
                 return solve(dataclasses.replace(scene, input=moved))
             except KinepolyError:
                 continue
-        raise
+        # rates beyond double precision at every nudge: the mechanism where it stands, its polygons left out
+        still = (dataclasses.replace(inp, omega=0.0, alpha=0.0) if isinstance(inp, LinkInput)
+                 else dataclasses.replace(inp, s_dot=0.0, s_ddot=0.0))
+        return dataclasses.replace(solve(dataclasses.replace(scene, input=still)), velocity=None, acceleration=None)
 
 
 def _figures(solution: Solution, layout: Layout) -> tuple[Any, ...]:
