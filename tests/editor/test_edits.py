@@ -63,3 +63,21 @@ def test_a_guess_is_offered_for_a_dyads_inner_joint_where_no_guess_tells_its_ass
     assert offered(four_bar) == []
     assert offered(four_bar.replace("[guess]\nB = [110, 80]\n", "")) == ["B"]
     assert offered(template_text("six-bar").replace("E = [200, 20]\n", "")) == ["E"]
+
+
+@pytest.mark.parametrize("edit", [
+    {"op": "move-point", "point": "B", "to": [10**400, 0]},
+    {"op": "drive", "to": [0, -10**400]},
+    {"op": "guess", "point": "B", "to": [10**400, 10**400]},
+    {"op": "length", "link": "3", "point": "B", "value": 10**400},
+    {"op": "set", "key": ["input", "omega"], "value": 10**400},
+    {"op": "set", "key": ["guess", "B"], "value": [1, 10**400]},
+])
+def test_a_whole_number_too_large_for_a_float_is_refused_with_a_message(edit: dict[str, object]) -> None:
+    # JSON holds whole numbers of any size; one beyond a float's range (found by the fuzzer) made an internal error
+    from kinepoly.editor.edits import EditError
+
+    text = template_text("four-bar")
+    before = evaluate(text, "scene.toml", draw=False)
+    with pytest.raises(EditError, match="expected"):
+        apply_edit(text, edit, before.solution)
