@@ -81,3 +81,16 @@ def test_a_whole_number_too_large_for_a_float_is_refused_with_a_message(edit: di
     before = evaluate(text, "scene.toml", draw=False)
     with pytest.raises(EditError, match="expected"):
         apply_edit(text, edit, before.solution)
+
+
+def test_a_length_of_a_link_the_loader_made_is_refused_with_a_message() -> None:
+    # a cam's equivalent link (4: K23 to W) is not in the text; its length made an internal error (found by the fuzzer)
+    from pathlib import Path
+
+    from kinepoly.editor.edits import EditError
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "cam-roller-rocker.toml").read_text(encoding="utf-8")
+    before = evaluate(text, "scene.toml", draw=False)
+    assert before.solution is not None and "4" in [link.name for link in before.solution.scene.links]
+    with pytest.raises(EditError, match="length"):
+        apply_edit(text, {"op": "length", "link": "4", "point": "W", "value": 100}, before.solution)

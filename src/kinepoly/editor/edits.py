@@ -225,6 +225,9 @@ def _length(doc: TOMLDocument, solution: Solution, link_name: str, point: str, v
     first, rest = link.points[0], {p.name: p for p in link.points[1:]}
     if point not in rest:
         raise EditError(f"length: link {link_name} has no point {point!r} other than its first, {first.name}")
+    if not _written(doc, link_name, point):
+        raise EditError(f"length: the scene's [links] does not write {point} in link {link_name} (the loader makes "
+                        f"it); change the links it is made of")
     dx, dy = rest[point].local[0] - first.local[0], rest[point].local[1] - first.local[1]
     size = math.hypot(dx, dy)
     if size == 0.0:
