@@ -35,11 +35,11 @@ def test_a_fuzz_case_ends_well(tmp_path: Path, case: Case) -> None:
     assert "solve" in outcome.codes
 
 
-EDITED = CASES[::3]
+EDITED = CASES[::4]
 
 
 def test_the_edited_cases_come_from_many_examples() -> None:
-    assert len(EDITED) == 12
+    assert len(EDITED) == 9
     assert len({case.name.split("-", 1)[1] for case in EDITED}) >= 8
 
 
