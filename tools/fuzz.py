@@ -10,7 +10,11 @@ exit status other than 70, with no traceback and no Python warning on standard e
 written must be valid (JSON without NaN, well-formed SVG with finite numbers, PDF, PNG, DXF that
 ezdxf reads, CSV of even rows, HTML whose data parses and holds no ``<``), none written by a run
 that failed, and no temporary file left. ``--browser N`` also opens every N-th web page in headless
-chromium (playwright): no script error, the page's own script ran.
+chromium (playwright): no script error, the page's own script ran. ``--editor`` also runs ``kinepoly edit``'s
+JSON API on every case (``run_editor``): the case's text put, answered as ``solve --json`` answers it, then
+changes over the websocket (points dragged to random and extreme places, values that are not numbers, names
+that are markup), every answer strict JSON and every sheet well-formed SVG without script, the file written
+only by a save, exactly the editor's text, and no temporary file left.
 """
 
 from __future__ import annotations
@@ -33,7 +37,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Case", "Outcome", "cases", "run_case"]
+__all__ = ["Case", "Outcome", "cases", "run_case", "run_editor"]
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
@@ -70,6 +74,8 @@ class Outcome:
     codes: dict[str, int] = field(default_factory=dict)
     problems: list[str] = field(default_factory=list)
     seconds: dict[str, float] = field(default_factory=dict)
+    tally: Counter[str] = field(default_factory=Counter)
+    """Counts of kinds of answers (the editor's websocket: changes made, refused, solved)."""
 
 
 def _mutate(text: str, rng: random.Random) -> str:
@@ -84,9 +90,9 @@ def _mutate(text: str, rng: random.Random) -> str:
             m = rng.choice(names)
             new = rng.choice(NAMES)
             if rng.random() < 0.5:  # rename it everywhere, so that the scene may still hold together
-                old = m.group().strip('"')
+                old, quoted = m.group().strip('"'), f'"{new}"'
                 text = re.sub(rf'(?<![\w"@]){re.escape(old)}(?![\w"])(?= = )|"{re.escape(old)}"',
-                              lambda _, new=new: f'"{new}"', text)
+                              lambda _: quoted, text)  # noqa: B023 - called here, at once
             else:
                 text = text[:m.start()] + f'"{new}"' + text[m.end():]
     lines = text.splitlines(keepends=True)
@@ -272,6 +278,148 @@ def run_case(case: Case, folder: Path, limit_s: float = 120.0) -> Outcome:
     return outcome
 
 
+_DRAGS: list[object] = [0, -1, 1e6, -1e6, 1e308, -1e308, 1e-300, 10**400, "nan", "NaN", "inf", "-Infinity", "1e999",
+                        None, True, "12", [], {}, "</script>", '"<&>"']
+_POINTS = ["A", "B", "<", '"', "</script>", "<!--", "", "A@3", "中"]
+
+
+def _strict_json(text: str) -> object:
+    """``text`` as JSON; ValueError where it is not, or holds NaN or an infinity."""
+    return json.loads(text, parse_constant=lambda c: (_ for _ in ()).throw(ValueError(f"{c} in the JSON")))
+
+
+def _check_state(state: object, where: str, problems: list[str]) -> None:
+    """The editor's state: its sheet well-formed SVG with finite numbers and no script; a refusal a message."""
+    if not isinstance(state, dict):
+        problems.append(f"{where}: the answer is not an object")
+        return
+    svg = state.get("svg")
+    if isinstance(svg, str):
+        try:
+            with tempfile.NamedTemporaryFile("w", suffix=".svg", encoding="utf-8", delete=False) as stream:
+                stream.write(svg)
+            _check_svg(Path(stream.name))
+            if re.search(r"<script|javascript:|\son\w+\s*=", svg, re.IGNORECASE):
+                raise ValueError("a script in the sheet")
+        except Exception as error:  # noqa: BLE001 - every way a sheet is bad is a finding
+            problems.append(f"{where}: the sheet is not valid: {type(error).__name__}: {str(error)[:200]}")
+        finally:
+            Path(stream.name).unlink(missing_ok=True)
+    for key in ("refused", "errors"):
+        value = state.get(key)
+        if any(bad in str(value) for bad in ("Traceback", "internal error")):
+            problems.append(f"{where}: {key}: {str(value)[:300]}")
+
+
+def _without_timing(result: object) -> object:
+    return {k: v for k, v in result.items() if k != "timing"} if isinstance(result, dict) else result
+
+
+def run_editor(case: Case, folder: Path, drags: int = 6) -> Outcome:
+    """``kinepoly edit``'s JSON API on the case, in-process: the editor started on ``folder``/s.toml (the case's text
+    on disk) showing its example's text, then the case's text PUT and compared with ``solve --json``'s object or
+    errors and exit status for that file; ``drags`` changes over the websocket (points moved to random and extreme
+    places, wrong values, names that are markup), each answer strict JSON and its sheet well-formed SVG with no
+    script; the file untouched until saved, then holding exactly the editor's text and solving as the editor
+    said, with no temporary file left. Outcome codes: ``edit-put`` (the HTTP status), ``edit-save``."""
+    import warnings
+
+    with warnings.catch_warnings():  # starlette's note that it would rather drive httpx2: httpx is what is here
+        warnings.simplefilter("ignore")
+        from starlette.testclient import TestClient
+
+    from kinepoly.editor.document import Document
+    from kinepoly.editor.server import make_app
+
+    outcome = Outcome()
+    problems = outcome.problems
+    scene = folder / "s.toml"
+    scene.write_text(case.text, encoding="utf-8")
+    start = time.process_time()
+    code, out, err = _main(["solve", "--json", str(scene)])
+    base = (ROOT / "examples" / f"{case.name.split('-', 1)[1]}.toml").read_text(encoding="utf-8")
+    rng = random.Random(case.name)
+    on_disk = scene.stat()
+    names_before = sorted(p.name for p in folder.iterdir())
+    port = 8765
+    document = Document(str(scene), text=base)
+    with TestClient(make_app(document, "t0ken", port), base_url=f"http://127.0.0.1:{port}",
+                    raise_server_exceptions=False) as client:
+        answer = client.put("/t0ken/api/scene", json={"text": case.text})
+        outcome.codes["edit-put"] = answer.status_code
+        try:
+            body = _strict_json(answer.text)
+        except ValueError as error:
+            problems.append(f"edit PUT: {answer.status_code}: the answer is not valid JSON: {error}: "
+                            f"{answer.text[:300]}")
+            body = None
+        if answer.status_code == 200 and code == 0:
+            if _without_timing(body) != _without_timing(_strict_json(out)):
+                problems.append("edit PUT: the answer differs from solve --json's object")
+        elif answer.status_code == 422 and code in (2, 3) and isinstance(body, dict):
+            if body.get("exit") != code or "\n".join(body.get("errors", [])) != err.rstrip("\n"):
+                problems.append(f"edit PUT: errors {body.get('errors')!r} exit {body.get('exit')}; solve exit "
+                                f"{code}: {err.strip()[-300:]}")
+        else:
+            problems.append(f"edit PUT: {answer.status_code} where solve exits {code}: {answer.text[:300]}")
+        with client.websocket_connect("/t0ken/ws", headers={"host": f"127.0.0.1:{port}"}) as socket:
+            for seq in range(drags + 1):
+                state = document.state()
+                points = sorted((state.get("handles") or {}).get("points", {})) if isinstance(state, dict) else []
+                x, y = (rng.choice(_DRAGS) if rng.random() < 0.4 else rng.uniform(-500, 500) for _ in range(2))
+                name = rng.choice(points) if points and rng.random() < 0.8 else rng.choice(_POINTS)
+                edit = rng.choice([
+                    {"op": "move-point", "point": name, "to": [x, y]}, {"op": "drive", "to": [x, y]},
+                    {"op": "guess", "point": name, "to": [x, y]},
+                    {"op": "set", "key": ["input", rng.choice(["omega", "angle", "alpha", "s"])], "value": x},
+                    {"op": "length", "link": rng.choice(["2", "3", "<"]), "point": name, "value": x},
+                ])
+                message = ({"op": "full"} if seq == drags else
+                           {"op": "edit", "edit": edit, "merge": True, "draft": rng.random() < 0.5, "seq": seq})
+                try:
+                    socket.send_text(json.dumps(message))
+                    reply = _strict_json(socket.receive_text())
+                except Exception as error:  # noqa: BLE001 - a closed socket or bad JSON is a finding
+                    problems.append(f"edit websocket {str(message)[:200]}: {type(error).__name__}: {str(error)[:300]}")
+                    break
+                kind = ("refused" if isinstance(reply, dict) and "refused" in reply else
+                        "solved" if isinstance(reply, dict) and reply.get("ok") else "not solved")
+                outcome.tally[f"edit websocket {'full' if seq == drags else 'edit'} {kind}"] += 1
+                _check_state(reply, f"edit websocket {str(message)[:200]}", problems)
+        for path in ("/t0ken/api/solution", "/t0ken/api/state", "/t0ken/api/drawing.svg", "/t0ken/api/steps/1.svg"):
+            got = client.get(path)
+            if got.status_code not in (200, 404, 422) or (got.status_code == 200 and path.endswith(".svg")
+                                                          and "<script" in got.text):
+                problems.append(f"edit GET {path}: {got.status_code}: {got.text[:300]}")
+            elif got.status_code == 200 and path.endswith(".svg"):
+                _check_state({"svg": got.text}, f"edit GET {path}", problems)
+            elif got.status_code != 404:
+                try:
+                    _strict_json(got.text)
+                except ValueError as error:
+                    problems.append(f"edit GET {path}: not valid JSON: {error}")
+        after = scene.stat()
+        if (after.st_mtime_ns, after.st_ino, scene.read_text(encoding="utf-8")) != (
+                on_disk.st_mtime_ns, on_disk.st_ino, case.text):
+            problems.append("edit: the scene's file was written before a save")
+        final = document.state()
+        if final["ok"]:
+            saved = client.post("/t0ken/api/save", json={"force": False})
+            outcome.codes["edit-save"] = saved.status_code
+            written = scene.read_text(encoding="utf-8")
+            if saved.status_code != 200 or written != final["text"]:
+                problems.append(f"edit save: {saved.status_code}: {saved.text[:200]}; the file holds the text: "
+                                f"{written == final['text']}")
+            again, again_out, again_err = _main(["solve", "--json", str(scene)])
+            if again != 0 or _without_timing(_strict_json(again_out)) != _without_timing(final["result"]):
+                problems.append(f"edit save: the saved file solves otherwise (exit {again}): {again_err[-300:]}")
+    left = sorted({p.name for p in folder.iterdir()} - set(names_before))
+    if left:
+        problems.append(f"edit: files left: {left}")
+    outcome.seconds["edit"] = time.process_time() - start
+    return outcome
+
+
 def _write_answers(answers: Path, outcome: Outcome, folder: Path) -> None:
     """An answers file from the solve's JSON (right, or with a velocity's x turned round: wrong), or a broken one
     when it did not solve."""
@@ -303,7 +451,7 @@ def _browse(pages: list[Path]) -> list[str]:
             for path in pages:
                 page = browser.new_page()
                 errors: list[str] = []
-                page.on("pageerror", lambda error, errors=errors: errors.append(str(error)))
+                page.on("pageerror", lambda error: errors.append(str(error)))  # noqa: B023 - the page is closed below
                 page.goto(path.as_uri())
                 ran = page.evaluate("typeof window.kinepoly === 'object' || !!document.querySelector('main')")
                 if errors or not ran or page.evaluate("window.pwned !== undefined"):
@@ -319,6 +467,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--cases", type=int, default=200)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--browser", type=int, default=0, metavar="N", help="open every N-th web page in chromium")
+    parser.add_argument("--editor", action="store_true",
+                        help="also run kinepoly edit's JSON API on every case (run_editor)")
+    parser.add_argument("--editor-only", action="store_true", help="run only the editor's API on every case")
     parser.add_argument("--slow", type=float, default=20.0, help="CPU seconds of one command counted as slow")
     args = parser.parse_args(argv)
     counts: Counter[str] = Counter()
@@ -329,9 +480,16 @@ def main(argv: list[str] | None = None) -> int:
     started = time.perf_counter()
     for k, case in enumerate(cases(args.seed, args.cases)):
         with tempfile.TemporaryDirectory() as work:
-            outcome = run_case(case, Path(work))
+            outcome = Outcome() if args.editor_only else run_case(case, Path(work))
+            if args.editor or args.editor_only:
+                with tempfile.TemporaryDirectory() as editing:
+                    edited = run_editor(case, Path(editing))
+                outcome.codes.update(edited.codes)
+                outcome.problems += edited.problems
+                outcome.seconds.update(edited.seconds)
+                counts.update(edited.tally)
             for command, code in outcome.codes.items():
-                counts[f"{command} exit {code}"] += 1
+                counts[f"{command} {'status' if command.startswith('edit') else 'exit'} {code}"] += 1
                 counts["runs"] += 1
             for command, seconds in outcome.seconds.items():
                 if seconds > args.slow:
@@ -352,7 +510,7 @@ def main(argv: list[str] | None = None) -> int:
     failures += browsed
     print(f"cases {counts['cases']}, command runs {counts['runs']}, web pages {counts['pages']} "
           f"({len(pages)} opened in chromium), {time.perf_counter() - started:.0f} s")
-    for key in sorted(k for k in counts if " exit " in k):
+    for key in sorted(k for k in counts if " exit " in k or k.startswith("edit")):
         print(f"  {key}: {counts[key]}")
     print(f"problems: {len(failures)}; over {args.slow:g} s of CPU: {len(slow)}")
     for line in failures + slow:

@@ -63,3 +63,34 @@ def test_a_guess_is_offered_for_a_dyads_inner_joint_where_no_guess_tells_its_ass
     assert offered(four_bar) == []
     assert offered(four_bar.replace("[guess]\nB = [110, 80]\n", "")) == ["B"]
     assert offered(template_text("six-bar").replace("E = [200, 20]\n", "")) == ["E"]
+
+
+@pytest.mark.parametrize("edit", [
+    {"op": "move-point", "point": "B", "to": [10**400, 0]},
+    {"op": "drive", "to": [0, -10**400]},
+    {"op": "guess", "point": "B", "to": [10**400, 10**400]},
+    {"op": "length", "link": "3", "point": "B", "value": 10**400},
+    {"op": "set", "key": ["input", "omega"], "value": 10**400},
+    {"op": "set", "key": ["guess", "B"], "value": [1, 10**400]},
+])
+def test_a_whole_number_too_large_for_a_float_is_refused_with_a_message(edit: dict[str, object]) -> None:
+    # JSON holds whole numbers of any size; one beyond a float's range (found by the fuzzer) made an internal error
+    from kinepoly.editor.edits import EditError
+
+    text = template_text("four-bar")
+    before = evaluate(text, "scene.toml", draw=False)
+    with pytest.raises(EditError, match="expected"):
+        apply_edit(text, edit, before.solution)
+
+
+def test_a_length_of_a_link_the_loader_made_is_refused_with_a_message() -> None:
+    # a cam's equivalent link (4: K23 to W) is not in the text; its length made an internal error (found by the fuzzer)
+    from pathlib import Path
+
+    from kinepoly.editor.edits import EditError
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "cam-roller-rocker.toml").read_text(encoding="utf-8")
+    before = evaluate(text, "scene.toml", draw=False)
+    assert before.solution is not None and "4" in [link.name for link in before.solution.scene.links]
+    with pytest.raises(EditError, match="length"):
+        apply_edit(text, {"op": "length", "link": "4", "point": "W", "value": 100}, before.solution)

@@ -198,3 +198,21 @@ def test_a_long_chain_of_healthy_loops_gives_no_warning(capsys: pytest.CaptureFi
     data = json.loads(out)
     assert data["warnings"] == []
     assert data["check"]["condition_number"] < 1e3
+
+
+@pytest.mark.parametrize(("scene", "old", "new"), [
+    ("four-bar", "B = [110, 80]", "B = [110, -1e308]"),
+    ("triad", "C = [101, 21]", "C = [-322.1, -1e308]"),
+    ("triad", "C = [101, 21]", "C = [1e200, 1e200]"),
+])
+def test_a_guess_at_the_edge_of_the_floats_is_no_internal_error(capsys: pytest.CaptureFixture[str], tmp_path: Path,
+                                                                scene: str, old: str, new: str) -> None:
+    # a [guess] whose squared distance overflows a float (found by fuzzing the editor's drags) made exit 70
+    text = BASE if scene == "four-bar" else (Path(__file__).resolve().parents[2] / "examples" /
+                                             f"{scene}.toml").read_text(encoding="utf-8")
+    assert old in text
+    code, out, err = run_on(capsys, tmp_path, text.replace(old, new), "solve", "--json")
+    assert code in (0, 3), err
+    assert "internal error" not in err and "Traceback" not in err
+    if code == 0:
+        json.loads(out, parse_constant=lambda c: (_ for _ in ()).throw(ValueError(c)))

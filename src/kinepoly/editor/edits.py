@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeGuard
 
 import tomlkit
 from tomlkit.exceptions import TOMLKitError
@@ -216,7 +216,7 @@ def _drive(doc: TOMLDocument, solution: Solution, to: tuple[float, float]) -> No
 
 
 def _length(doc: TOMLDocument, solution: Solution, link_name: str, point: str, value: object) -> None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+    if not _finite(value) or value <= 0:
         raise EditError(f"length: {value!r} is not a length; expected a positive number")
     try:
         link = solution.scene.link(link_name)
@@ -225,6 +225,9 @@ def _length(doc: TOMLDocument, solution: Solution, link_name: str, point: str, v
     first, rest = link.points[0], {p.name: p for p in link.points[1:]}
     if point not in rest:
         raise EditError(f"length: link {link_name} has no point {point!r} other than its first, {first.name}")
+    if not _written(doc, link_name, point):
+        raise EditError(f"length: the scene's [links] does not write {point} in link {link_name} (the loader makes "
+                        f"it); change the links it is made of")
     dx, dy = rest[point].local[0] - first.local[0], rest[point].local[1] - first.local[1]
     size = math.hypot(dx, dy)
     if size == 0.0:
@@ -289,15 +292,24 @@ def _value(value: object) -> Any:
     if isinstance(value, bool) or value is None:
         raise EditError(f"set: value {value!r}; expected a number, a string or a list of numbers")
     if isinstance(value, (int, float)):
-        if not math.isfinite(value):
+        if not _finite(value):
             raise EditError(f"set: value {value!r}; expected a finite number")
         return value
     if isinstance(value, str):
         return value
-    if isinstance(value, list) and value and all(isinstance(x, (int, float)) and not isinstance(x, bool)
-                                                 and math.isfinite(x) for x in value):
+    if isinstance(value, list) and value and all(_finite(x) for x in value):
         return list(value)
     raise EditError(f"set: value {value!r}; expected a number, a string or a list of numbers")
+
+
+def _finite(x: object) -> TypeGuard[int | float]:
+    """Whether ``x`` is a number (not a bool) a float holds finite: JSON's whole numbers have no bound."""
+    if isinstance(x, bool) or not isinstance(x, (int, float)):
+        return False
+    try:
+        return math.isfinite(float(x))
+    except OverflowError:
+        return False
 
 
 def _name(name: object) -> str:
@@ -308,7 +320,6 @@ def _name(name: object) -> str:
 
 def place(to: object) -> tuple[float, float]:
     """An edit's place ``[x, y]``; EditError when it is not one."""
-    if not (isinstance(to, list) and len(to) == 2 and all(isinstance(x, (int, float)) and not isinstance(x, bool)
-                                                          and math.isfinite(x) for x in to)):
+    if not (isinstance(to, list) and len(to) == 2 and all(_finite(x) for x in to)):
         raise EditError(f"{to!r} is not a place; expected [x, y] in the scene's length unit")
     return float(to[0]), float(to[1])

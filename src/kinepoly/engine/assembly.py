@@ -182,7 +182,8 @@ class NearestGuess:
         return min((c for c in found if c.poses is not None), key=lambda c: self._score_poses(mechanism, c.poses))
 
     def _score_poses(self, mechanism: Mechanism, poses: Mapping[str, LinkPose] | None) -> float:
-        return sum(abs(complex(*pose.world(p.local)) - complex(*self.guess[p.name])) ** 2
+        # squared by multiplying: a guess at the edge of the floats gives inf, where ** 2 raises OverflowError
+        return sum((d := abs(complex(*pose.world(p.local)) - complex(*self.guess[p.name]))) * d
                    for link, pose in (poses or {}).items() for p in mechanism.scene.link(link).points
                    if p.name in self.guess)
 
@@ -248,7 +249,7 @@ class Continuity:
             return None
         g = complex(*self.guess[joint])
         tells = [complex(t[row]) for t in closure.telling]
-        own = [abs(t - g) ** 2 for t in tells]
+        own = [abs(t - g) * abs(t - g) for t in tells]  # inf, not OverflowError, for a guess far out
         size = abs(tells[1] - tells[0]) + max(max(abs(t.real), abs(t.imag)) for t in tells)
         return own.index(min(own)) if abs(own[0] - own[1]) > 1e-12 * size * size else None
 
