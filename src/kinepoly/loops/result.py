@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import replace
 from typing import Any
 
@@ -48,25 +49,22 @@ def _resolve(solution: Solution, label: str) -> tuple[str, complex] | None:
     return link, complex(x, y)
 
 
+def _tips(solution: Solution, labels: Iterable[str], motion: Callable[[str, complex], complex]) -> dict[str, Vec]:
+    """Each tip of ``labels`` that is a point of a link, moved as the loops move that link's point there."""
+    return {label: _vec(motion(*found)) for label in labels if (found := _resolve(solution, label)) is not None}
+
+
 def loop_method_solution(solution: Solution) -> tuple[Solution, LoopSolution]:
     """The solve with every omega, alpha, tip and slider rate taken from the loop equations."""
     asked = solution.asked
     loops = solve_loops(solution.mechanism, full_pose(solution), with_acceleration=asked.needs_acceleration)
     velocity, acceleration = solution.velocity, solution.acceleration
     if velocity is not None:
-        tips = {}
-        for label in velocity.tips:
-            found = _resolve(solution, label)
-            if found is not None:
-                tips[label] = _vec(loops.velocity(*found))
-        velocity = replace(velocity, tips=tips, omega={k: loops.omega[k] for k in velocity.omega})
+        velocity = replace(velocity, tips=_tips(solution, velocity.tips, loops.velocity),
+                           omega={k: loops.omega[k] for k in velocity.omega})
     if acceleration is not None and loops.alpha is not None:
-        tips = {}
-        for label in acceleration.tips:
-            found = _resolve(solution, label)
-            if found is not None:
-                tips[label] = _vec(loops.acceleration(*found))
-        acceleration = replace(acceleration, tips=tips, alpha={k: loops.alpha[k] for k in acceleration.alpha})
+        acceleration = replace(acceleration, tips=_tips(solution, acceleration.tips, loops.acceleration),
+                               alpha={k: loops.alpha[k] for k in acceleration.alpha})
     sliders = {}
     for name, old in solution.sliders.items():
         sliders[name] = SliderValues(loops.s[name], loops.s_dot[name] if old.s_dot is not None else None,
