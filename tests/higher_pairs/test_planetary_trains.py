@@ -99,10 +99,13 @@ def _check(z_sun: int, z_planet: int, module: float, roles: dict[str, str],
     given_members = {m: inputs[m] for m in MEMBERS if roles[m] == "driven"}
     given_members.update({m: (0.0, 0.0, 0.0) for m in MEMBERS if roles[m] == "fixed"})
     link = {m: _NAMES[m] for m in MEMBERS} | {"planet": "4"}
+    squared = 0.0  # the largest omega squared: the normal terms an alpha is read from are of that size
     for index, key in enumerate(("angle", "omega", "alpha")):
         value = {m: math.radians(v[0]) if index == 0 else v[index] for m, v in given_members.items()}
         want = willis(z_sun, z_planet, value)
-        scale = max(1.0, *(abs(v) for v in want.values()))
+        scale = max(1.0, *(abs(v) for v in want.values()), squared if index == 2 else 0.0)
+        if index == 1:
+            squared = max(v * v for v in want.values())
         for member, expected in want.items():
             if member in MEMBERS and roles[member] == "fixed":
                 continue
