@@ -25,6 +25,7 @@ from __future__ import annotations
 
 __all__ = [
     "EXIT_CANNOT_ASSEMBLE",
+    "EXIT_INTERNAL",
     "EXIT_OK",
     "EXIT_SCENE",
     "EXIT_WRONG_ANSWERS",
@@ -36,12 +37,15 @@ __all__ = [
     "OutputError",
     "SceneError",
     "SingularityError",
+    "error_text",
+    "internal_error_text",
 ]
 
 EXIT_OK = 0
 EXIT_WRONG_ANSWERS = 1
 EXIT_SCENE = 2
 EXIT_CANNOT_ASSEMBLE = 3
+EXIT_INTERNAL = 70
 
 
 class KinepolyError(Exception):
@@ -100,3 +104,13 @@ class SingularityError(KinepolyError):
     """Raised at a singular position: two construction lines parallel or a zero determinant."""
 
     exit_code = EXIT_CANNOT_ASSEMBLE
+
+
+def error_text(error: KinepolyError) -> str:
+    """A user's error as the command line prints it (``kinepoly edit`` shows it the same)."""
+    return f"kinepoly: error: {error}"
+
+
+def internal_error_text(error: Exception) -> str:
+    """An error that is not the user's, as the command line prints it: never a traceback."""
+    return f"kinepoly: internal error: {type(error).__name__}: {error}; please report it with the scene"

@@ -20,12 +20,11 @@ import threading
 from collections.abc import Callable, Sequence
 
 from kinepoly.cli import animate, bench, check, draw, edit, handout, solve, sweep, variants
-from kinepoly.errors import EXIT_SCENE, KinepolyError
+from kinepoly.errors import EXIT_INTERNAL, EXIT_SCENE, KinepolyError, error_text, internal_error_text
 
 __all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "EXIT_TERMINATED", "HelpFormatter", "error_text", "internal_error_text",
            "main", "main_exit", "parser", "version"]
 
-EXIT_INTERNAL = 70
 EXIT_INTERRUPTED = 130
 """Ctrl-C, as a shell reports a process stopped by SIGINT (128 + 2)."""
 EXIT_TERMINATED = 143
@@ -88,16 +87,6 @@ def version() -> str:
         return installed("kinepoly")
     except PackageNotFoundError:
         return "unknown"
-
-
-def error_text(error: KinepolyError) -> str:
-    """A user's error as the command line prints it (``kinepoly edit`` shows it the same)."""
-    return f"kinepoly: error: {error}"
-
-
-def internal_error_text(error: Exception) -> str:
-    """An error that is not the user's, as the command line prints it: never a traceback."""
-    return f"kinepoly: internal error: {type(error).__name__}: {error}; please report it with the scene"
 
 
 def _usage_exit(message: str) -> int:

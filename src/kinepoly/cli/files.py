@@ -12,11 +12,11 @@ import errno
 import os
 import stat
 import sys
-import tempfile
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any
 
+from kinepoly.atomic import write_atomically
 from kinepoly.errors import OutputError, SceneError
 
 if TYPE_CHECKING:
@@ -36,45 +36,6 @@ def paper_of(spec: str) -> tuple[float, float]:
         return paper_size(spec)
     except ValueError as error:
         raise OutputError(str(error)) from error
-
-
-def _umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
-def write_atomically(path: str | os.PathLike[str], write: Callable[[IO[Any]], None], *, binary: bool) -> None:
-    """Call ``write`` on a temporary file beside ``path``, then rename it to ``path``.
-
-    An interrupted or failed run leaves ``path`` as it was (absent or the previous file) and no
-    temporary file behind. A new file gets the mode the umask leaves of 0666, a file replaced keeps
-    its mode; a symbolic link is kept and the file it names replaced. An existing ``path`` that is
-    not a regular file (a device such as /dev/null, a FIFO) is written directly: it cannot be replaced.
-    OSError (no such folder, no permission, no space left) propagates to the caller.
-    """
-    target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
-    try:
-        mode = os.stat(target).st_mode
-    except FileNotFoundError:
-        mode = None
-    if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):
-        with open(target, "wb") if binary else open(target, "w", encoding="utf-8", newline="\n") as stream:
-            write(stream)
-        return
-    # the temporary name shortened: any name the file system holds can be written
-    handle, temporary = tempfile.mkstemp(prefix=f".{target.name[:64]}.", suffix=".part", dir=target.parent)
-    try:
-        with os.fdopen(handle, "wb") if binary else os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            write(stream)
-            stream.flush()
-            os.fsync(stream.fileno())
-        os.chmod(temporary, stat.S_IMODE(mode) if mode is not None else 0o666 & ~_umask())
-        os.replace(temporary, target)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(temporary)
-        raise
 
 
 def output_path(value: str, option: str, inputs: Iterable[str] = ()) -> Path:

@@ -16,15 +16,10 @@ import argparse
 import json
 import sys
 import time
-from typing import TYPE_CHECKING, Any
 
 from kinepoly.cli.files import PAPER_HELP, paper_of
 
-if TYPE_CHECKING:
-    from kinepoly.scene.spec import Scene
-    from kinepoly.solution import Solution
-
-__all__ = ["add_arguments", "run", "solved"]
+__all__ = ["add_arguments", "run"]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -39,19 +34,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "(--steps prints their derivation; gears and cams are not covered: exit 2)")
 
 
-def solved(scene: Scene, paper: tuple[float, float], load_s: float = 0.0) -> tuple[Solution, dict[str, Any]]:
-    """The solution of ``scene`` and the object ``--json`` prints for it (``kinepoly edit`` answers it too)."""
-    from kinepoly.present.report import to_json
-    from kinepoly.present.scales import decide_scales
-    from kinepoly.solution import solve
-
-    solution = solve(scene, load_s=load_s)
-    return solution, to_json(solution, decide_scales(solution, paper))
-
-
 def run(args: argparse.Namespace) -> int:
     """Load, solve, print; the exit status."""
-    from kinepoly.present.report import steps_text, table_text
+    from kinepoly.present.report import solved, steps_text, table_text
     from kinepoly.present.scales import decide_scales
     from kinepoly.scene.loader import load_scene
 

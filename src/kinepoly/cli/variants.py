@@ -13,9 +13,10 @@ import argparse
 import math
 import os
 from pathlib import Path
-from typing import IO, TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from kinepoly.cli.files import emit, scene_file, write_atomically
+from kinepoly.atomic import write_bytes
+from kinepoly.cli.files import emit, scene_file
 from kinepoly.errors import EXIT_OK, OutputError, SceneError
 
 if TYPE_CHECKING:
@@ -178,14 +179,7 @@ def _made_quiz(variants: list[Variant], stem: str, seed: int, kind: str, toleran
 
 
 def _write_quiz(path: Path, content: bytes, quiz: Quiz, tolerance: str) -> None:
-    def write(stream: IO[Any]) -> None:
-        stream.write(content)
-
-    try:
-        write_atomically(path, write, binary=True)
-    except OSError as exc:
-        raise OutputError(f"{path}: (file): cannot be written ({exc.strerror}); expected a path in a folder that "
-                          "exists and can be written") from None
+    write_bytes(path, content)
     count = sum(len(q.quantities) for q in quiz.questions)
     print(f"quiz {path}: {len(quiz.questions)} questions, {count} numbers, tolerance {tolerance}, "
           f"language {quiz.language}, question bank category {quiz.category}")

@@ -132,7 +132,7 @@ class Document:
 
     def save(self, force: bool = False) -> None:
         """Write the text to the file; ChangedOnDisk (unless ``force``) when the file changed since read or saved."""
-        from kinepoly.cli.files import write_atomically
+        from kinepoly.atomic import write_atomically
 
         with self._lock:
             if not force and _stamp(self.path) != self._disk:

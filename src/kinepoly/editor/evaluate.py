@@ -1,7 +1,7 @@
 """A scene's text evaluated as the command line would: the ``solve --json`` object or the errors, and the drawing.
 
 ``evaluate`` loads the text (``scene.loader.loads_scene``, the file's name in every message),
-solves it by the code ``kinepoly solve`` runs (``cli.solve.solved``) and lays out the sheet of
+solves it by the code ``kinepoly solve`` runs (``present.report.solved``) and lays out the sheet of
 ``kinepoly draw`` (``render.sheet``) on the editor's paper, kept as given so that the drawing does
 not jump between papers while the user drags. ``handles`` are the named points of every solved
 link, where the page lets the user grab them.
@@ -55,8 +55,8 @@ def evaluate(text: str, source: str, *, paper: tuple[float, float] = PAPER, draw
     (``render.sheet.build_sheet``'s draft), the sheet drawn while the user drags; ``redrawn`` draws it whole.
     ``written``: the SVG of the items drawn before (``render.svg.svg_text``'s ``made``), shared by the texts of one
     document: what a move leaves unchanged is not written again."""
-    from kinepoly.cli import EXIT_INTERNAL, error_text, internal_error_text
-    from kinepoly.cli.solve import solved
+    from kinepoly.errors import EXIT_INTERNAL, error_text, internal_error_text
+    from kinepoly.present.report import solved
     from kinepoly.scene.loader import loads_scene
 
     t0 = time.perf_counter()

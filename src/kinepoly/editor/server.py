@@ -24,10 +24,10 @@ from starlette.routing import Mount, Route, WebSocketRoute
 from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
-from kinepoly.cli import internal_error_text
 from kinepoly.editor.document import ChangedOnDisk, Document
 from kinepoly.editor.edits import EditError
 from kinepoly.editor.evaluate import Evaluation
+from kinepoly.errors import internal_error_text
 
 __all__ = ["Guard", "make_app", "new_token"]
 

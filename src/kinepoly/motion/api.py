@@ -14,7 +14,7 @@ import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import IO, TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from kinepoly.errors import OutputError, SceneError
 from kinepoly.motion.frames import DEFAULT_PARTS, Frames, make_frames
@@ -109,16 +109,9 @@ def animate(scene: Scene | str | os.PathLike[str], path: str | os.PathLike[str] 
     data = render(frames, fmt, fps=fps, dpi=dpi, progress=progress)
     t2 = time.perf_counter()
     if path is not None:
-        from kinepoly.cli.files import write_atomically
+        from kinepoly.atomic import write_bytes
 
-        def write(stream: IO[Any]) -> None:
-            stream.write(data)
-
-        try:
-            write_atomically(path, write, binary=True)
-        except OSError as error:
-            raise OutputError(f"{path}: cannot be written ({error.strerror}); expected a path in a folder that "
-                              "exists and can be written") from None
+        write_bytes(path, data)
     return Animation(frames, data, fmt, {"sweep_s": t1 - t0, "drawing_s": t2 - t1, "total_s": t2 - t0})
 
 

@@ -15,10 +15,10 @@ from kinepoly.present.centers import centers_json, centers_steps_text, centers_t
 from kinepoly.present.clean import Noise, given_angle, noise_of
 from kinepoly.present.phrasing import Context, canonical_terms, canonical_text, english, scale_note, step_sentence
 from kinepoly.present.scales import PolygonScales, decide_scales
-from kinepoly.scene.spec import GivenInput, LinkInput
-from kinepoly.solution import Solution
+from kinepoly.scene.spec import GivenInput, LinkInput, Scene
+from kinepoly.solution import Solution, solve
 
-__all__ = ["input_text", "named_line", "readable_json", "steps_text", "table_text", "to_json"]
+__all__ = ["input_text", "named_line", "readable_json", "solved", "steps_text", "table_text", "to_json"]
 
 
 def _pair(v: Vec) -> list[float]:
@@ -358,3 +358,10 @@ def steps_text(solution: Solution, scales: PolygonScales | None = None) -> str:
     if solution.centers is not None:
         out += centers_steps_text(solution.centers, len(solution.steps) + 1, context)
     return "\n".join(out)
+
+
+def solved(scene: Scene, paper: tuple[float, float], load_s: float = 0.0) -> tuple[Solution, dict[str, Any]]:
+    """The solution of ``scene`` and the object ``kinepoly solve --json`` prints for it on ``paper`` (``kinepoly
+    edit`` answers it too)."""
+    solution = solve(scene, load_s=load_s)
+    return solution, to_json(solution, decide_scales(solution, paper))
