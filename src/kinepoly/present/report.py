@@ -16,7 +16,7 @@ from kinepoly.present.clean import Noise, given_angle, noise_of
 from kinepoly.present.phrasing import Context, canonical_terms, canonical_text, english, scale_note, step_sentence
 from kinepoly.present.scales import PolygonScales, decide_scales
 from kinepoly.scene.spec import GivenInput, LinkInput, Scene
-from kinepoly.solution import Solution, solve
+from kinepoly.solution import Solution
 
 __all__ = ["input_text", "named_line", "readable_json", "solved", "steps_text", "table_text", "to_json"]
 
@@ -363,5 +363,7 @@ def steps_text(solution: Solution, scales: PolygonScales | None = None) -> str:
 def solved(scene: Scene, paper: tuple[float, float], load_s: float = 0.0) -> tuple[Solution, dict[str, Any]]:
     """The solution of ``scene`` and the object ``kinepoly solve --json`` prints for it on ``paper`` (``kinepoly
     edit`` answers it too)."""
+    from kinepoly.solution import solve  # looked up at the call, as the command line always did
+
     solution = solve(scene, load_s=load_s)
     return solution, to_json(solution, decide_scales(solution, paper))
