@@ -2,7 +2,7 @@
 
 ``python tools/cli_options.py`` rewrites the table between ``<!-- options: begin -->`` and
 ``<!-- options: end -->`` in README.md; ``--check`` only says whether it is up to date (exit 1
-if not). ``tests/present/test_cli_options.py`` keeps the two equal.
+if not). ``tests/cli/test_cli_options.py`` keeps the two equal.
 """
 
 from __future__ import annotations

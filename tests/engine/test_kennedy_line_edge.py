@@ -2,7 +2,7 @@
 
 Planning only (no geometry): a line edge needs one triangle whose two other edges are known points, a point
 two; only the centers on the path to the asked ones are derived. The geometry is tested against the velocity
-poles in ``tests/higher_pairs/test_cam_line_edge.py``.
+poles in ``tests/engine/test_cam_line_edge.py``.
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ the curve, its tangent and its curvature are continuous all round, the last piec
 
 Accuracy, for points sampled from a smooth closed curve at spacing h: the point is off the curve
 by O(h^4), the tangent's direction by O(h^3), the curvature by O(h^2) (measured in
-``tests/higher_pairs/test_spline_geometry.py``; ``docs/scene-format.md`` states the figures).
+``tests/geom/test_spline_geometry.py``; ``docs/scene-format.md`` states the figures).
 
 Every evaluation is over a numpy array of parameters (any shape; u is taken modulo L). Curvature is
 positive where the curve turns counter-clockwise, the centre of curvature on the left of the tangent.

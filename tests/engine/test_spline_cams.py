@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from tests.higher_pairs.test_cams import _rocker
+from tests.engine.test_cams import _rocker
 
 import kinepoly
 from kinepoly.errors import AssemblyError

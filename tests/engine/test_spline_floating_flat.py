@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from tests.higher_pairs.test_spline_floating import (
+from tests.engine.test_spline_floating import (
     CIRCLE,
     COLUMNS,
     FLAT,

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from tests.higher_pairs.test_spline_floating import CIRCLE, FLAT, _scene
+from tests.engine.test_spline_floating import CIRCLE, FLAT, _scene
 
 from kinepoly.sweep import sweep
 
