@@ -29,13 +29,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from kinepoly.geom.tolerances import PHASE_TOLERANCE
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import CamSpec, GearSpec, PitchCircle, PitchLine
 
 __all__ = ["PHASE_TOLERANCE", "GearRow", "cam_row", "gear_rows", "replaced_links", "square_root"]
-
-PHASE_TOLERANCE = 1e-7
-"""How far (relative to the radii) the construction's rolled arcs may be from the phase rule's."""
 
 _TURNS = 1000
 """Whole turns of the first circle searched for the phase rule's constant."""

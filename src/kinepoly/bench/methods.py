@@ -26,6 +26,7 @@ from kinepoly.engine.polygon import CrossLines
 from kinepoly.engine.position import input_values, solve_positions
 from kinepoly.engine.row import pose_row
 from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross_lines
+from kinepoly.geom.tolerances import TINY_POSITIVE
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import Pose
 from kinepoly.scene.spec import LinkInput, SliderInput
@@ -175,7 +176,7 @@ def geos_crossing(through1: PointsLike, direction1: PointsLike, through2: Points
     w = (d1.conjugate() * d2).imag
     sin_angle = w / (n1 * n2)
     gap = np.abs(t2 - t1)
-    reach = 2.0 * gap / np.abs(sin_angle) + gap + 1e-300
+    reach = 2.0 * gap / np.abs(sin_angle) + gap + TINY_POSITIVE
 
     def segments(through: Points, direction: Points, size: Reals) -> Any:
         u = direction / size

@@ -17,6 +17,7 @@ from kinepoly.check.estimate import ErrorEstimate, crossings
 from kinepoly.engine.steps import Step
 from kinepoly.engine.transmission import Transmission
 from kinepoly.errors import SingularityError
+from kinepoly.geom.tolerances import NEAR_SINGULAR_ERROR
 from kinepoly.notice import Notice
 
 __all__ = [
@@ -29,9 +30,6 @@ __all__ = [
 
 MIN_TRANSMISSION_DEG = 40.0
 """Below this transmission angle a dyad gets a ``transmission-angle`` warning."""
-
-NEAR_SINGULAR_ERROR = 1e-9
-"""An estimated relative error above this gets a ``near-singular`` warning."""
 
 
 def transmission_notices(found: list[Transmission], where: str) -> list[Notice]:

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 from kinepoly.engine.steps import Step
 from kinepoly.geom.lines import intersect
-from kinepoly.geom.tolerances import UNIT_ROUNDOFF
+from kinepoly.geom.tolerances import TINY_POSITIVE, UNIT_ROUNDOFF
 from kinepoly.geom.vec import norm
 
 __all__ = [
@@ -112,7 +112,7 @@ class ErrorEstimate:
 def _crossing_term(found: Crossing | None) -> float:
     if found is None:
         return 0.0
-    return C_CROSSING * UNIT_ROUNDOFF / max(abs(found.sin_angle), 1e-300)
+    return C_CROSSING * UNIT_ROUNDOFF / max(abs(found.sin_angle), TINY_POSITIVE)
 
 
 def estimate_errors(condition_number: float, steps: Sequence[Step], kinds: Iterable[str],

@@ -14,13 +14,11 @@ import numpy as np
 from kinepoly.check.coordinates import Vec, as_array, mechanism_size
 from kinepoly.check.newton import SINGULAR_CONDITION, condition_number
 from kinepoly.errors import SceneError
+from kinepoly.geom.tolerances import COINCIDENT_REL, RIGID_REL_TOL
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import GivenInput, GivenPoint
 
 __all__ = ["RIGID_REL_TOL", "GivenMotion", "solve_given"]
-
-RIGID_REL_TOL = 1e-9
-"""Given velocities (accelerations) of a rigid body may break rigidity by this much, relative."""
 
 
 @dataclass(frozen=True)
@@ -100,7 +98,7 @@ def _given_locals(mechanism: Mechanism, link: str, pts: tuple[GivenPoint, ...]) 
 
 def _check_distinct(source: str, pts: tuple[GivenPoint, ...], local: list[np.ndarray], size: float) -> None:
     for k in range(1, len(pts)):
-        if float(np.hypot(*(local[k] - local[0]))) <= 1e-12 * size:
+        if float(np.hypot(*(local[k] - local[0]))) <= COINCIDENT_REL * size:
             raise SceneError(
                 f"{_at(source, pts[k])}given.{pts[k].name}: {pts[0].name} and {pts[k].name} are the same point; "
                 "the motion of a body needs two distinct points"

@@ -18,6 +18,7 @@ from kinepoly.check.blocks import SparseMatrix, block_condition, solve_blocks, w
 from kinepoly.check.constraints import Constraint
 from kinepoly.check.coordinates import Body, Layout, bodies
 from kinepoly.errors import AssemblyError, SingularityError
+from kinepoly.geom.tolerances import NEWTON_REL_TOL
 
 __all__ = [
     "NEWTON_REL_TOL",
@@ -38,9 +39,6 @@ dead-centre itself Newton finds the (double) root only to about sqrt(unit roundo
 leaves a condition of 1e8 to 1e9. Ordinary poses have 1 to 1e3; 1e7 flags inputs within
 about 1e-12 rad of a dead-centre of a well-proportioned linkage.
 """
-
-NEWTON_REL_TOL = 1e-12
-"""Newton stops when every residual is below this times the mechanism's size (lengths)."""
 
 _MAX_NEWTON_STEPS = 100
 

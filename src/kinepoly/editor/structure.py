@@ -22,6 +22,7 @@ import tomlkit
 from tomlkit.items import AoT, Array, InlineTable, Table
 
 from kinepoly.editor.edits import EditError, number, pair, place, store
+from kinepoly.geom.tolerances import EDIT_SAME_REL, SIZE_FLOOR
 from kinepoly.model.pose import LinkPose
 
 if TYPE_CHECKING:
@@ -108,8 +109,8 @@ def add_dyad(doc: TOMLDocument, solution: Solution, edit: dict[str, Any]) -> Non
     joint = _new_point(used)
     slider = edit.get("slider") is True
     to = edit.get("to")
-    size = max(1e-9, max(math.hypot(*p) for p in (start_at, joint_at)))
-    if math.hypot(joint_at[0] - start_at[0], joint_at[1] - start_at[1]) < 1e-6 * size:
+    size = max(SIZE_FLOOR, max(math.hypot(*p) for p in (start_at, joint_at)))
+    if math.hypot(joint_at[0] - start_at[0], joint_at[1] - start_at[1]) < EDIT_SAME_REL * size:
         raise EditError("add-dyad: the new joint lies on the point it starts from; click another place")
     links = _table(doc, "links")
     first = _new_link(solution, doc)
@@ -118,7 +119,7 @@ def add_dyad(doc: TOMLDocument, solution: Solution, edit: dict[str, Any]) -> Non
     ground_pose = solution.pose.links.get(scene.ground, LinkPose(0.0, 0.0, 0.0))
     if slider:
         toward = place(to.get("at") if isinstance(to, dict) else None)
-        if math.hypot(toward[0] - joint_at[0], toward[1] - joint_at[1]) < 1e-6 * size:
+        if math.hypot(toward[0] - joint_at[0], toward[1] - joint_at[1]) < EDIT_SAME_REL * size:
             raise EditError("add-dyad: the slide's direction is from the joint to a place away from it")
         links[second] = _link_table({joint: [0, 0]})
         through = ground_pose.to_local(joint_at)
@@ -148,7 +149,7 @@ def add_dyad(doc: TOMLDocument, solution: Solution, edit: dict[str, Any]) -> Non
             ground_points[end] = [number(x) for x in pair(solution, ground_pose.to_local(end_at))]
         else:
             raise EditError("add-dyad: \"to\" is {\"point\": name} or {\"at\": [x, y]} (a new frame pivot)")
-        if math.hypot(end_at[0] - joint_at[0], end_at[1] - joint_at[1]) < 1e-6 * size:
+        if math.hypot(end_at[0] - joint_at[0], end_at[1] - joint_at[1]) < EDIT_SAME_REL * size:
             raise EditError("add-dyad: the new joint lies on the point it ends at; click another place")
         links[second] = _link_table({end: [0, 0], joint: pair(solution, _local(end_at, joint_at, joint_at))})
     guess = doc.get("guess")

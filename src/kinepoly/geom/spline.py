@@ -28,6 +28,7 @@ import numpy as np
 import numpy.typing as npt
 
 from kinepoly.geom.arrays import Bools, Points, Reals
+from kinepoly.geom.tolerances import STRAIGHT_CURVATURE
 
 __all__ = [
     "CurveFrame",
@@ -39,7 +40,7 @@ __all__ = [
     "signed_area",
 ]
 
-_STRAIGHT_CURVATURE = 1e-12
+_STRAIGHT_CURVATURE = STRAIGHT_CURVATURE
 """A curvature below this times 1/L (L the period) is a straight stretch: its centre is at infinity."""
 _FOOT_SAMPLES_PER_PIECE = 64
 """Samples of each piece among which ``nearest_parameter`` starts from the nearest."""

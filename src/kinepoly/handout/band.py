@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from kinepoly.geom.tolerances import PAPER_SAME_MM
 from kinepoly.handout.content import Column, Page, Paragraph, Table
 from kinepoly.handout.notation import runs_of, text_width, wrap
 from kinepoly.present.catalogue import Catalogue
@@ -148,7 +149,7 @@ def _blocks(page: Page, width: float, kinds: Sequence[str], say: Catalogue) -> l
     taken = sum(fits.values()) + (legend.width if legend and any(c.legend for c in shown) else 0.0)
     fills = [c for c in shown if c.fill]
     spare = width - taken - _GAP_MM * (len(shown) - 1)
-    fill_width = max(spare / len(fills) - 1e-6, _FILL_MIN_MM) if fills else 0.0
+    fill_width = max(spare / len(fills) - PAPER_SAME_MM, _FILL_MIN_MM) if fills else 0.0
     out: list[tuple[Block, list[str], bool]] = []
     tables = 0
     for column in shown:

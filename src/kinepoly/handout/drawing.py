@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any
 
+from kinepoly.geom.tolerances import PAPER_SAME_MM
 from kinepoly.handout.content import Drawing
 from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.labels import LabelCache
@@ -84,7 +85,7 @@ def band_frame(solution: Solution, page: tuple[float, float], band: float,
     for _ in range(4):
         shift = MARGIN_MM + band + GAP_MM - _bottom(layout)
         wanted = height - shift
-        if abs(wanted - paper_height) < 1e-6:
+        if abs(wanted - paper_height) < PAPER_SAME_MM:
             break
         paper_height = wanted
         layout = layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked, readable=readable)

@@ -20,6 +20,7 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from kinepoly.geom.tolerances import PAPER_ROUNDING_MM
 from kinepoly.render import text as render_text
 from kinepoly.render.text import Run
 
@@ -71,7 +72,7 @@ def wrap(text: str, size: float, width: float, bold: bool = False) -> list[str]:
     for word in text.split():
         w = _typeset_width(word, size, bold)
         trial = current_w + space + w if current else w
-        if current and trial > width + 1e-9:  # a sum's rounding does not break a line measured whole
+        if current and trial > width + PAPER_ROUNDING_MM:  # a sum's rounding does not break a line measured whole
             lines.append(" ".join(current))
             current, current_w = [word], w
         else:

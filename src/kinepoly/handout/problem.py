@@ -12,6 +12,7 @@ from collections.abc import Mapping
 from itertools import combinations
 
 from kinepoly.engine.circle_diagram import center_label, pair_name, split_pair
+from kinepoly.geom.tolerances import ANGLE_SAME_DEG
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
 from kinepoly.present.catalogue import Catalogue
 from kinepoly.render.titleblock import space_scale_text
@@ -117,7 +118,7 @@ def _line_degrees(radians: float) -> float:
     """A line's angle in degrees in [0, 180): the two senses of a line are one line (a face turned half a turn
     to have the disc on its left is the face given)."""
     degrees = math.degrees(radians) % 180.0
-    return 0.0 if math.isclose(degrees, 180.0, abs_tol=1e-9) else degrees
+    return 0.0 if math.isclose(degrees, 180.0, abs_tol=ANGLE_SAME_DEG) else degrees
 
 
 def _cam(solution: Solution, say: Catalogue, cam: CamSpec) -> list[Paragraph]:

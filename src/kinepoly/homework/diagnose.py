@@ -33,6 +33,7 @@ from typing import Generic, TypeVar
 
 from kinepoly.engine.acceleration import Rules
 from kinepoly.errors import KinepolyError
+from kinepoly.geom.tolerances import SAME_REL
 from kinepoly.homework.answers import AnswerKey, Direction, Tolerance, Value
 from kinepoly.homework.compare import compare
 from kinepoly.homework.reference import (
@@ -56,7 +57,7 @@ _CONSTRUCTIONS = (
     ("normal-reversed", "the normal terms omega^2 r drawn away from the center instead of toward it",
      Rules(normal=1.0)),
 )
-_TIE = 1e-9  # matches this much closer (relative) than another are a tie: the earlier candidate wins
+_TIE = SAME_REL  # matches this much closer (relative) than another are a tie: the earlier candidate wins
 _VELOCITY_LEVEL = ("velocity", "s_dot", "omega")
 _ACCELERATION_LEVEL = ("acceleration", "s_ddot", "alpha")
 _NOUNS = {"omega": "angular velocity", "alpha": "angular acceleration", "theta": "angle",

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from kinepoly.errors import SceneError
+from kinepoly.geom.tolerances import ANGLE_SAME_DEG, SAME_REL
 from kinepoly.homework.answers import AnswerKey, Direction, Value
 from kinepoly.homework.checking import make_checker
 from kinepoly.homework.diagnose import Candidate, candidates
@@ -48,7 +49,7 @@ DEFAULT_ANGLE_DEG = 2.0
 Part = Literal["value", "magnitude", "direction"]
 
 _TOLERANCE = re.compile(r"^\s*(?P<number>\d+(?:\.\d*)?|\.\d+)\s*(?P<unit>%|mm)\s*$")
-_SAME = 1e-9
+_SAME = SAME_REL
 """A mistake's number this close (relative) to the right one is the right one: that mistake does not touch it."""
 _SLIDER_NAMES = {"s": "s", "s_dot": "ds/dt", "s_ddot": "d²s/dt²"}
 
@@ -211,7 +212,7 @@ def _parts(value: Value) -> dict[Part, float] | None:
 def _degrees(radians: float) -> float:
     """An angle in degrees in (-180, 180]."""
     degrees = math.degrees(math.remainder(radians, 2.0 * math.pi))
-    return 180.0 if degrees <= -180.0 + 1e-9 else degrees + 0.0
+    return 180.0 if degrees <= -180.0 + ANGLE_SAME_DEG else degrees + 0.0
 
 
 def _apart(first: float, second: float, angle: bool) -> float:

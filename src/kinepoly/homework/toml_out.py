@@ -12,6 +12,7 @@ import math
 import re
 from collections.abc import Iterable, Sequence
 
+from kinepoly.geom.tolerances import NOISE_REL
 from kinepoly.homework.answers import AnswerKey, Direction, Value
 from kinepoly.homework.higher_pairs import as_written
 from kinepoly.present.clean import given_angle
@@ -173,7 +174,7 @@ def _answer(value: Value) -> str:
         return f"{{ direction = {_pair((value.x, value.y), 6)} }}"
     if isinstance(value, tuple):
         size = math.hypot(*value)
-        tidy = [0.0 if abs(c) <= 1e-9 * size else c for c in value]  # round-off beside a large component
+        tidy = [0.0 if abs(c) <= NOISE_REL * size else c for c in value]  # round-off beside a large component
         return _pair(tidy, 6)
     return toml_number(value, 6)
 

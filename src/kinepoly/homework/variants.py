@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from kinepoly.errors import AssemblyError, KinepolyError, SceneError
+from kinepoly.geom.tolerances import SAME_REL, TRACKED_REL
 from kinepoly.geom.vec import norm, unit
 from kinepoly.homework.answers import AnswerKey, Value
 from kinepoly.homework.higher_pairs import (
@@ -64,7 +65,7 @@ _DRAWS_PER_VARIANT = 60
 _STEP_DEG = 15.0  # the largest turn of the input per step of a path
 _STEP_FACTOR = 0.05  # the largest relative change of a length per step
 _CONDITION_GROWTH = 10.0
-_TRACKED = 1e-6  # a read-back variant's points lie this close (relative to its size) to the tracked pose
+_TRACKED = TRACKED_REL  # a read-back variant's points lie this close (relative to its size) to the tracked pose
 
 Vec = tuple[float, float]
 
@@ -173,8 +174,8 @@ def _factors(rng: random.Random, scene: Scene, ranges: Ranges) -> dict[str, floa
     if not scene.gears:
         return {link.name: rng.uniform(ranges.factors[link.name].low, ranges.factors[link.name].high)
                 for link in scene.links}
-    low = math.ceil(100 * max(r.low for r in ranges.factors.values()) - 1e-9) / 100
-    high = math.floor(100 * min(r.high for r in ranges.factors.values()) + 1e-9) / 100
+    low = math.ceil(100 * max(r.low for r in ranges.factors.values()) - SAME_REL) / 100
+    high = math.floor(100 * min(r.high for r in ranges.factors.values()) + SAME_REL) / 100
     factor = round(rng.uniform(low, high), 2) if low <= high else 1.0
     return {link.name: factor for link in scene.links}
 

@@ -16,13 +16,14 @@ from collections import deque
 from dataclasses import dataclass
 
 from kinepoly.errors import OutputError
+from kinepoly.geom.tolerances import ROUNDING_REL
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute, joint_links
 from kinepoly.model.pose import Pose
 from kinepoly.scene.spec import SliderSpec
 
 __all__ = ["Loop", "LoopMethodError", "Term", "choose_loops", "class_name", "loop_count", "spanning_tree"]
 
-_ZERO_LENGTH = 1e-12
+_ZERO_LENGTH = ROUNDING_REL
 
 
 class LoopMethodError(OutputError):

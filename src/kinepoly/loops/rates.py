@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinepoly.errors import SingularityError
+from kinepoly.geom.tolerances import LOOP_SINGULAR_DET
 from kinepoly.loops.contours import Loop, Term, choose_loops, class_name, spanning_tree
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import Pose
@@ -25,7 +26,7 @@ from kinepoly.scene.spec import LinkInput
 
 __all__ = ["Block", "Equation", "LoopSolution", "solve_loops"]
 
-_SINGULAR = 1e-10
+_SINGULAR = LOOP_SINGULAR_DET
 
 
 @dataclass(frozen=True)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from kinepoly.geom.tolerances import ANGLE_SAME_RAD, ROUNDING_REL
 from kinepoly.loops.contours import Loop, Term
 from kinepoly.loops.rates import Block, LoopSolution
 from kinepoly.present.catalogue import Catalogue
@@ -43,7 +44,7 @@ def loop_unknowns(loops: LoopSolution, loop: Loop) -> list[str]:
 
 def _flipped(term: Term) -> bool:
     """A moving link's vector at theta_1k ± 180° is written as minus the vector at theta_1k."""
-    return term.slider is None and abs(abs(term.offset) - math.pi) < 1e-9
+    return term.slider is None and abs(abs(term.offset) - math.pi) < ANGLE_SAME_RAD
 
 
 def _sign(loops: LoopSolution, term: Term) -> int:
@@ -55,7 +56,7 @@ def _exp(loops: LoopSolution, term: Term, cat: Catalogue) -> str:
         angle = cat.angle(term.angle)
         return f"e^{{i({angle})}}" if angle.startswith("−") else f"e^{{i {angle}}}"
     theta = variable(loops, loops.names[term.link], 0)
-    if abs(term.offset) < 1e-12 or _flipped(term):
+    if abs(term.offset) < ROUNDING_REL or _flipped(term):
         return f"e^{{i {theta}}}"
     sign = "+" if term.offset > 0 else "−"
     return f"e^{{i({theta} {sign} {cat.number(abs(math.degrees(term.offset)))}°)}}"
@@ -137,7 +138,7 @@ def _block_lines(loops: LoopSolution, block: Block, order: int, cat: Catalogue) 
     if block.kind == "input":
         return [cat.say("loops.input", unknown=names[0], value=cat.number(block.values[0]))]
     scale = max((abs(c) for row in block.matrix for c in row), default=0.0)
-    matrix = tuple(tuple(0.0 if abs(c) <= 1e-12 * scale else c for c in row) for row in block.matrix)
+    matrix = tuple(tuple(0.0 if abs(c) <= ROUNDING_REL * scale else c for c in row) for row in block.matrix)
     rows = []
     for row, rhs in zip(matrix, block.rhs, strict=True):
         left = " ".join(f"{'+' if c >= 0 else '−'} {cat.number(abs(c))} {n}" for c, n in zip(row, names, strict=True))

@@ -26,6 +26,7 @@ from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals
+from kinepoly.geom.tolerances import ROUNDING_REL, TINY_POSITIVE
 from kinepoly.scene.spec import LinkInput, Scene
 from kinepoly.sweep.plots import robust_window
 from kinepoly.sweep.run import PreparedSweep, SweepResult
@@ -56,7 +57,7 @@ def fitting_scale(radius: float, room_mm: float = _ROOM_MM) -> float:
     raw = room_mm / radius
     exponent = math.floor(math.log10(raw))
     candidates = [m * 10.0 ** (exponent + k) for k in (-1, 0) for m in _NICE]
-    return max(c for c in candidates if c <= raw * (1 + 1e-12))
+    return max(c for c in candidates if c <= raw * (1 + ROUNDING_REL))
 
 
 @dataclass(frozen=True)
@@ -311,7 +312,7 @@ def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, 
             if asked.needs_acceleration:
                 acceleration = construct_acceleration(velocity, prepared.plan, asked.acceleration)
         links = _links(result, idx)
-        size = max(1e-300, max(float(np.abs(link.xy - link.xy[:, :1]).max()) if link.xy.size else 0.0
+        size = max(TINY_POSITIVE, max(float(np.abs(link.xy - link.xy[:, :1]).max()) if link.xy.size else 0.0
                                 for link in links))
         sliders = _sliders(result, idx, size)
         v_frames = a_frames = None

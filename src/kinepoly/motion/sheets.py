@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from kinepoly.errors import KinepolyError
+from kinepoly.geom.tolerances import PAPER_SAME_MM, TINY_POSITIVE, TRACKED_REL, TRACKED_TURN_RAD
 from kinepoly.handout.notation import quantity_name, runs_of, text_width, typographic, wrap
 from kinepoly.motion.frames import NO_POLYGON, Frames
 from kinepoly.present.clean import format_number
@@ -44,7 +45,6 @@ DEFAULT_DPI = 160.0
 """1600 x 900 pixels on ``SHEET_MM``."""
 _FOOT_MM = 11.0
 _FOOT_FUNCTIONS_MM = 30.0
-_TOLERANCE = 1e-6
 _CAPTION_SHARE = 0.55
 """The caption's share of the foot's width where the functions are drawn beside it."""
 
@@ -83,7 +83,7 @@ def _geared(scene: Scene, solution: Solution, frames: Frames, k: int) -> Scene |
         phase = list(gear.phase)
         for side, link in enumerate(gear.links):
             turn = _link_turn(solution, frames, k, link)
-            if abs(turn) > _TOLERANCE:
+            if abs(turn) > TRACKED_TURN_RAD:
                 phase[side] -= turn
                 changed = True
         gears[g] = GearSpec(gear.name, gear.links, gear.pitch, gear.internal, (phase[0], phase[1]), gear.line)
@@ -91,7 +91,7 @@ def _geared(scene: Scene, solution: Solution, frames: Frames, k: int) -> Scene |
 
 
 def _matches(solution: Solution, swept: dict[str, complex], size: float) -> bool:
-    return all(abs(complex(*solution.position(p)) - z) <= _TOLERANCE * size for p, z in swept.items())
+    return all(abs(complex(*solution.position(p)) - z) <= TRACKED_REL * size for p, z in swept.items())
 
 
 def frame_solutions(frames: Frames, scene: Scene) -> list[Solution]:
@@ -100,7 +100,7 @@ def frame_solutions(frames: Frames, scene: Scene) -> list[Solution]:
     find = scene.find if centers and scene.find.instant_centers else dataclasses.replace(
         scene.find, instant_centers="all" if centers else ())
     x0, y0, x1, y1 = frames.box
-    size = max(x1 - x0, y1 - y0, 1e-300)
+    size = max(x1 - x0, y1 - y0, TINY_POSITIVE)
     out = []
     for k in range(frames.count):
         row = int(frames.rows[k])
@@ -155,7 +155,8 @@ def _figures(solution: Solution, layout: Layout) -> tuple[Any, ...]:
         x0, y0, x1, y1 = figure_box(figure)
         r = panel.drawing_rect
         corners = (panel.paper((x0, y0)), panel.paper((x1, y1)))
-        if all(r[0] - 1e-6 <= x <= r[2] + 1e-6 and r[1] - 1e-6 <= y <= r[3] + 1e-6 for x, y in corners):
+        slack = PAPER_SAME_MM
+        if all(r[0] - slack <= x <= r[2] + slack and r[1] - slack <= y <= r[3] + slack for x, y in corners):
             out.append(figure)
     return tuple(out)
 

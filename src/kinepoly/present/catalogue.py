@@ -23,6 +23,7 @@ from types import MappingProxyType
 from typing import Any
 
 from kinepoly.errors import CatalogueError, SceneError
+from kinepoly.geom.tolerances import ANGLE_SAME_DEG, PRINTED_ZERO
 from kinepoly.present.clean import format_number
 from kinepoly.scene.source import read_text
 
@@ -48,14 +49,14 @@ class Catalogue:
 
     def number(self, x: float) -> str:
         """A number as the handout prints it: about five significant digits, this language's decimal mark."""
-        text = format_number(0.0 if abs(x) < 5e-13 else x)
+        text = format_number(0.0 if abs(x) < PRINTED_ZERO else x)
         text = text.replace("-", "−")
         return text.replace(".", self.decimal) if self.decimal != "." else text
 
     def angle(self, radians: float) -> str:
         """An angle in degrees in (-180, 180], with the degree sign."""
         degrees = math.degrees(math.remainder(radians, 2.0 * math.pi))
-        return f"{self.number(180.0 if degrees <= -180.0 + 1e-9 else degrees)}°"
+        return f"{self.number(180.0 if degrees <= -180.0 + ANGLE_SAME_DEG else degrees)}°"
 
     def degrees(self, degrees: float) -> str:
         """An angle given in degrees, written in (-180, 180] with the degree sign: -342.1 as 17.9°."""

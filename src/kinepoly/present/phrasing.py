@@ -25,6 +25,7 @@ from kinepoly.engine.center_velocity import CenterOmega
 from kinepoly.engine.circle_diagram import center_label, pair_name
 from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.steps import Direction, DrawnVector, Step
+from kinepoly.geom.tolerances import COINCIDENT_REL, SAME_REL
 from kinepoly.geom.vec import Vec, norm, sub
 from kinepoly.present.catalogue import Catalogue, load_catalogue
 from kinepoly.present.clean import Noise, noise_of
@@ -48,7 +49,7 @@ __all__ = [
     "tip_name",
 ]
 
-_TINY = 1e-12
+_TINY = COINCIDENT_REL
 _FLAT_MM = 0.01
 """An image point stood off the line of two tips by less than this on the paper is drawn on that line."""
 
@@ -439,7 +440,7 @@ class _Phrase:
         tips = self.w.tips(self.polygon)
         first, second = tips.get(str(p["first"]), (0.0, 0.0)), tips.get(str(p["second"]), (0.0, 0.0))
         side = norm(sub(second, first)) * self.w.scales.get(self.polygon, 1.0)  # mm on the paper
-        if abs(height) * side < _FLAT_MM or abs(height) <= 1e-9:
+        if abs(height) * side < _FLAT_MM or abs(height) <= SAME_REL:
             return self._collinear(ratio, side, fields), self.found_tip()
         text = self.say.say("step.proportional_offset", ratio=self.w.n(ratio), height=self.w.n(height),
                             foot_paper=self.say.number(abs(ratio) * side), offset_paper=self.say.number(abs(height) * side),
@@ -634,7 +635,7 @@ class _Phrase:
         size = max([norm(t) for t in tips.values()] + [1.0])
 
         def at(point: Vec, other: Vec) -> bool:
-            return norm(sub(point, other)) <= 1e-12 * size
+            return norm(sub(point, other)) <= COINCIDENT_REL * size
 
         if reference in tips and at(tips[reference], vector.start):
             return ""
@@ -651,7 +652,7 @@ class _Phrase:
         _point, reference = _ends(vector.label)
         candidates = [reference, *tips] if reference in tips else list(tips)
         for label in candidates:
-            if norm(sub(tips[label], vector.start)) <= 1e-12 * max(norm(tips[label]), 1.0):
+            if norm(sub(tips[label], vector.start)) <= COINCIDENT_REL * max(norm(tips[label]), 1.0):
                 return self.w.tip_or_pole(self.polygon, label)
         return self.w.tip_or_pole(self.polygon, reference)
 

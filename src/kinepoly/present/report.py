@@ -10,6 +10,7 @@ from typing import Any
 
 from kinepoly.check.summary import QuantityError
 from kinepoly.engine.steps import Step
+from kinepoly.geom.tolerances import ANGLE_SAME_RAD, LOUD_ERROR, PARALLEL_SIN
 from kinepoly.geom.vec import Vec, norm, unit
 from kinepoly.present.centers import centers_json, centers_steps_text, centers_table, kennedy_steps_json
 from kinepoly.present.clean import Noise, given_angle, noise_of
@@ -91,7 +92,7 @@ def to_json(solution: Solution, scales: PolygonScales | None = None) -> dict[str
     for name in dict.fromkeys((*asked.omega, *asked.alpha)):
         line, at = named_line(solution, name)
         link_entry = links.setdefault(name, {"angle": _link_angle(solution, name)})
-        if abs(math.remainder(at - solution.angle(name), 2.0 * math.pi)) > 1e-9:  # theta_1j is not its named line's
+        if abs(math.remainder(at - solution.angle(name), 2.0 * math.pi)) > ANGLE_SAME_RAD:  # theta_1j is not its line's
             link_entry["line"] = {"name": line, "angle": _angle(solution, at)}  # type: ignore[assignment]
         driven = solution.driven_link(name)  # its omega and alpha given, not recomputed
         if name in asked.omega and solution.velocity is not None:
@@ -192,7 +193,7 @@ def readable_json(solution: Solution, noise: Noise | None = None,
             entry["coriolis"] = list(noise.pair(entry["coriolis"], "acceleration"))
     for entry in data.get("contacts", {}).values():
         entry["point"] = list(noise.pair(entry["point"], "position"))
-        entry["normal"] = [0.0 if abs(x) < 1e-12 else x for x in entry["normal"]]  # a unit vector
+        entry["normal"] = [0.0 if abs(x) < PARALLEL_SIN else x for x in entry["normal"]]  # a unit vector
         if "sliding_velocity" in entry:
             entry["sliding_velocity"] = list(noise.pair(entry["sliding_velocity"], "velocity"))
     return data
@@ -326,7 +327,7 @@ def table_text(solution: Solution, scales: PolygonScales | None = None) -> str:
         out.append(f"warning [{w['code']}]: {w['message']}")
     out += _accuracy_rows(solution)
     err = data["check"]["max_rel_error"]
-    verdict = "ok" if err <= 1e-9 else "DISAGREES"
+    verdict = "ok" if err <= LOUD_ERROR else "DISAGREES"
     t = data["timing"]
     out.append(f"cross-check against the analytic solution: max relative error {err:.2g} ({verdict}); "
                f"run time {1e3 * t['total_s']:.3g} ms (load {1e3 * t['load_s']:.2g}, position "

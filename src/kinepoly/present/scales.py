@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 from kinepoly.errors import SceneError
 from kinepoly.geom.hull import diameter
+from kinepoly.geom.tolerances import ROUNDING_REL, TINY_POSITIVE
 from kinepoly.geom.vec import Vec
 
 if TYPE_CHECKING:
@@ -67,13 +68,13 @@ def nice_floor(x: float) -> float:
 
     Beyond double precision's normal range it gives the smallest (1e-300) or the largest (1e300) kept.
     """
-    if not x >= 1e-300:
-        return 1e-300
+    if not x >= TINY_POSITIVE:
+        return TINY_POSITIVE
     if x >= 1e300:
         return 1e300
     exponent = math.floor(math.log10(x))
     candidates = (m * 10.0**e for e in (exponent - 1, exponent, exponent + 1) for m in _NICE)
-    return max(c for c in candidates if c <= x * (1.0 + 1e-12))
+    return max(c for c in candidates if c <= x * (1.0 + ROUNDING_REL))
 
 
 def polygon_room(paper: tuple[float, float]) -> tuple[float, float]:
@@ -102,7 +103,7 @@ class PolygonScale:
     @property
     def reduced(self) -> bool:
         """The wanted scale did not fit the paper: ``value`` is smaller."""
-        return self.value < self.wanted * (1.0 - 1e-12)
+        return self.value < self.wanted * (1.0 - ROUNDING_REL)
 
 
 @dataclass(frozen=True)
@@ -146,7 +147,7 @@ def _drawn_points(solution: Solution, kind: str) -> list[Vec]:
 def _fitting(wanted: float, box: tuple[float, float], room: tuple[float, float]) -> float:
     """``wanted``, or the largest round scale not above it at which ``box`` fits ``room``."""
     fit = min(r / b if b > 0.0 else math.inf for b, r in zip(box, room, strict=True))
-    if not math.isfinite(fit) or wanted <= fit * (1.0 + 1e-12):
+    if not math.isfinite(fit) or wanted <= fit * (1.0 + ROUNDING_REL):
         return wanted
     return min(nice_floor(fit), wanted)
 

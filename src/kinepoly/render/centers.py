@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from kinepoly.geom.tolerances import BOX_FLOOR, PARALLEL_SIN
 from kinepoly.geom.vec import Vec, norm, sub
 from kinepoly.render.labels import Request
 from kinepoly.render.layout import Content, Panel
@@ -52,7 +53,7 @@ def near_centers(solution: Solution, box: tuple[float, float, float, float]) -> 
     centers = centers_of(solution)
     if centers is None:
         return []
-    size = max(box[2] - box[0], box[3] - box[1], 1e-12)
+    size = max(box[2] - box[0], box[3] - box[1], BOX_FLOOR)
     out = []
     for center in centers.centers.values():
         p = center.position
@@ -87,10 +88,10 @@ def _edge_arrow(panel: Panel, toward: Vec, name: str, note: str) -> tuple[list[I
     x0, y0, x1, y1 = panel.drawing_rect
     center = ((x0 + x1) / 2, (y0 + y1) / 2)
     u = (toward[0] / norm(toward), toward[1] / norm(toward))
-    reach = min((((x1 - 6.0) - center[0]) / u[0] if u[0] > 1e-12 else ((x0 + 6.0) - center[0]) / u[0]
-                 if u[0] < -1e-12 else math.inf),
-                (((y1 - 6.0) - center[1]) / u[1] if u[1] > 1e-12 else ((y0 + 6.0) - center[1]) / u[1]
-                 if u[1] < -1e-12 else math.inf))
+    reach = min((((x1 - 6.0) - center[0]) / u[0] if u[0] > PARALLEL_SIN else ((x0 + 6.0) - center[0]) / u[0]
+                 if u[0] < -PARALLEL_SIN else math.inf),
+                (((y1 - 6.0) - center[1]) / u[1] if u[1] > PARALLEL_SIN else ((y0 + 6.0) - center[1]) / u[1]
+                 if u[1] < -PARALLEL_SIN else math.inf))
     end = (center[0] + reach * u[0], center[1] + reach * u[1])
     start = (end[0] - 9.0 * u[0], end[1] - 9.0 * u[1])
     arrow = Arrow(start, end, CENTER_COLOR, 0.3, 2.4, 0.8, role=f"center I{name} toward")
@@ -112,14 +113,15 @@ def _mechanism_part(centers: InstantCenters, panel: Panel) -> tuple[list[Item], 
             if line.through is None or line.direction is None:
                 continue
             anchors = line.points[:1] if line.is_common_normal else line.points  # a normal: from its contact
-            ends = [panel.paper((t[0] / t[2], t[1] / t[2])) for t in (*anchors, step.result) if abs(t[2]) > 1e-12]
+            ends = [panel.paper((t[0] / t[2], t[1] / t[2])) for t in (*anchors, step.result)
+                    if abs(t[2]) > PARALLEL_SIN]
             d = line.direction
             a = panel.paper(line.through)
             u = (d[0] / norm(d), d[1] / norm(d))
             along = [(p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1] for p in ends] or [0.0]
             far = 4.0 * max(rect[2] - rect[0], rect[3] - rect[1])
-            lo = min(along) - 5.0 if all(abs(t[2]) > 1e-12 for t in anchors) else -far
-            hi = max(along) + 5.0 if all(abs(t[2]) > 1e-12 for t in (*anchors, step.result)) else far
+            lo = min(along) - 5.0 if all(abs(t[2]) > PARALLEL_SIN for t in anchors) else -far
+            hi = max(along) + 5.0 if all(abs(t[2]) > PARALLEL_SIN for t in (*anchors, step.result)) else far
             piece = LineString([(a[0] + lo * u[0], a[1] + lo * u[1]), (a[0] + hi * u[0], a[1] + hi * u[1])])
             clipped = piece.intersection(area)
             if clipped.geom_type == "LineString" and clipped.length > 0.5:

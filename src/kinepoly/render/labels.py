@@ -15,6 +15,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
+from kinepoly.geom.tolerances import PAPER_EXACT_MM, PAPER_SAME_MM, PARALLEL_SIN
 from kinepoly.render.primitives import Arrow, Circle, Item, Path, Stroke, Text, hash_once
 from kinepoly.render.text import Run, runs_box, text_width
 
@@ -157,15 +158,15 @@ def _pushed_box(anchor: Point, direction: Point, size: tuple[float, float], gap:
     a, b = size[0] / 2, size[1] / 2
     ux, uy = abs(direction[0]), abs(direction[1])
     candidates = []
-    if ux > 1e-12 and uy * (a + gap) / ux <= b + 1e-12:
+    if ux > PARALLEL_SIN and uy * (a + gap) / ux <= b + PAPER_EXACT_MM:
         candidates.append((a + gap) / ux)
-    if uy > 1e-12 and ux * (b + gap) / uy <= a + 1e-12:
+    if uy > PARALLEL_SIN and ux * (b + gap) / uy <= a + PAPER_EXACT_MM:
         candidates.append((b + gap) / uy)
     p = a * ux + b * uy
     q = a * a + b * b - gap * gap
     if p * p - q >= 0.0:
         t = p + math.sqrt(p * p - q)
-        if ux * t >= a - 1e-12 and uy * t >= b - 1e-12:
+        if ux * t >= a - PAPER_EXACT_MM and uy * t >= b - PAPER_EXACT_MM:
             candidates.append(t)
     t = min(candidates) if candidates else gap + a + b
     cx, cy = anchor[0] + direction[0] * t, anchor[1] + direction[1] * t
@@ -710,7 +711,7 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
     by_region: dict[Box, list[Request]] = {}
     for request in ordered:
         by_region.setdefault(request.region, []).append(request)
-    margin = CLEARANCE_MM + 1e-6
+    margin = CLEARANCE_MM + PAPER_SAME_MM
     near = {region: [drawn[k] for k in np.flatnonzero(
         (bounds[:, 0] <= region[2] + margin) & (bounds[:, 2] >= region[0] - margin)
         & (bounds[:, 1] <= region[3] + margin) & (bounds[:, 3] >= region[1] - margin)).tolist()] for region in by_region}

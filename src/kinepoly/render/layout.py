@@ -13,6 +13,8 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from kinepoly.geom.tolerances import FIT_MARGIN_REL, PAPER_ROUNDING_MM, PAPER_SAME_MM, ROUNDING_REL, TINY_POSITIVE
+
 __all__ = [
     "PAPER_NAMES",
     "Content",
@@ -69,9 +71,9 @@ def paper_name(size: tuple[float, float]) -> str:
     """``A3`` (landscape), ``A4-portrait``, ``letter`` for a named size; else ``WIDTHxHEIGHT``."""
     for name, (long, short) in _SIZES_MM.items():
         shown = name.upper() if name[0] == "a" else name
-        if abs(size[0] - long) < 1e-6 and abs(size[1] - short) < 1e-6:
+        if abs(size[0] - long) < PAPER_SAME_MM and abs(size[1] - short) < PAPER_SAME_MM:
             return shown
-        if abs(size[0] - short) < 1e-6 and abs(size[1] - long) < 1e-6:
+        if abs(size[0] - short) < PAPER_SAME_MM and abs(size[1] - long) < PAPER_SAME_MM:
             return f"{shown}-portrait"
     return f"{size[0]:g}x{size[1]:g}"
 
@@ -82,7 +84,7 @@ def larger_papers(size: tuple[float, float]) -> list[tuple[str, tuple[float, flo
     out = []
     for name in _LARGER:
         w, h = paper_size(name + ("-portrait" if portrait else ""))
-        if w > size[0] + 1e-6 and h > size[1] + 1e-6:
+        if w > size[0] + PAPER_SAME_MM and h > size[1] + PAPER_SAME_MM:
             out.append((paper_name((w, h)), (w, h)))
     return out
 
@@ -93,8 +95,8 @@ def nice_floor(x: float) -> float:
     Beyond double precision's normal range (a denormal or zero ``x``, an infinite one) it gives
     the smallest (1e-300) or the largest (1e300) round number kept.
     """
-    if not x >= 1e-300:
-        return 1e-300
+    if not x >= TINY_POSITIVE:
+        return TINY_POSITIVE
     if x >= 1e300:
         return 1e300
     exponent = math.floor(math.log10(x))
@@ -102,7 +104,7 @@ def nice_floor(x: float) -> float:
     for e in (exponent - 1, exponent, exponent + 1):
         for m in _NICE:
             c = m * 10.0**e
-            if c <= x * (1.0 + 1e-12):
+            if c <= x * (1.0 + ROUNDING_REL):
                 best = max(best, c)
     return best
 
@@ -169,7 +171,7 @@ def _panel(content: Content, rect: Box, scale: float) -> Panel:
 
 def _step_down(scale: float, steps: int) -> float:
     for _ in range(steps):
-        scale = nice_floor(scale * (1.0 - 1e-9))
+        scale = nice_floor(scale * (1.0 - FIT_MARGIN_REL))
     return scale
 
 
@@ -201,7 +203,7 @@ def _try(contents: Sequence[Content], area: Box, columns: list[list[int]],
     widths = []
     for column in columns:
         fixed = [need[k] for k in column if k in need]
-        if sum(h for _, h in fixed) > height + 1e-9:
+        if sum(h for _, h in fixed) > height + PAPER_ROUNDING_MM:
             return None
         widths.append(max((w for w, _ in fixed), default=0.0))
     spare = width - sum(widths)
@@ -289,7 +291,7 @@ def _one_row(contents: Sequence[Content], area: Box, fixed: Sequence[int]) -> li
     cell_w, cell_h = max(x1 - x0, 0.0) / len(contents), max(y1 - y0, 0.0)
     scales = {}
     for k in fixed:
-        fit = contents[k].fit(cell_w, cell_h) * (1.0 - 1e-9)
+        fit = contents[k].fit(cell_w, cell_h) * (1.0 - FIT_MARGIN_REL)
         scales[k] = nice_floor(fit) if math.isfinite(fit) else (contents[k].wanted or 1.0)
     panels = _try(contents, area, [[k] for k in range(len(contents))], scales)
     if panels is not None:
@@ -297,7 +299,7 @@ def _one_row(contents: Sequence[Content], area: Box, fixed: Sequence[int]) -> li
     out = []
     for k, content in enumerate(contents):
         rect = (x0 + k * cell_w, y0, x0 + (k + 1) * cell_w, max(y1, y0))
-        fit = content.fit(cell_w, cell_h) * (1.0 - 1e-9)
+        fit = content.fit(cell_w, cell_h) * (1.0 - FIT_MARGIN_REL)
         scale = scales.get(k, nice_floor(fit) if math.isfinite(fit) else 1.0)
         out.append(_panel(content, rect, scale))
     return out

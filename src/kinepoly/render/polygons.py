@@ -18,6 +18,7 @@ from typing import Literal
 from kinepoly.engine.steps import Step, Term
 from kinepoly.geom.hull import diameter
 from kinepoly.geom.lines import Line
+from kinepoly.geom.tolerances import PAPER_AREA_FLOOR_MM2, SAME_REL, TINY_POSITIVE
 from kinepoly.geom.vec import Vec, norm, sub
 from kinepoly.render.labels import Request
 from kinepoly.render.layout import Panel
@@ -39,7 +40,7 @@ __all__ = ["Figure", "FigureDrawing", "FigureVector", "figure_box", "polygon_fig
 
 Kind = Literal["velocity", "acceleration"]
 Point = tuple[float, float]
-_SAME = 1e-9
+_SAME = SAME_REL
 """Two polygon points closer than this (relative to the polygon's size) are one point."""
 TINY_FACTOR = 1.0
 """A vector drawn shorter than its head times this becomes a dot with a label."""
@@ -136,7 +137,7 @@ def polygon_figure(solution: Solution, kind: Kind) -> Figure:
     symbol = "v" if kind == "velocity" else "a"
     mech = solution.mechanism
     ground_points = set(mech.scene.link(mech.ground).point_names) if mech.ground else set()
-    size = max([norm(v) for v in polygon.tips.values()] + [1e-300])
+    size = max([norm(v) for v in polygon.tips.values()] + [TINY_POSITIVE])
     by_lower = {label.lower(): label for label in polygon.tips}
     tip_step: dict[str, int] = {}
     vectors: list[FigureVector] = []
@@ -292,7 +293,7 @@ class FigureDrawing:
         for image in figure.images:
             corners = _ring(tuple(panel.paper(tips[label].value) if label in tips else panel.origin
                                   for label in image.tips))
-            if _area(corners) < 0.02 * max(_span(corners) ** 2, 1e-12):
+            if _area(corners) < 0.02 * max(_span(corners) ** 2, PAPER_AREA_FLOOR_MM2):
                 continue
             color = link_color(image.index)
             self._images.append((image.step, Path(corners, Stroke(color, 0.15), fill=color, fill_opacity=0.45,

@@ -12,6 +12,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from kinepoly.geom.tolerances import FIT_MARGIN_REL, PAPER_ROUNDING_MM, ROUNDING_REL
 from kinepoly.present.clean import format_number
 from kinepoly.present.phrasing import Context, english, kennedy_sentence, step_sentence
 from kinepoly.present.scales import PolygonScales, decide_scales
@@ -151,7 +152,7 @@ GAIN = 0.75
 
 
 def _keeps_scales(layout: Layout) -> bool:
-    return not any(p.wanted is not None and p.scale < p.wanted * (1 - 1e-12) for p in layout.panels)
+    return not any(p.wanted is not None and p.scale < p.wanted * (1 - ROUNDING_REL) for p in layout.panels)
 
 
 def crowded(solution: Solution, layout: Layout) -> int:
@@ -170,7 +171,7 @@ def roomy(solution: Solution, layout: Layout) -> bool:
     box = _mechanism_box(solution)
     size = max(box[2] - box[0], box[3] - box[1]) * mech.scale
     area = _drawing_area(layout.width, layout.height, layout.title_rect[3] - layout.title_rect[1])
-    return size >= _LEAST_MECHANISM * min(area[2] - area[0], area[3] - area[1]) - 1e-9
+    return size >= _LEAST_MECHANISM * min(area[2] - area[0], area[3] - area[1]) - PAPER_ROUNDING_MM
 
 
 _LEAST_MECHANISM = 0.3
@@ -210,14 +211,14 @@ def _layout_on(solution: Solution, size: tuple[float, float], fixed: tuple[str, 
         contents += [Content(f.kind, figure_box(f), scales[f.kind], _PADDING_MM[f.kind]) for f in figures]
         panels = arrange(contents, area)
         notes = fixed + tuple(_scale_note(p) for p in panels if p.name in ("velocity", "acceleration")
-                              and p.wanted is not None and p.scale < p.wanted * (1 - 1e-12))
+                              and p.wanted is not None and p.scale < p.wanted * (1 - ROUNDING_REL))
         if notes == used:
             break  # the notes the title block was made with: a second pass would make the same blocks and panels
     if notes != used:
         blocks = _title_blocks(solution, figures, notes, inner_w, data)
     title_rect = (MARGIN_MM, MARGIN_MM, width - MARGIN_MM, MARGIN_MM + title_h)
     reduced = frozenset({p.kind for p in decided.reduced} | {p.name for p in panels if p.wanted is not None
-                                                             and p.scale < p.wanted * (1 - 1e-12)})
+                                                             and p.scale < p.wanted * (1 - ROUNDING_REL)})
     return Layout(width, height, tuple(panels), figures, title_rect, notes, reduced, tuple(blocks))
 
 
@@ -263,7 +264,7 @@ def _fitted(content: Content, rect: tuple[float, float, float, float], scale: fl
     """``content`` in ``rect`` at ``scale``, or at the largest round scale that fits."""
     if scale is None:
         fit = content.fit(rect[2] - rect[0], rect[3] - rect[1])
-        scale = nice_floor(fit * (1.0 - 1e-9)) if 0.0 < fit < math.inf else 1.0
+        scale = nice_floor(fit * (1.0 - FIT_MARGIN_REL)) if 0.0 < fit < math.inf else 1.0
     panel = fit_panel(content, rect, scale)
     return Panel(panel.name, panel.rect, panel.scale, scale if content.wanted is not None else None, panel.origin)
 

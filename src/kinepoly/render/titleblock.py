@@ -11,6 +11,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from kinepoly.geom.tolerances import LOUD_ERROR, NOISE_REL
 from kinepoly.present.clean import format_number
 from kinepoly.render.layout import HEADING_MM, Panel, round_step
 from kinepoly.render.primitives import Item, Path, Stroke, Text
@@ -58,7 +59,7 @@ def _numbers(rows: Sequence[Sequence[str | float | None]]) -> list[list[str]]:
         numbers = [abs(v) for v in column if isinstance(v, float)]
         top = max(numbers, default=0.0)
         out_columns.append([v if isinstance(v, str) else "" if v is None else
-                            format_number(0.0 if abs(v) <= 1e-9 * top else v) for v in column])
+                            format_number(0.0 if abs(v) <= NOISE_REL * top else v) for v in column])
     return [list(row) for row in zip(*out_columns, strict=True)]
 
 
@@ -90,7 +91,7 @@ def _check_words(solution: Solution, err: float) -> str:
     """The cross-check for people: within the error estimate, the power of ten above the estimate
     (the error's own digits are rounding noise that changes with the machine's arithmetic); beyond
     it, the error itself."""
-    verdict = "agrees" if err <= 1e-9 else "DISAGREES"
+    verdict = "agrees" if err <= LOUD_ERROR else "DISAGREES"
     estimate = max(solution.accuracy.estimated.values(), default=0.0) if solution.accuracy else 0.0
     if 0.0 < estimate and err <= estimate:
         bound = 10.0 ** math.ceil(math.log10(estimate))

@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from kinepoly.geom.tolerances import COINCIDENT_REL
 from kinepoly.scene.flat_side import flat_side
 from kinepoly.scene.spec import CamSpec, LinkSpec, PointSpec, Scene, SliderSpec
 
@@ -52,7 +53,7 @@ def _number(taken: set[str]) -> str:
 def _center_point(scene: Scene, cam: CamSpec, taken: set[str]) -> str:
     """A point of the cam already at the disc's centre, or a new one ``K<name>``."""
     for p in scene.link(cam.cam).points:
-        if math.hypot(p.local[0] - cam.center[0], p.local[1] - cam.center[1]) <= 1e-12 * max(1.0, cam.radius):
+        if math.hypot(p.local[0] - cam.center[0], p.local[1] - cam.center[1]) <= COINCIDENT_REL * max(1.0, cam.radius):
             return p.name
     return _fresh(f"K{cam.name}", taken)
 

@@ -19,6 +19,7 @@ import cmath
 from collections.abc import Mapping
 from typing import Literal
 
+from kinepoly.geom.tolerances import SAME_REL
 from kinepoly.scene.spec import CamSpec, LinkInput, Scene
 
 __all__ = ["flat_side"]
@@ -81,6 +82,6 @@ def flat_side(scene: Scene, cam: CamSpec) -> Side | None:
     through = follower_pose[0] + follower_pose[1] * complex(x, y)
     along = follower_pose[1] * cmath.exp(1j * angle)
     height = (k - through) * along.conjugate()  # K in the face's own frame: its y is the side
-    if abs(height.imag) <= 1e-9 * max(cam.radius, abs(k - through)):
+    if abs(height.imag) <= SAME_REL * max(cam.radius, abs(k - through)):
         return None
     return "left" if height.imag > 0.0 else "right"

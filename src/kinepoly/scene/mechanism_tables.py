@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 
+from kinepoly.geom.tolerances import COINCIDENT_REL
 from kinepoly.scene.lines import KeyPath
 from kinepoly.scene.problems import no_such, quoted, show_value, suggest
 from kinepoly.scene.reader_state import ReaderState
@@ -209,4 +210,4 @@ class MechanismTables(ReaderState):
 
 def _same_place(first: Vector, second: Vector) -> bool:
     size = max(1.0, abs(first[0]), abs(first[1]), abs(second[0]), abs(second[1]))
-    return math.hypot(first[0] - second[0], first[1] - second[1]) <= 1e-12 * size
+    return math.hypot(first[0] - second[0], first[1] - second[1]) <= COINCIDENT_REL * size

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from kinepoly.geom.tolerances import LAST_BITS_REL
 from kinepoly.scene.lines import KeyPath
 from kinepoly.scene.problems import ProblemReport, show_value
 from kinepoly.scene.spec import LinkSpec, SliderSpec
@@ -68,7 +69,7 @@ class ReaderState:
 def polar_point(r: float, angle: float) -> Vector:
     """The point at distance r and angle (rad); exact on the axes."""
     quarter = angle / (math.pi / 2.0)
-    if abs(quarter - round(quarter)) < 1e-15 * max(1.0, abs(quarter)):
+    if abs(quarter - round(quarter)) < LAST_BITS_REL * max(1.0, abs(quarter)):
         cos, sin = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[round(quarter) % 4]
         return (r * cos, r * sin)
     return (r * math.cos(angle), r * math.sin(angle))

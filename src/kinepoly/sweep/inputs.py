@@ -38,6 +38,7 @@ from kinepoly.engine.plan import NewtonGroup, PositionPlan
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.geom.tolerances import ANGLE_SAME_RAD, ROUNDING_REL, SAME_REL
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
@@ -117,7 +118,7 @@ def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) ->
     step = abs(float(shown[1] - shown[0])) if len(shown) > 1 else 1.0
     nearest = min(max(round((seed - float(shown[0])) / float(shown[1] - shown[0])) if len(shown) > 1 else 0, 0),
                   len(shown) - 1)  # the rows are evenly spaced: the one nearest the seed by arithmetic
-    if abs(float(shown[nearest]) - seed) <= 1e-9 * step:
+    if abs(float(shown[nearest]) - seed) <= SAME_REL * step:
         return shown, np.ones(len(shown), np.bool_), nearest
     ascending = shown[-1] >= shown[0]
     low, high = (shown[0], shown[-1]) if ascending else (shown[-1], shown[0])
@@ -203,7 +204,7 @@ def _returns(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: 
     for pose in found.poses.values():
         origin = np.broadcast_to(pose.origin, rows.shape)
         rotation = np.broadcast_to(pose.rotation, rows.shape)
-        if abs(origin[-1] - origin[0]) > 1e-9 * size or abs(rotation[-1] - rotation[0]) > 1e-9:
+        if abs(origin[-1] - origin[0]) > SAME_REL * size or abs(rotation[-1] - rotation[0]) > ANGLE_SAME_RAD:
             return False
     return bool(found.ok.all())
 
@@ -219,7 +220,7 @@ def _cycle(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: in
     turns = 1
     for link, ratio in sorted(per_turn.items()):
         fraction = Fraction(ratio).limit_denominator(CYCLE_TURNS)
-        if abs(ratio - float(fraction)) > 1e-9 * max(1.0, abs(ratio)):
+        if abs(ratio - float(fraction)) > SAME_REL * max(1.0, abs(ratio)):
             return 1, [Notice("no-cycle", f"link {link} turns {ratio:.10g} times per turn of the input, no fraction "
                               f"with a denominator up to {CYCLE_TURNS}: the gears bring the mechanism back after no "
                               f"whole number of turns up to {CYCLE_TURNS}; the sweep covers one turn (its curves "
@@ -361,7 +362,7 @@ def _check_steps(steps: int) -> None:
 
 def _is_full_turn(start: float, stop: float, full: float | None) -> bool:
     """Whether ``start`` to ``stop`` is one whole turn (either way), up to rounding of the inputs."""
-    return full is not None and abs(abs(stop - start) - full) <= 1e-12 * full
+    return full is not None and abs(abs(stop - start) - full) <= ROUNDING_REL * full
 
 
 def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPose], steps: int,

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from kinepoly.geom.tolerances import SIZE_FLOOR
 from kinepoly.sweep.run import Column, SweepResult
 from kinepoly.sweep.shown import shown_values
 
@@ -347,7 +348,7 @@ def _window(result: SweepResult) -> tuple[complex, float]:
     if not points:
         return 0j, 1.0
     center = complex(np.mean([p.real for p in points]), np.mean([p.imag for p in points]))
-    size = max(max(abs(p - center) for p in points), 1e-9)
+    size = max(max(abs(p - center) for p in points), SIZE_FLOOR)
     return center, _REACH * size
 
 

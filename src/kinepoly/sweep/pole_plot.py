@@ -11,6 +11,7 @@ import io
 
 import numpy as np
 
+from kinepoly.geom.tolerances import SIZE_FLOOR
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import Scene
 from kinepoly.sweep.pole import PoleBetween
@@ -58,7 +59,7 @@ def pole_png(scene: Scene, found: PoleBetween, input_name: str, unit: str, dpi: 
         if found.instant_center is not None:
             marks.append(found.instant_center)
         every += marks
-        span = max(np.ptp([z.real for z in every]), np.ptp([z.imag for z in every]), 1e-9)
+        span = max(np.ptp([z.real for z in every]), np.ptp([z.imag for z in every]), SIZE_FLOOR)
         for p1, p2 in ((pole.a1, pole.a2), (pole.b1, pole.b2)):
             ax.plot([p1.real, p2.real], [p1.imag, p2.imag], ":", color=_POLE, lw=1.0)
             if abs(p2 - p1) > 0.0:

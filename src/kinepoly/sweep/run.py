@@ -42,7 +42,7 @@ from kinepoly.engine.transmission import transmission_angles
 from kinepoly.engine.velocity import VelocityResult, construct_velocity
 from kinepoly.errors import AssemblyError, SceneError, SingularityError
 from kinepoly.geom.arrays import Bools, Points, Reals
-from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
+from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
@@ -190,7 +190,7 @@ def _near_text(where: str, sine: Reals) -> object:
     def text(row: int) -> str:
         s = float(sine[row])
         return (f"near-singular: the direction lines of {where} meet at {math.degrees(math.asin(min(1.0, s))):.3g} "
-                f"deg; relative error about {4.0 * UNIT_ROUNDOFF / max(s, 1e-300):.1g}")
+                f"deg; relative error about {4.0 * UNIT_ROUNDOFF / max(s, TINY_POSITIVE):.1g}")
     return text
 
 
