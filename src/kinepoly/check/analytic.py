@@ -1,7 +1,7 @@
 """The independent analytic solution: body coordinates, constraint equations, Newton, linear solves.
 
 This module cross-checks the graphical construction. It shares no code with
-``kinepoly.construct`` or ``kinepoly.solve.position``: it only reads the mechanism (links,
+``kinepoly.engine.construct`` or ``kinepoly.engine.position``: it only reads the mechanism (links,
 points in their own frames, joints, input) and writes frozen values.
 
 The work is shared out, one job a module:
