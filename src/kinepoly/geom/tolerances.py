@@ -2,8 +2,8 @@
 
 Grouped by what they bound: the arithmetic itself, directions and lines (sines, no unit), points and
 numbers that are the same (relative to a size), angles, iterations (Newton and its kin), the
-cross-check, what is printed, and lengths on the paper (mm). A value of these is never changed to
-make a test pass: each is the bound its docstring states.
+cross-check, what is printed, and lengths on the paper (mm). Where one number bounds two different
+things it has two names.
 """
 
 __all__ = [
