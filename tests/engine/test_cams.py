@@ -10,12 +10,12 @@ import pytest
 
 import kinepoly
 from kinepoly.errors import SceneError
-from kinepoly.sweep import sweep
+from kinepoly.sweep import SweepResult, sweep
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
-def _radians(result: kinepoly.SweepResult) -> np.ndarray:
+def _radians(result: SweepResult) -> np.ndarray:
     return np.radians(result.input.values)
 
 

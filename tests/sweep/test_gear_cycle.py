@@ -12,12 +12,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import kinepoly
-from kinepoly.sweep import sweep
+from kinepoly.sweep import SweepResult, sweep
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
-def _codes(result: kinepoly.SweepResult) -> list[str]:
+def _codes(result: SweepResult) -> list[str]:
     return [notice.code for notice in result.notices]
 
 
