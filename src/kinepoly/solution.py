@@ -96,12 +96,6 @@ class Solution:
     contacts: dict[str, Contact] = field(default_factory=dict)
     """Each higher pair's contact (``engine.contacts``), in the user's frame."""
 
-    def _repr_svg_(self) -> str:
-        """A notebook shows the solution as its drawing."""
-        from kinepoly.motion.api import draw
-
-        return draw(self)
-
     @property
     def steps(self) -> tuple[Step, ...]:
         v = self.velocity.steps if self.velocity else ()

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any
 import tomlkit
 from tomlkit.items import AoT, Array, InlineTable, Table
 
-from kinepoly.editor.edits import EditError, number, pair, place, store
+from kinepoly.editor.values import EditError, number, pair, place, store
 from kinepoly.model.pose import LinkPose
 
 if TYPE_CHECKING:
