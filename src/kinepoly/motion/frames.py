@@ -26,9 +26,11 @@ from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals
+from kinepoly.present.scales import nice_floor
 from kinepoly.scene.spec import LinkInput, Scene
 from kinepoly.sweep.plots import robust_window
-from kinepoly.sweep.run import PreparedSweep, SweepResult
+from kinepoly.sweep.result import CANNOT_ASSEMBLE, NEAR_SINGULAR, OK, SweepResult
+from kinepoly.sweep.run import PreparedSweep
 from kinepoly.sweep.shown import shown_values
 
 __all__ = ["NO_POLYGON", "PANEL_MM", "PARTS", "Frames", "LinkFrames", "PolygonFrames", "SliderFrames", "Trace", "Value",
@@ -44,19 +46,13 @@ around the pole (less a margin for the labels)."""
 NO_POLYGON = ("", "near-singular: beyond the cycle's scale", "singular: no polygon", "")
 """What a polygon panel says in place of a polygon it leaves out, by the row's status."""
 _ROOM_MM = 0.5 * PANEL_MM - 6.0
-_NICE = (1.0, 2.0, 2.5, 5.0)
-_OK, _OK_OR_NEAR = 0, 1
-_CANNOT = 3
 
 
 def fitting_scale(radius: float, room_mm: float = _ROOM_MM) -> float:
-    """The largest round scale (1, 2, 2.5 or 5 times a power of ten) that draws ``radius`` within ``room_mm``."""
+    """The largest round scale (``present.scales.nice_floor``) that draws ``radius`` within ``room_mm``."""
     if not (radius > 0.0 and math.isfinite(radius)):
         return 1.0
-    raw = room_mm / radius
-    exponent = math.floor(math.log10(raw))
-    candidates = [m * 10.0 ** (exponent + k) for k in (-1, 0) for m in _NICE]
-    return max(c for c in candidates if c <= raw * (1 + 1e-12))
+    return nice_floor(room_mm / radius)
 
 
 @dataclass(frozen=True)
@@ -158,7 +154,7 @@ class Frames:
         """The transmission functions a ``functions`` panel draws (the omegas, else the first order, four at
         most) and its value window where flagged rows run off the ok ones (``sweep.plots.robust_window``)."""
         chosen = tuple([v for v in self.values if v.unit == "rad/s"] or [v for v in self.values if v.order == 1])[:4]
-        ok = self.status == _OK
+        ok = self.status == OK
         return chosen, robust_window([v.values[v.valid] for v in chosen], [v.values[v.valid & ok] for v in chosen])
 
 
@@ -293,14 +289,14 @@ def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, 
     if positions is None or shown is None:
         raise ValueError("this sweep result keeps no poses (it was not made by kinepoly.sweep.run_sweep)")
     computed = np.flatnonzero(shown)
-    reach = result.status != _CANNOT
+    reach = result.status != CANNOT_ASSEMBLE
     rows = np.flatnonzero(reach).astype(np.intp)
     if not len(rows):
         raise AssemblyError(f"{result.scene.title}: the mechanism cannot be assembled at any of the {result.rows} "
                             "positions asked")
     idx = computed[rows]
-    valid = result.status[rows] <= _OK_OR_NEAR
-    ok = result.status[rows] == _OK
+    valid = result.status[rows] <= NEAR_SINGULAR
+    ok = result.status[rows] == OK
     asked = prepared.asked
     length = result.scene.units.length
     velocity: VelocityResult | None = None

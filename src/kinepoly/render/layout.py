@@ -13,6 +13,8 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from kinepoly.present.scales import nice_floor
+
 __all__ = [
     "PAPER_NAMES",
     "Content",
@@ -35,7 +37,6 @@ _SIZES_MM = {
     "tabloid": (431.8, 279.4),
 }
 PAPER_NAMES = tuple(_SIZES_MM)
-_NICE = (1.0, 2.0, 2.5, 5.0)
 _LABEL_ROOM_MM = 30.0
 """The most a polygon's column is widened beyond its polygon, when the page has room to spare."""
 HEADING_MM = 8.5
@@ -85,26 +86,6 @@ def larger_papers(size: tuple[float, float]) -> list[tuple[str, tuple[float, flo
         if w > size[0] + 1e-6 and h > size[1] + 1e-6:
             out.append((paper_name((w, h)), (w, h)))
     return out
-
-
-def nice_floor(x: float) -> float:
-    """The largest round number (1, 2, 2.5 or 5 times a power of ten) not above ``x`` (> 0).
-
-    Beyond double precision's normal range (a denormal or zero ``x``, an infinite one) it gives
-    the smallest (1e-300) or the largest (1e300) round number kept.
-    """
-    if not x >= 1e-300:
-        return 1e-300
-    if x >= 1e300:
-        return 1e300
-    exponent = math.floor(math.log10(x))
-    best = 10.0 ** (exponent - 1) * 5.0
-    for e in (exponent - 1, exponent, exponent + 1):
-        for m in _NICE:
-            c = m * 10.0**e
-            if c <= x * (1.0 + 1e-12):
-                best = max(best, c)
-    return best
 
 
 def round_step(target: float) -> float:
