@@ -27,6 +27,7 @@ from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_d
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.present.scales import nice_floor
+from kinepoly.scene.link_point import LinkPoint, point_of
 from kinepoly.scene.spec import LinkInput, Scene
 from kinepoly.sweep.plots import robust_window
 from kinepoly.sweep.result import CANNOT_ASSEMBLE, NEAR_SINGULAR, OK, SweepResult
@@ -165,7 +166,7 @@ def _polygon_frames(polygon: Polygon, idx: npt.NDArray[np.intp], valid: Bools, o
     is left out, as a singular one is."""
     mech = polygon.mechanism
     ground_points = set(mech.scene.link(mech.ground).point_names) if mech.ground else set()
-    ground_points |= {label for label in polygon.tips if mech.ground and label.partition("@")[2] == mech.ground}
+    ground_points |= {label for label in polygon.tips if mech.ground and LinkPoint.parse(label).link == mech.ground}
     labels = [label for label in polygon.tips if label not in ground_points]
     index = {label: j for j, label in enumerate(labels)}
     index.update({g: -1 for g in ground_points})
@@ -314,17 +315,17 @@ def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, 
         mech = positions.mechanism
         if velocity is not None and "velocity" in parts:
             extras: list[tuple[str, str, Points | None, str]] = [
-                (f"{s.point}@{s.guide}", velocity.polygon.label(s.block, s.point), None, "sliding")
+                (LinkPoint(s.point, s.guide).text, velocity.polygon.label(s.block, s.point), None, "sliding")
                       for s in mech.scene.sliders if s.guide != mech.ground]
             v_frames = _polygon_frames(velocity.polygon, idx, valid, ok, f"{length}/s", extras)
         if acceleration is not None and "acceleration" in parts:
-            extras = [(f"{s.point}@{s.guide}", acceleration.polygon.label(s.block, s.point),
+            extras = [(LinkPoint(s.point, s.guide).text, acceleration.polygon.label(s.block, s.point),
                        acceleration.coriolis[s.name], "coriolis")  # a_P(guide) + coriolis + sliding = a_P(block)
                       for s in mech.scene.sliders if s.name in acceleration.coriolis and s.guide != mech.ground]
             a_frames = _polygon_frames(acceleration.polygon, idx, valid, ok, f"{length}/s^2", extras)
         paths: tuple[Trace, ...] = ()
         if "paths" in parts:
-            labels = dict.fromkeys(label.partition("@")[0] for label in (*result.scene.find.velocity,
+            labels = dict.fromkeys(point_of(label) for label in (*result.scene.find.velocity,
                                                                          *result.scene.find.acceleration))
             paths = tuple(Trace(p, np.asarray(positions.point(p))[idx], np.ones(len(idx), np.bool_))
                           for p in labels)

@@ -45,6 +45,7 @@ from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUND
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
+from kinepoly.scene.link_point import point_of
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
 from kinepoly.sweep.columns import ColumnBuilder
@@ -153,7 +154,7 @@ def _angle_unit(scene: Scene, radians: Reals) -> Reals:
 
 
 def _position(positions: Positions, label: str) -> Points:
-    return positions.point(label.partition("@")[0])
+    return positions.point(point_of(label))
 
 
 def _columns(out: ColumnBuilder, asked: Asked, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
