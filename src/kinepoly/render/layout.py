@@ -3,7 +3,7 @@
 A panel is a rectangle of the page with a scale: paper = origin + scale * physical. The
 mechanism gets a round space scale that fills what the polygons leave; the polygons keep
 their scales kv and ka when they fit, and otherwise step down the round-number ladder (the
-sheet then says so).
+sheet then says so). The round numbers are ``present.scales``' (``nice_floor``), the one rule of them.
 """
 
 from __future__ import annotations

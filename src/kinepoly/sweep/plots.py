@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from kinepoly.scene.link_point import LinkPoint
 from kinepoly.sweep.result import CANNOT_ASSEMBLE, OK, SINGULAR, Column, SweepResult
 from kinepoly.sweep.shown import shown_values
 
@@ -228,7 +229,7 @@ def _draw_skeleton(ax: Axes, result: SweepResult, only: str | None = None) -> No
 
 
 def _paths_panel(ax: Axes, result: SweepResult) -> None:
-    paths = [p for p in _pairs(result, "r_") if "@" not in p[0]]  # A@4 runs where A runs
+    paths = [p for p in _pairs(result, "r_") if LinkPoint.parse(p[0]).link is None]  # A@4 runs where A runs
     _curve_panel(ax, paths, "point paths (the mechanism at the scene's input)", result.scene.units.length,
                  periodic=result.periodic)
     _draw_skeleton(ax, result)
