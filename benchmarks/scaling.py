@@ -47,7 +47,7 @@ def _solve(n: int) -> Callable[[], object]:
 
 
 def _sweep(n: int) -> Callable[[], object]:
-    from kinepoly.sweep.run import sweep
+    from kinepoly.sweep import sweep
 
     scene = loads_scene(chain_text(n), f"chain-{n}.toml")
     return lambda: sweep(scene, steps=36, start=55.0, stop=65.0)

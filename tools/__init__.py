@@ -7,4 +7,6 @@
 * ``fuzz``: ``python3 tools/fuzz.py --cases 3000 [--seed S] [--browser N]`` runs mutated examples
   through every command and prints the counts (exit statuses, problems, slow runs); the suite's
   ``tests/hardening/test_fuzz_v2.py`` runs a fixed few dozen of its cases.
+* ``import_graph``: ``python3 tools/import_graph.py`` prints the package's import cycles and upward imports
+  (a layer importing one above it); ``tests/hardening/test_import_layers.py`` holds them to none outside the engine.
 """

@@ -53,6 +53,17 @@ __all__ = [
 ]
 
 
+def _solution_svg(solution: Solution) -> str:
+    """A notebook shows a solution as its drawing (``Solution._repr_svg_``, set here, at the package's face, so
+    that the solution does not import the drawing code above it)."""
+    from kinepoly.motion.api import draw
+
+    return draw(solution)
+
+
+setattr(Solution, "_repr_svg_", _solution_svg)  # noqa: B010 (a method the class does not declare)
+
+
 def __getattr__(name: str) -> Any:
     """``animate`` and ``draw`` load the drawing and animation code (matplotlib, the sweep) when first
     used, so that ``import kinepoly`` and ``kinepoly solve`` start fast."""

@@ -38,6 +38,7 @@ from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
+from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 
 __all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "wanted", "what_is_asked"]
@@ -96,12 +97,6 @@ class Solution:
     contacts: dict[str, Contact] = field(default_factory=dict)
     """Each higher pair's contact (``engine.contacts``), in the user's frame."""
 
-    def _repr_svg_(self) -> str:
-        """A notebook shows the solution as its drawing."""
-        from kinepoly.motion.api import draw
-
-        return draw(self)
-
     @property
     def steps(self) -> tuple[Step, ...]:
         v = self.velocity.steps if self.velocity else ()
@@ -109,7 +104,7 @@ class Solution:
         return v + a
 
     def position(self, label: str) -> Vec:
-        point, _, _ = label.partition("@")
+        point = LinkPoint.parse(label).point
         if point in self.pose.marks:
             return self.pose.marks[point]
         owner = next(link for link in self.mechanism.links_of_point(point) if link in self.pose.links)
@@ -155,8 +150,8 @@ class Solution:
 
 
 def _pair(mechanism: Mechanism, label: str) -> tuple[str, str]:
-    point, _, on = label.partition("@")
-    return (on, point) if on else (mechanism.owner(point), point)
+    named = LinkPoint.parse(label)
+    return (named.link, named.point) if named.link else (mechanism.owner(named.point), named.point)
 
 
 def what_is_asked(mechanism: Mechanism) -> Asked:
@@ -251,7 +246,7 @@ def _finite(mechanism: Mechanism, velocity: VelocityPolygon | None, acceleration
 
 
 def _label(mechanism: Mechanism, link: str, point: str) -> str:
-    return point if mechanism.has_point(link, point) else f"{point}@{link}"
+    return point if mechanism.has_point(link, point) else LinkPoint(point, link).text
 
 
 def _quantities(sol: Solution, analytic: AnalyticSolution) -> list[Quantity]:

@@ -24,7 +24,7 @@ from kinepoly.bench.methods import Setting, construction_values, methods_for
 from kinepoly.bench.motion import Trig, evaluate
 from kinepoly.bench.reference import reference_values
 from kinepoly.bench.run import kind_errors
-from kinepoly.bench.series import slider_crank_series
+from kinepoly.check.series import slider_crank_series
 from kinepoly.cli import main
 from kinepoly.scene.spec import Scene
 

@@ -27,10 +27,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinepoly.bench.motion import LinkMotion
+from kinepoly.check.series import pin_between, slider_crank_links
 from kinepoly.geom.vec import Vec
-from kinepoly.model.mechanism import Mechanism, Revolute
+from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import Pose
-from kinepoly.scene.spec import LinkInput, SliderInput, SliderSpec
+from kinepoly.scene.spec import LinkInput, SliderInput
 
 __all__ = ["ClosedForm", "closed_form"]
 
@@ -44,10 +45,6 @@ class ClosedForm:
 
     name: str
     motion: Callable[[Array], dict[str, LinkMotion]]
-
-
-def _pin(mechanism: Mechanism, a: str, b: str) -> Revolute | None:
-    return next((p for p in mechanism.revolutes if set(p.links) == {a, b}), None)
 
 
 def _angle(v: Vec) -> float:
@@ -91,7 +88,7 @@ def _crank(mechanism: Mechanism, pose: Pose) -> tuple[str, str, str, float, floa
     inp = mechanism.scene.input
     if not isinstance(inp, LinkInput) or mechanism.ground is None:
         return None
-    pivot = _pin(mechanism, inp.link, mechanism.ground)
+    pivot = pin_between(mechanism, inp.link, mechanism.ground)
     others = [p for p in mechanism.revolutes if inp.link in p.links and p is not pivot]
     if pivot is None or len(others) != 1:
         return None
@@ -126,8 +123,8 @@ def _four_bar(mechanism: Mechanism, pose: Pose) -> ClosedForm | None:
     assert ground is not None
     coupler = next(k for k in _pin_links(mechanism, pa) if k != crank)
     rocker = next((k for k in mechanism.link_names if k not in (ground, crank, coupler)), None)
-    pb = _pin(mechanism, coupler, rocker) if rocker else None
-    o4 = _pin(mechanism, rocker, ground) if rocker else None
+    pb = pin_between(mechanism, coupler, rocker) if rocker else None
+    o4 = pin_between(mechanism, rocker, ground) if rocker else None
     if rocker is None or pb is None or o4 is None:
         return None
     g2, g4 = _ground_point(mechanism, o2), _ground_point(mechanism, o4.point)
@@ -192,37 +189,8 @@ def _pin_links(mechanism: Mechanism, point: str) -> tuple[str, ...]:
     return mechanism.links_of_point(point)
 
 
-def _ground_slider(mechanism: Mechanism) -> tuple[SliderSpec, Vec, Vec] | None:
-    """The one slider, on the frame: (spec, its line's point, its unit direction), frame coordinates."""
-    if len(mechanism.sliders) != 1 or mechanism.sliders[0].guide != mechanism.ground:
-        return None
-    spec = mechanism.sliders[0]
-    e = (float(np.cos(spec.angle_rad)), float(np.sin(spec.angle_rad)))
-    return spec, spec.through, e
-
-
-def _slider_crank_links(mechanism: Mechanism) -> tuple[str, str, str, str, str, str, SliderSpec, Vec, Vec] | None:
-    """(crank, rod, block, O2, A, B, slider, T, e) of a slider-crank (any input), else None."""
-    slide = _ground_slider(mechanism)
-    if slide is None or len(mechanism.link_names) != 4 or len(mechanism.revolutes) != 3 or mechanism.ground is None:
-        return None
-    spec, through, e = slide
-    block, ground = spec.block, mechanism.ground
-    rod_pin = next((p for p in mechanism.revolutes if block in p.links), None)
-    if rod_pin is None or rod_pin.point != spec.point:
-        return None
-    rod = rod_pin.other(block)
-    crank = next((k for k in mechanism.link_names if k not in (ground, rod, block)), None)
-    if crank is None:
-        return None
-    o2, pa = _pin(mechanism, crank, ground), _pin(mechanism, crank, rod)
-    if o2 is None or pa is None:
-        return None
-    return crank, rod, block, o2.point, pa.point, spec.point, spec, through, e
-
-
 def _slider_crank(mechanism: Mechanism, pose: Pose) -> ClosedForm | None:
-    parts = _slider_crank_links(mechanism)
+    parts = slider_crank_links(mechanism)
     if parts is None:
         return None
     crank, rod, block, o2, pa, pb, spec, through, e = parts
@@ -317,7 +285,7 @@ def _slotted_lever(mechanism: Mechanism, pose: Pose) -> ClosedForm | None:
     assert ground is not None
     spec = mechanism.sliders[0]
     block, lever = spec.block, spec.guide
-    o4 = _pin(mechanism, lever, ground)
+    o4 = pin_between(mechanism, lever, ground)
     if spec.point != pa or set(_pin_links(mechanism, pa)) != {crank, block} or o4 is None:
         return None
     g4 = _ground_point(mechanism, o4.point)

@@ -17,9 +17,9 @@ import numpy as np
 
 from kinepoly.bench.closed_forms import closed_form
 from kinepoly.bench.motion import LinkMotion, Trig, evaluate
-from kinepoly.bench.series import slider_crank_series
 from kinepoly.check.analytic import solve_analytic
 from kinepoly.check.compare import compare
+from kinepoly.check.series import slider_crank_series
 from kinepoly.engine.assembly import Continuity, position_at_input
 from kinepoly.engine.construct import construct_row
 from kinepoly.engine.polygon import CrossLines

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from kinepoly.model.mechanism import Mechanism
+from kinepoly.scene.link_point import LinkPoint
 
 __all__ = ["LinkMotion", "Trig", "evaluate", "quantity_kind"]
 
@@ -90,7 +91,8 @@ class _Frame:
 
     def material(self, label: str) -> tuple[str, Pair]:
         """The link and local coordinates of ``A`` (its first owner) or ``A@k`` (link k's point under A)."""
-        point, _, on = label.partition("@")
+        named = LinkPoint.parse(label)
+        point, on = named.point, named.link or ""
         owner = next(k for k in self.mechanism.links_of_point(point) if k in self.motion)
         local = self.mechanism.local(owner, point)
         if not on:

@@ -6,6 +6,8 @@ The analytic solution (shares no code with the construction):
 * ``coordinates``, ``constraints``, ``newton``, ``start``, ``given``: its body coordinates,
   constraint equations, damped Newton and linear solves, start poses, a ``[given]`` body;
 * ``compare``: every reported quantity against the analytic value (``CheckReport``).
+* ``series``: the course text's approximate slider-crank (two terms of a binomial series) and the
+  recognition of a slider-crank's links, for the bench and ``kinepoly sweep --series``.
 
 Accuracy:
 

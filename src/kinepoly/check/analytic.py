@@ -52,6 +52,7 @@ from kinepoly.check.start import complete_start
 from kinepoly.errors import SceneError
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
+from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 
 __all__ = [
@@ -114,7 +115,8 @@ class AnalyticSolution:
         ``"A"`` is point A of its first owner link (scene order); ``"A@4"`` is the material point
         of link 4 that is now under A.
         """
-        point, _, on = label.partition("@")
+        named = LinkPoint.parse(label)
+        point, on = named.point, named.link or ""
         try:
             owner = mechanism.owner(point)
         except KeyError:

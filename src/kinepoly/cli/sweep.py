@@ -100,7 +100,7 @@ def _check(args: argparse.Namespace) -> None:
 
 
 def _summary(result: object) -> str:
-    from kinepoly.sweep.run import STATUS, SweepResult
+    from kinepoly.sweep.result import STATUS, SweepResult
 
     assert isinstance(result, SweepResult)
     counts = {name: int((result.status == level).sum()) for level, name in enumerate(STATUS)}

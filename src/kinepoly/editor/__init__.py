@@ -10,7 +10,6 @@ history and what is on disk; ``server`` is the ASGI app (starlette) behind the p
 
 from __future__ import annotations
 
-__all__ = ["TEMPLATES"]
+from kinepoly.editor.template_names import TEMPLATES
 
-TEMPLATES = ("four-bar", "slider-crank", "slotted-lever", "six-bar", "cam", "gear-pair")
-"""The scenes a new file starts from (package data in ``templates/``, copies of the project's examples)."""
+__all__ = ["TEMPLATES"]

@@ -15,9 +15,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any
 
-from kinepoly.editor import TEMPLATES
 from kinepoly.editor.edits import apply_edit
 from kinepoly.editor.evaluate import PAPER, Evaluation, evaluate, redrawn, step_svg
+from kinepoly.editor.template_names import TEMPLATES
 
 __all__ = ["TEMPLATES", "ChangedOnDisk", "Document", "template_text"]
 

@@ -20,13 +20,13 @@ so that the mechanism keeps its assembly as it is dragged.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any, TypeGuard
+from typing import TYPE_CHECKING, Any
 
 import tomlkit
 from tomlkit.exceptions import TOMLKitError
-from tomlkit.items import Array, InlineTable, Table
+from tomlkit.items import InlineTable, Table
 
+from kinepoly.editor.values import EditError, decimals, is_finite_number, pair, place, store, tidy
 from kinepoly.scene.spec import LinkInput, SliderInput
 
 if TYPE_CHECKING:
@@ -34,15 +34,7 @@ if TYPE_CHECKING:
 
     from kinepoly.solution import Solution
 
-__all__ = ["MOVING", "EditError", "apply_edit", "number", "pair", "place", "store"]
-
-_DECIMALS = {"mm": 2, "cm": 3, "in": 3, "m": 5}
-"""The decimals a length is written to from the mouse: a hundredth of a millimetre, whatever the unit."""
-
-
-class EditError(ValueError):
-    """An edit that cannot be made on this text: an unknown point or key, a value of the wrong kind."""
-
+__all__ = ["MOVING", "EditError", "apply_edit"]
 
 MOVING = ("move-point", "drive", "length")
 """The edits that move the mechanism: before them, the guesses follow their points."""
@@ -104,20 +96,6 @@ def _follow(doc: TOMLDocument, solution: Solution) -> bool:
     return changed
 
 
-def _decimals(solution: Solution) -> int:
-    return _DECIMALS.get(solution.scene.units.length, 4)
-
-
-def pair(solution: Solution, at: Sequence[float]) -> list[float]:
-    """A place or coordinates as the scene writes them from the mouse (``_DECIMALS``)."""
-    d = _decimals(solution)
-    return [_tidy(round(at[0], d)), _tidy(round(at[1], d))]
-
-
-def _tidy(x: float) -> float:
-    return 0.0 if x == 0 else x
-
-
 def _move_point(doc: TOMLDocument, solution: Solution, point: str, to: tuple[float, float]) -> None:
     links = [link for link in solution.scene.links if any(p.name == point for p in link.points)]
     moved = [link.name for link in links if link.name in solution.pose.links and _written(doc, link.name, point)]
@@ -141,7 +119,7 @@ def _move_point(doc: TOMLDocument, solution: Solution, point: str, to: tuple[flo
         if isinstance(given, LinkInput) and given.link == name and given.relative_to is None:
             theta = math.remainder(given.angle_rad + phi, 2 * math.pi)  # the crank stays where it is
             value = round(math.degrees(theta), 2) if solution.scene.units.angle == "deg" else round(theta, 5)
-            _set(doc, ["input", "angle"], _tidy(value))
+            _set(doc, ["input", "angle"], tidy(value))
 
 
 def _textbook_turn(solution: Solution, link: str, point: str,
@@ -175,10 +153,10 @@ def _set_point(doc: TOMLDocument, solution: Solution, link: str, point: str, loc
     points = doc["links"][link]["points"]
     old = points.get(point)
     if isinstance(old, (Table, InlineTable)) and "polar" in old:
-        d = _decimals(solution)
+        d = decimals(solution)
         angle = math.atan2(local[1], local[0])
         shown = round(math.degrees(angle), 2) if solution.scene.units.angle == "deg" else round(angle, 5)
-        store(old, "polar", [_tidy(round(math.hypot(*local), d)), _tidy(shown)])
+        store(old, "polar", [tidy(round(math.hypot(*local), d)), tidy(shown)])
     else:
         _set(doc, ["links", link, "points", point], pair(solution, local))
 
@@ -207,16 +185,16 @@ def _drive(doc: TOMLDocument, solution: Solution, to: tuple[float, float]) -> No
         turn = math.atan2(to[1] - pivot[1], to[0] - pivot[0]) - math.atan2(at[1] - pivot[1], at[0] - pivot[0])
         theta = math.remainder(given.angle_rad + turn, 2 * math.pi)
         value = round(math.degrees(theta), 2) if solution.scene.units.angle == "deg" else round(theta, 5)
-        _set(doc, ["input", "angle"], _tidy(value))
+        _set(doc, ["input", "angle"], tidy(value))
     elif isinstance(given, SliderInput):
         slider = next(s for s in solution.scene.sliders if s.name == given.slider)
         direction = solution.pose.links[slider.guide].theta + slider.angle_rad
         s = given.s + (to[0] - at[0]) * math.cos(direction) + (to[1] - at[1]) * math.sin(direction)
-        _set(doc, ["input", "s"], _tidy(round(s, _decimals(solution))))
+        _set(doc, ["input", "s"], tidy(round(s, decimals(solution))))
 
 
 def _length(doc: TOMLDocument, solution: Solution, link_name: str, point: str, value: object) -> None:
-    if not _finite(value) or value <= 0:
+    if not is_finite_number(value) or value <= 0:
         raise EditError(f"length: {value!r} is not a length; expected a positive number")
     try:
         link = solution.scene.link(link_name)
@@ -257,24 +235,6 @@ def _set(doc: TOMLDocument, key: list[str | int], value: Any) -> None:
     store(node, last, value)
 
 
-def store(table: Any, key: str, value: Any) -> None:
-    """``table[key] = value``, an existing list of numbers changed in place (its formatting kept)."""
-    old = table.get(key)
-    if isinstance(old, Array) and isinstance(value, list) and len(old) == len(value) and \
-            all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in old):
-        for i, x in enumerate(value):
-            old[i] = number(x)
-        return
-    table[key] = [number(x) for x in value] if isinstance(value, list) else number(value)
-
-
-def number(x: Any) -> Any:
-    """A number as the user writes it: a whole float as an integer."""
-    if isinstance(x, float) and x.is_integer() and abs(x) < 1e15:
-        return int(x)  # written as the user would: 40, not 40.0
-    return x
-
-
 def _numbers(item: Any) -> list[float] | None:
     if isinstance(item, list) and all(isinstance(x, (int, float)) for x in item):
         return [float(x) for x in item]
@@ -292,34 +252,17 @@ def _value(value: object) -> Any:
     if isinstance(value, bool) or value is None:
         raise EditError(f"set: value {value!r}; expected a number, a string or a list of numbers")
     if isinstance(value, (int, float)):
-        if not _finite(value):
+        if not is_finite_number(value):
             raise EditError(f"set: value {value!r}; expected a finite number")
         return value
     if isinstance(value, str):
         return value
-    if isinstance(value, list) and value and all(_finite(x) for x in value):
+    if isinstance(value, list) and value and all(is_finite_number(x) for x in value):
         return list(value)
     raise EditError(f"set: value {value!r}; expected a number, a string or a list of numbers")
-
-
-def _finite(x: object) -> TypeGuard[int | float]:
-    """Whether ``x`` is a number (not a bool) a float holds finite: JSON's whole numbers have no bound."""
-    if isinstance(x, bool) or not isinstance(x, (int, float)):
-        return False
-    try:
-        return math.isfinite(float(x))
-    except OverflowError:
-        return False
 
 
 def _name(name: object) -> str:
     if not isinstance(name, str) or not name:
         raise EditError(f"{name!r} is not a name; expected a point's or a link's name")
     return name
-
-
-def place(to: object) -> tuple[float, float]:
-    """An edit's place ``[x, y]``; EditError when it is not one."""
-    if not (isinstance(to, list) and len(to) == 2 and all(_finite(x) for x in to)):
-        raise EditError(f"{to!r} is not a place; expected [x, y] in the scene's length unit")
-    return float(to[0]), float(to[1])

@@ -25,8 +25,8 @@ from starlette.staticfiles import StaticFiles
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from kinepoly.editor.document import ChangedOnDisk, Document
-from kinepoly.editor.edits import EditError
 from kinepoly.editor.evaluate import Evaluation
+from kinepoly.editor.values import EditError
 from kinepoly.errors import internal_error_text
 
 __all__ = ["Guard", "make_app", "new_token"]

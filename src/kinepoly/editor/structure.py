@@ -21,9 +21,10 @@ from typing import TYPE_CHECKING, Any
 import tomlkit
 from tomlkit.items import AoT, Array, InlineTable, Table
 
-from kinepoly.editor.edits import EditError, number, pair, place, store
+from kinepoly.editor.values import EditError, number, pair, place, store
 from kinepoly.geom.tolerances import EDIT_SAME_REL, SIZE_FLOOR
 from kinepoly.model.pose import LinkPose
+from kinepoly.scene.link_point import LinkPoint
 
 if TYPE_CHECKING:
     from tomlkit.toml_document import TOMLDocument
@@ -222,6 +223,6 @@ def remove_link(doc: TOMLDocument, solution: Solution, link: object) -> None:
             listed = find.get(key)
             if isinstance(listed, Array):
                 for i in reversed(range(len(listed))):
-                    point, _, on = str(listed[i]).partition("@")
-                    if point in drop or str(listed[i]) in drop or on == link:
+                    named = LinkPoint.parse(str(listed[i]))
+                    if named.point in drop or str(listed[i]) in drop or named.link == link:
                         del listed[i]

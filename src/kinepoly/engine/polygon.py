@@ -33,7 +33,8 @@ from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross, cro
 from kinepoly.geom.lines import Line as StepLine
 from kinepoly.geom.tolerances import COLLINEAR_SIN, PARALLEL_SIN
 from kinepoly.geom.vec import magnitude, phase
-from kinepoly.model.mechanism import Mechanism, point_label
+from kinepoly.model.mechanism import Mechanism
+from kinepoly.scene.link_point import LinkPoint, point_of
 
 __all__ = ["CrossLines", "JointSolve", "Line", "LineCrossing", "Polygon", "sense"]
 
@@ -135,7 +136,7 @@ class Polygon:
         return self.positions.point(point)
 
     def label(self, link: str, point: str) -> str:
-        return point if self.mechanism.has_point(link, point) else point_label(point, link)
+        return point if self.mechanism.has_point(link, point) else LinkPoint(point, link).text
 
     @staticmethod
     def tip_name(label: str) -> str:
@@ -271,7 +272,7 @@ class Polygon:
         return value
 
     def _local(self, link: str, label: str) -> complex:
-        x, y = self.mechanism.local(link, label.partition("@")[0])
+        x, y = self.mechanism.local(link, point_of(label))
         return complex(x, y)
 
     def _image_of(self, first: Member, second: Member, at: Points) -> Points:

@@ -2,17 +2,65 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
+from functools import cache
 from typing import Literal
 
 from kinepoly.geom.lines import Line
+from kinepoly.scene.link_point import LinkPoint
 
-__all__ = ["Direction", "DrawnVector", "Step", "Term"]
+__all__ = ["Direction", "DrawnVector", "Step", "Term", "TermName", "term_name"]
 
 Vec = tuple[float, float]
 Term = Literal["absolute", "relative", "normal", "tangential", "coriolis", "sliding"]
 StepKind = Literal["known", "image", "proportional", "intersection", "coriolis", "read", "linear-solve"]
 Relation = Literal["perpendicular", "parallel", "at-angle", "along", "face"]
+
+
+_TERM_TEXT = re.compile(r"^([va])(?:\^([a-z]))?_([^/\s]+)(?:/([^/\s]+))?$")
+
+
+@dataclass(frozen=True, slots=True)
+class TermName:
+    """A term of a vector equation as a value: ``a^n_B@4/A`` is the ``quantity`` a (v for a velocity), its
+    ``component`` n (t tangential, c Coriolis; "" for a whole velocity or acceleration) of ``point`` B@4
+    relative to ``reference`` A (None for an absolute term, ``a_B``). ``text`` is the textbook's name."""
+
+    quantity: Literal["v", "a"]
+    component: str
+    point: LinkPoint
+    reference: LinkPoint | None = None
+
+    @property
+    def text(self) -> str:
+        return self.quantity + (f"^{self.component}" if self.component else "") + "_" + self.subscript
+
+    @property
+    def subscript(self) -> str:
+        """What the name writes below the line: ``B@4/A``."""
+        return self.point.text if self.reference is None else f"{self.point.text}/{self.reference.text}"
+
+    @property
+    def loose(self) -> TermName:
+        """The same term whatever links its points are taken on (``a_B@4/A@3`` -> ``a_B/A``)."""
+        reference = None if self.reference is None else LinkPoint(self.reference.point)
+        return TermName(self.quantity, self.component, LinkPoint(self.point.point), reference)
+
+    def __str__(self) -> str:
+        return self.text
+
+
+@cache
+def term_name(text: str) -> TermName | None:
+    """The term a name like ``v_B/A``, ``a^t_B@4/C`` or ``a_B`` says, as a value; None for any other text
+    (``...``, ``2 omega x v_B/A``). The one reader of the names the construction writes."""
+    m = _TERM_TEXT.match(text)
+    if m is None:
+        return None
+    quantity: Literal["v", "a"] = "v" if m.group(1) == "v" else "a"
+    reference = None if m.group(4) is None else LinkPoint.parse(m.group(4))
+    return TermName(quantity, m.group(2) or "", LinkPoint.parse(m.group(3)), reference)
 
 
 @dataclass(frozen=True)
@@ -23,6 +71,11 @@ class DrawnVector:
     start: Vec
     end: Vec
     term: Term
+
+    @property
+    def name(self) -> TermName | None:
+        """The term the vector is (``label`` as a value: its quantity, component, point and reference)."""
+        return term_name(self.label)
 
 
 @dataclass(frozen=True)
@@ -42,6 +95,13 @@ class Direction:
     through: str
     after: str = ""
     angle_deg: float = 0.0
+
+    @property
+    def terms(self) -> tuple[TermName, ...]:
+        """The unknown terms the line carries, as values: one, two along a triad's line toward its Assur point
+        (``v_B/A + v_S/B``), none for an image's line."""
+        names = (term_name(part.strip()) for part in self.term.split(" + ")) if self.term else ()
+        return tuple(name for name in names if name is not None)
 
 
 @dataclass(frozen=True)
@@ -90,6 +150,12 @@ class Step:
     topic: str = ""
     params: tuple[tuple[str, str | float], ...] = ()
     directions: tuple[Direction, ...] = ()
+
+    @property
+    def sides(self) -> tuple[tuple[str, ...], ...]:
+        """The vector equation's sides, each its terms in order (``v_B = v_A + v_B/A`` -> ((v_B,), (v_A, v_B/A)));
+        ``term_name`` reads a term as a value."""
+        return tuple(tuple(term.strip() for term in side.split(" + ")) for side in self.equation.split(" = "))
 
     def param(self, name: str) -> str | float:
         """The named argument of the step's topic (KeyError when the topic has none of that name)."""

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from kinepoly.geom.tolerances import PAPER_ROUNDING_MM
 from kinepoly.render import text as render_text
 from kinepoly.render.text import Run
+from kinepoly.scene.link_point import LinkPoint
 
 __all__ = ["Piece", "html_of", "pieces", "plain_of", "quantity_name", "runs_of", "text_width", "typographic", "wrap"]
 
@@ -120,11 +121,11 @@ def _word(word: str) -> Iterator[Piece]:
     if vector:
         yield Piece(vector.group(1), vector.group(2) or "", vector.group(3))
     elif core and _NAMED.match(core) and any(ch.isdigit() for ch in core):
-        name, at, link = core.partition("@")
-        for m in _GROUP.finditer(name):
+        named = LinkPoint.parse(core)
+        for m in _GROUP.finditer(named.point):
             yield Piece(m.group(1), "", m.group(2))
-        if at:
-            yield Piece(at + link)
+        if named.link is not None:
+            yield Piece(named.at_link)
     elif core:
         yield Piece(core)
     if trail:

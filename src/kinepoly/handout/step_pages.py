@@ -8,19 +8,19 @@ the step are the shared phrasing's (``kinepoly.present.phrasing``, from ``Step.t
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 
 from kinepoly.engine.center_values import InstantCenters, KennedyStep
 from kinepoly.engine.circle_diagram import center_label
-from kinepoly.engine.steps import Direction, DrawnVector, Step
+from kinepoly.engine.steps import Direction, DrawnVector, Step, term_name
 from kinepoly.geom.vec import norm, sub
 from kinepoly.handout.content import Column, Drawing, Page, Paragraph, Table
 from kinepoly.handout.equivalent_page import equivalent_page
 from kinepoly.handout.notation import typographic
 from kinepoly.model.mechanism import Revolute, joint_links
 from kinepoly.present.catalogue import Catalogue
-from kinepoly.present.phrasing import Context, Words, kennedy_words, segment, step_words, tip_name
+from kinepoly.present.phrasing import Context, Words, kennedy_words, segment, step_words, term_ends, tip_name
+from kinepoly.scene.link_point import point_of
 from kinepoly.solution import Solution
 
 __all__ = ["construction_pages", "step_equation", "tip_name"]
@@ -31,11 +31,10 @@ class _Writer(Words):
 
     # -- the table of terms --------------------------------------------------------------------
     def vector_direction(self, vector: DrawnVector) -> str:
-        _head, _, names = vector.label.partition("_")
-        point, _, reference = names.partition("/")
+        point, reference = term_ends(vector)
         if vector.term == "normal":
             return self.say.say("table.toward", segment=segment(point, reference),
-                                point=reference.partition("@")[0])
+                                point=point_of(reference))
         if vector.term in ("tangential", "relative"):
             return self.say.say("table.perpendicular", reference=segment(reference, point))
         if vector.term == "coriolis":
@@ -52,8 +51,9 @@ class _Writer(Words):
         return self.say.say("table.known")
 
     def absolute_row(self, polygon: str, term: str) -> tuple[str, str, str]:
-        label = term.partition("_")[2]
-        tip = self.tips(polygon).get(label)
+        name = term_name(term)
+        label = name.point.text if name is not None and name.reference is None else ""
+        tip = self.tips(polygon).get(label) if label else None
         if tip is None:
             return (term, self.say.say("table.known"), self.say.say("table.known"))
         if self.tip_or_pole(polygon, label) == self.pole(polygon):
@@ -62,23 +62,23 @@ class _Writer(Words):
                 self.say.say("table.known_tip", pole=self.pole(polygon), tip=tip_name(label, polygon)))
 
     def rows(self, step: Step) -> tuple[tuple[str, ...], ...]:
-        sides = [[t.strip() for t in side.split(" + ")] for side in step.equation.split(" = ")]
+        sides = step.sides
         laid = {v.label: v for v in step.vectors}
-        loose = {re.sub(r"@\d+", "", label): v for label, v in laid.items()}
+        loose = {v.name.loose: v for v in step.vectors if v.name is not None}
         unit = self.unit_of(step.polygon)
         out: list[tuple[str, ...]] = [(sides[0][0], "?", "?")]
         for k, side in enumerate(sides[1:]):
             for n, term in enumerate(side):
-                vector = laid.get(term) or loose.get(re.sub(r"@\d+", "", term))
+                name = term_name(term)
+                vector = laid.get(term) or (loose.get(name.loose) if name is not None else None)
                 if step.topic == "intersection" and n == len(side) - 1 and k < len(step.directions):
                     out.append((term, "?", self.line_direction(step.directions[k])))
                 elif vector is not None:
                     out.append((term, f"{self.n(norm(sub(vector.end, vector.start)))} {unit}",
                                 self.vector_direction(vector)))
-                elif step.topic == "relative" and "/" in term:
-                    suffix = "_" + term.partition("_")[2]
-                    for v in step.vectors:
-                        if v.label.endswith(suffix):
+                elif step.topic == "relative" and name is not None and name.reference is not None:
+                    for v in step.vectors:  # the term's components laid (a^n_B/A and a^t_B/A for a_B/A)
+                        if v.name is not None and (v.name.point, v.name.reference) == (name.point, name.reference):
                             out.append((v.label, f"{self.n(norm(sub(v.end, v.start)))} {unit}",
                                         self.vector_direction(v)))
                 else:

@@ -33,6 +33,7 @@ from functools import partial
 from typing import Literal, NoReturn
 
 from kinepoly.errors import SceneError
+from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.loader import ProblemReport, parse_located, read_quantity, show_value, suggest
 from kinepoly.scene.problems import unknown_key
 from kinepoly.scene.source import read_text
@@ -171,7 +172,7 @@ def key_names(scene: Scene) -> list[str]:
     links = [link.name for link in scene.links]
     names = [f"{prefix}{link}" for prefix in ("omega_", "alpha_", "theta_") for link in moving]
     names += [f"{prefix}{point}" for prefix in ("v_", "a_") for point in _points(scene)]
-    names += [f"{prefix}{s.point}@{s.guide}" for prefix in ("v_", "a_") for s in scene.sliders]
+    names += [f"{prefix}{LinkPoint(s.point, s.guide).text}" for prefix in ("v_", "a_") for s in scene.sliders]
     names += [f"{prefix}{s.name}" for prefix in ("s_", "s_dot_", "s_ddot_") for s in scene.sliders]
     names += [f"I_{_pair_name(a, b)}" for i, a in enumerate(links) for b in links[i + 1 :]]
     return names
@@ -201,10 +202,11 @@ def _target_problem(kind: Kind, target: str, scene: Scene) -> str | None:
             return f'link "{target}" is the frame, it does not move; expected a moving link'
         return None if target in links else _no_such("link", target, _moving_links(scene))
     if kind in ("velocity", "acceleration"):
-        point, at, link = target.partition("@")
+        named = LinkPoint.parse(target)
+        point, link = named.point, named.link
         if point not in _points(scene):
             return _no_such("point", point, _points(scene))
-        if at and link not in links:
+        if link is not None and link not in links:
             return f'in "{target}": {_no_such("link", link, links)}'
         return None
     if kind in ("s", "s_dot", "s_ddot"):

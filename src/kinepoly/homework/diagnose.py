@@ -45,6 +45,7 @@ from kinepoly.homework.reference import (
     student_solution,
     value_in,
 )
+from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import LinkInput, Scene
 
 __all__ = ["Candidate", "Diagnosis", "Mistake", "Recomputed", "candidates", "diagnose", "recompute"]
@@ -185,8 +186,8 @@ def _scaled(value: Value, factor: float) -> Value:
 
 
 def _owner(scene: Scene, label: str) -> str:
-    point, _, on = label.partition("@")
-    return on or next(link.name for link in scene.links if point in link.point_names)
+    named = LinkPoint.parse(label)
+    return named.link or next(link.name for link in scene.links if named.point in link.point_names)
 
 
 def _reading_mistakes(reference: Reference, key: AnswerKey, expected: Value) -> list[Candidate]:

@@ -26,6 +26,7 @@ from kinepoly.geom.vec import Vec
 from kinepoly.homework.answers import AnswerKey, Direction, Value
 from kinepoly.present.clean import noise_of
 from kinepoly.present.scales import A4, polygon_scales
+from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import FindSpec, GivenInput, Scene
 from kinepoly.solution import Solution, solve, wanted
 
@@ -199,7 +200,7 @@ def _find_for(scene: Scene, keys: Iterable[AnswerKey], *, everything: bool) -> F
     wants_acceleration = bool(acceleration or alpha or of["s_ddot"])
     if everything:
         points = [p.name for link in scene.links for p in link.points]
-        points += [f"{s.point}@{s.guide}" for s in scene.sliders]
+        points += [LinkPoint(s.point, s.guide).text for s in scene.sliders]
         moving = [link.name for link in scene.links if link.name not in (scene.ground, *fixed)]
         velocity += points
         omega += moving

@@ -12,6 +12,7 @@ from kinepoly.engine.row import SliderValues, pose_row
 from kinepoly.loops.contours import LoopMethodError, uncovered
 from kinepoly.loops.rates import LoopSolution, solve_loops
 from kinepoly.model.pose import Pose
+from kinepoly.scene.link_point import LinkPoint
 from kinepoly.solution import Solution
 
 __all__ = ["full_pose", "loop_method_solution", "loops_json"]
@@ -37,7 +38,8 @@ def _vec(z: complex) -> Vec:
 
 def _resolve(solution: Solution, label: str) -> tuple[str, complex] | None:
     """The link a polygon's tip label is a point of, and where it is; None for a construction's own mark."""
-    point, _, on = label.partition("@")
+    named = LinkPoint.parse(label)
+    point, on = named.point, named.link or ""
     mech = solution.mechanism
     if on:
         link = on

@@ -1,5 +1,5 @@
 """Links, joints, sliders and mobility: the mechanism a scene describes."""
 
-from kinepoly.model.mechanism import Joint, Mechanism, Revolute, build_mechanism, point_label
+from kinepoly.model.mechanism import Joint, Mechanism, Revolute, build_mechanism
 
-__all__ = ["Joint", "Mechanism", "Revolute", "build_mechanism", "point_label"]
+__all__ = ["Joint", "Mechanism", "Revolute", "build_mechanism"]

@@ -17,7 +17,7 @@ from typing import TypeVar
 from kinepoly.errors import MobilityError, SceneError
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput, SliderSpec
 
-__all__ = ["Drive", "Joint", "Mechanism", "Revolute", "build_mechanism", "point_label"]
+__all__ = ["Drive", "Joint", "Mechanism", "Revolute", "build_mechanism"]
 
 Vec = tuple[float, float]
 T = TypeVar("T")
@@ -76,11 +76,6 @@ class Drive:
         if isinstance(self.spec, LinkInput):
             return self.spec.omega if order == 1 else self.spec.alpha
         return self.spec.s_dot if order == 1 else self.spec.s_ddot
-
-
-def point_label(point: str, link: str | None = None) -> str:
-    """The textbook name of a point as a point of ``link``: ``A`` or ``A@4``."""
-    return point if link is None else f"{point}@{link}"
 
 
 @dataclass(frozen=True)

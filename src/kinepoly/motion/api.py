@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import base64
 import os
-import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -133,7 +132,7 @@ def draw(solution: Solution, part: str | None = None, paper: str | tuple[float, 
     """The drawing of ``solution`` as SVG text: the whole sheet, or one part (a layer of it, cut to its panel)."""
     from kinepoly.render.primitives import Layer, Sheet
     from kinepoly.render.sheet import build_sheet, layout_sheet
-    from kinepoly.render.svg import number, svg_text
+    from kinepoly.render.svg import svg_text
 
     layout = layout_sheet(solution, paper)
     sheet = build_sheet(solution, paper, layout=layout)
@@ -154,12 +153,4 @@ def draw(solution: Solution, part: str | None = None, paper: str | tuple[float, 
     keep = {part, "mechanism"} if part == "instant-centers" else {part}
     cut = Sheet(sheet.width, sheet.height, sheet.title,
                 tuple(Layer(layer.name, layer.items if layer.name in keep else ()) for layer in sheet.layers))
-    text = svg_text(cut)
-    # the page's viewBox cut to the panel (SVG's y runs down from the page's top)
-    w, h = x1 - x0, y1 - y0
-    head = (f'width="{number(w)}mm" height="{number(h)}mm" '
-            f'viewBox="{number(x0)} {number(sheet.height - y1)} {number(w)} {number(h)}"')
-    start = text.index("<svg")
-    end = text.index(">", start)
-    tag = re.sub(r'\s(width|height|viewBox)="[^"]*"', "", text[start:end]) + " " + head
-    return text[:start] + tag + text[end:]
+    return svg_text(cut, view=(x0, y0, x1, y1))

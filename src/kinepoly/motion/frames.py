@@ -26,10 +26,13 @@ from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.velocity import VelocityResult, construct_velocity, slide_direction
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals
-from kinepoly.geom.tolerances import ROUNDING_REL, TINY_POSITIVE
+from kinepoly.geom.tolerances import TINY_POSITIVE
+from kinepoly.present.scales import nice_floor
+from kinepoly.scene.link_point import LinkPoint, point_of
 from kinepoly.scene.spec import LinkInput, Scene
 from kinepoly.sweep.plots import robust_window
-from kinepoly.sweep.run import PreparedSweep, SweepResult
+from kinepoly.sweep.result import CANNOT_ASSEMBLE, NEAR_SINGULAR, OK, SweepResult
+from kinepoly.sweep.run import PreparedSweep
 from kinepoly.sweep.shown import shown_values
 
 __all__ = ["NO_POLYGON", "PANEL_MM", "PARTS", "Frames", "LinkFrames", "PolygonFrames", "SliderFrames", "Trace", "Value",
@@ -45,19 +48,13 @@ around the pole (less a margin for the labels)."""
 NO_POLYGON = ("", "near-singular: beyond the cycle's scale", "singular: no polygon", "")
 """What a polygon panel says in place of a polygon it leaves out, by the row's status."""
 _ROOM_MM = 0.5 * PANEL_MM - 6.0
-_NICE = (1.0, 2.0, 2.5, 5.0)
-_OK, _OK_OR_NEAR = 0, 1
-_CANNOT = 3
 
 
 def fitting_scale(radius: float, room_mm: float = _ROOM_MM) -> float:
-    """The largest round scale (1, 2, 2.5 or 5 times a power of ten) that draws ``radius`` within ``room_mm``."""
+    """The largest round scale (``present.scales.nice_floor``) that draws ``radius`` within ``room_mm``."""
     if not (radius > 0.0 and math.isfinite(radius)):
         return 1.0
-    raw = room_mm / radius
-    exponent = math.floor(math.log10(raw))
-    candidates = [m * 10.0 ** (exponent + k) for k in (-1, 0) for m in _NICE]
-    return max(c for c in candidates if c <= raw * (1 + ROUNDING_REL))
+    return nice_floor(room_mm / radius)
 
 
 @dataclass(frozen=True)
@@ -159,7 +156,7 @@ class Frames:
         """The transmission functions a ``functions`` panel draws (the omegas, else the first order, four at
         most) and its value window where flagged rows run off the ok ones (``sweep.plots.robust_window``)."""
         chosen = tuple([v for v in self.values if v.unit == "rad/s"] or [v for v in self.values if v.order == 1])[:4]
-        ok = self.status == _OK
+        ok = self.status == OK
         return chosen, robust_window([v.values[v.valid] for v in chosen], [v.values[v.valid & ok] for v in chosen])
 
 
@@ -170,7 +167,7 @@ def _polygon_frames(polygon: Polygon, idx: npt.NDArray[np.intp], valid: Bools, o
     is left out, as a singular one is."""
     mech = polygon.mechanism
     ground_points = set(mech.scene.link(mech.ground).point_names) if mech.ground else set()
-    ground_points |= {label for label in polygon.tips if mech.ground and label.partition("@")[2] == mech.ground}
+    ground_points |= {label for label in polygon.tips if mech.ground and LinkPoint.parse(label).link == mech.ground}
     labels = [label for label in polygon.tips if label not in ground_points]
     index = {label: j for j, label in enumerate(labels)}
     index.update({g: -1 for g in ground_points})
@@ -294,14 +291,14 @@ def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, 
     if positions is None or shown is None:
         raise ValueError("this sweep result keeps no poses (it was not made by kinepoly.sweep.run_sweep)")
     computed = np.flatnonzero(shown)
-    reach = result.status != _CANNOT
+    reach = result.status != CANNOT_ASSEMBLE
     rows = np.flatnonzero(reach).astype(np.intp)
     if not len(rows):
         raise AssemblyError(f"{result.scene.title}: the mechanism cannot be assembled at any of the {result.rows} "
                             "positions asked")
     idx = computed[rows]
-    valid = result.status[rows] <= _OK_OR_NEAR
-    ok = result.status[rows] == _OK
+    valid = result.status[rows] <= NEAR_SINGULAR
+    ok = result.status[rows] == OK
     asked = prepared.asked
     length = result.scene.units.length
     velocity: VelocityResult | None = None
@@ -319,17 +316,17 @@ def make_frames(result: SweepResult, prepared: PreparedSweep, parts: tuple[str, 
         mech = positions.mechanism
         if velocity is not None and "velocity" in parts:
             extras: list[tuple[str, str, Points | None, str]] = [
-                (f"{s.point}@{s.guide}", velocity.polygon.label(s.block, s.point), None, "sliding")
+                (LinkPoint(s.point, s.guide).text, velocity.polygon.label(s.block, s.point), None, "sliding")
                       for s in mech.scene.sliders if s.guide != mech.ground]
             v_frames = _polygon_frames(velocity.polygon, idx, valid, ok, f"{length}/s", extras)
         if acceleration is not None and "acceleration" in parts:
-            extras = [(f"{s.point}@{s.guide}", acceleration.polygon.label(s.block, s.point),
+            extras = [(LinkPoint(s.point, s.guide).text, acceleration.polygon.label(s.block, s.point),
                        acceleration.coriolis[s.name], "coriolis")  # a_P(guide) + coriolis + sliding = a_P(block)
                       for s in mech.scene.sliders if s.name in acceleration.coriolis and s.guide != mech.ground]
             a_frames = _polygon_frames(acceleration.polygon, idx, valid, ok, f"{length}/s^2", extras)
         paths: tuple[Trace, ...] = ()
         if "paths" in parts:
-            labels = dict.fromkeys(label.partition("@")[0] for label in (*result.scene.find.velocity,
+            labels = dict.fromkeys(point_of(label) for label in (*result.scene.find.velocity,
                                                                          *result.scene.find.acceleration))
             paths = tuple(Trace(p, np.asarray(positions.point(p))[idx], np.ones(len(idx), np.bool_))
                           for p in labels)

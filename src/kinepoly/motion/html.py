@@ -17,12 +17,13 @@ import math
 from collections.abc import Iterator
 from typing import Any
 
+from kinepoly.assets import static_text
 from kinepoly.handout.notation import html_of, quantity_name, typographic
 from kinepoly.motion.frames import Frames
 from kinepoly.motion.sheets import frame_sheets, frame_solutions
 from kinepoly.present.script_json import script_json
 from kinepoly.render.svg import svg_text
-from kinepoly.sweep.run import STATUS
+from kinepoly.sweep.result import STATUS
 
 __all__ = ["frames_data", "html_page"]
 
@@ -55,83 +56,19 @@ def frames_data(frames: Frames) -> dict[str, Any]:
     }
 
 
-_STYLE = """
-body { font-family: DejaVu Sans, Verdana, Arial, sans-serif; margin: 16px; color: #111; }
-h1 { font-size: 18px; margin: 0 0 8px 0; }
-#drawing svg { width: 100%; max-width: 1600px; height: auto; display: block; }
-#controls { margin: 10px 0; display: flex; gap: 12px; align-items: center; }
-#position { width: 420px; }
-table { border-collapse: collapse; font-size: 13px; }
-td, th { padding: 2px 10px; border-bottom: 1px solid #ddd; text-align: left; }
-td.number { text-align: right; font-variant-numeric: tabular-nums; }
-#skipped { color: #a33; font-size: 13px; }
-"""
-
-_SCRIPT = r"""
-"use strict";
-const D = JSON.parse(document.getElementById("frames").textContent);
-const drawing = document.getElementById("drawing");
-const table = document.getElementById("values");
-const cells = D.values.map(v => {
-  const tr = document.createElement("tr");
-  const name = document.createElement("td"), value = document.createElement("td"), u = document.createElement("td");
-  name.innerHTML = v.label; value.className = "number"; value.dataset.name = v.name; u.textContent = v.unit;
-  tr.append(name, value, u);
-  table.appendChild(tr);
-  return value;
-});
-const slider = document.getElementById("position");
-slider.max = D.rows.length - 1;
-let frame = 0, timer = null;
-function show(k) {
-  frame = Math.max(0, Math.min(D.rows.length - 1, k));
-  const row = D.rows[frame];
-  slider.value = frame;
-  document.body.dataset.row = row;
-  document.body.dataset.frame = frame;
-  drawing.innerHTML = D.sheets[frame];
-  D.values.forEach((v, j) => {
-    const x = v.values[row];
-    cells[j].dataset.value = x === null ? "" : String(x);
-    cells[j].textContent = x === null ? "\u2014" : Number(x.toPrecision(6)).toString();  // by the number rule already
-  });
-  const status = D.status[row] === "ok" ? "" : ` (${D.status[row]})`;
-  document.getElementById("where").textContent =
-    `position ${row + 1} of ${D.count}: ${D.input.name} = ${Number(D.inputs[row].toPrecision(6))} ${D.input.unit}${status}`;
-}
-function play() {
-  if (timer !== null) { clearInterval(timer); timer = null; }
-  else timer = setInterval(() => show((frame + 1) % D.rows.length), 1000 / Number(document.body.dataset.fps));
-  document.getElementById("play").textContent = timer === null ? "Play" : "Pause";
-  document.body.dataset.playing = timer === null ? "no" : "yes";
-}
-document.getElementById("play").addEventListener("click", play);
-slider.addEventListener("input", () => show(Number(slider.value)));
-document.addEventListener("keydown", e => {
-  if (e.target === slider) return;
-  if (e.key === "ArrowRight") show(frame + 1);
-  else if (e.key === "ArrowLeft") show(frame - 1);
-  else if (e.key === " ") { play(); e.preventDefault(); }
-});
-if (D.skipped.length) document.getElementById("skipped").textContent =
-  `${D.skipped.length} of ${D.count} positions cannot be reached and are skipped: ` +
-  D.skipped.map(r => `${Number(D.inputs[r].toPrecision(6))}`).join(", ") + ` ${D.input.unit}`;
-window.kinepoly = {show, play, data: D};
-show(0);
-"""
-
-
 def html_page(frames: Frames, fps: float = 24.0) -> str:
-    """The page: data, style and script inline; it draws frame 0 on load."""
+    """The page: data, style and script inline (the package's ``static/animation.css`` and ``.js``); it draws frame 0
+    on load."""
     data = script_json(frames_data(frames))
     title = html.escape(frames.title)
+    style, script = static_text("kinepoly.motion", "animation.css"), static_text("kinepoly.motion", "animation.js")
     return (f'<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n<title>{title}: motion</title>\n'
-            f"<style>{_STYLE}</style>\n</head>\n"
+            f"<style>\n{style}</style>\n</head>\n"
             f'<body data-fps="{fps:g}" data-playing="no">\n<h1>{title}</h1>\n<div id="drawing"></div>\n'
             '<div id="controls"><button id="play" type="button">Play</button>'
             '<input id="position" type="range" min="0" max="0" step="1" value="0" aria-label="position">'
             '<span id="where"></span></div>\n<p id="skipped"></p>\n'
             '<table><thead><tr><th>quantity</th><th>value</th><th>unit</th></tr></thead>'
             '<tbody id="values"></tbody></table>\n'
-            f'<script type="application/json" id="frames">{data}</script>\n<script>{_SCRIPT}</script>\n'
+            f'<script type="application/json" id="frames">{data}</script>\n<script>\n{script}</script>\n'
             "</body>\n</html>\n")

@@ -17,19 +17,20 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cache, cached_property
 
 from kinepoly.engine.center_values import KennedyStep
 from kinepoly.engine.center_velocity import CenterOmega
 from kinepoly.engine.circle_diagram import center_label, pair_name
 from kinepoly.engine.plan import NewtonGroup
-from kinepoly.engine.steps import Direction, DrawnVector, Step
+from kinepoly.engine.steps import Direction, DrawnVector, Step, term_name
 from kinepoly.geom.tolerances import COINCIDENT_REL, SAME_REL
 from kinepoly.geom.vec import Vec, norm, sub
 from kinepoly.present.catalogue import Catalogue, load_catalogue
 from kinepoly.present.clean import Noise, noise_of
 from kinepoly.present.scales import PolygonScale
+from kinepoly.scene.link_point import LinkPoint, point_of
 from kinepoly.solution import Solution
 
 __all__ = [
@@ -46,6 +47,7 @@ __all__ = [
     "segment",
     "step_sentence",
     "step_words",
+    "term_ends",
     "tip_name",
 ]
 
@@ -95,19 +97,18 @@ class Context:
 
 def tip_name(label: str, polygon: str) -> str:
     """A point's tip in the polygon: ``B0`` -> ``b0``; in the acceleration polygon primed, ``b′0``."""
-    point, at, link = label.partition("@")
-    m = re.match(r"^(\D+)(\d*)$", point)
-    base, digits = (m.group(1), m.group(2)) if m else (point, "")
+    named = LinkPoint.parse(label)
+    m = re.match(r"^(\D+)(\d*)$", named.point)
+    base, digits = (m.group(1), m.group(2)) if m else (named.point, "")
     prime = "′" if polygon == "acceleration" else ""
-    return f"{base.lower()}{prime}{digits}{at}{link}"
+    return f"{base.lower()}{prime}{digits}{named.at_link}"
 
 
 def segment(first: str, second: str) -> str:
     """The segment between two points of the mechanism: ``A@4`` and ``B0`` -> ``AB0``."""
-    return first.partition("@")[0] + second.partition("@")[0]
+    return point_of(first) + point_of(second)
 
 
-_TERM = re.compile(r"^([va](?:\^[nt])?_)([^/@\s]+)/(\S+)$")
 _TOKEN = re.compile(r"[va](?:\^[nt])?_[^\s/|,;()=]+/[^\s|,;()=]+")
 
 
@@ -118,17 +119,16 @@ def _canonical(label: str, solution: Solution, tips: set[str]) -> str:
     point of another link (A, the block's pin, over the slotted link 4), it is the coincident
     point of that link (A@4), as the equation of the step that crosses its line names it.
     """
-    m = _TERM.match(label)
-    if m is None:
+    name = term_name(label)
+    if name is None or name.reference is None or name.point.link is not None or name.component not in ("", "n", "t"):
         return label
-    head, point, reference = m.groups()
+    point = name.point.point
     mechanism = solution.mechanism
-    base = reference.partition("@")[0]
-    on_base = mechanism.links_of_point(base)  # in scene order
+    on_base = mechanism.links_of_point(name.reference.point)  # in scene order
     if set(mechanism.links_of_point(point)).intersection(on_base):
         return label
-    carriers = [k for k in on_base if k != mechanism.ground and f"{point}@{k}" in tips]
-    return f"{head}{point}@{carriers[0]}/{reference}" if len(carriers) == 1 else label
+    carriers = [k for k in on_base if k != mechanism.ground and LinkPoint(point, k).text in tips]
+    return replace(name, point=LinkPoint(point, carriers[0])).text if len(carriers) == 1 else label
 
 
 def canonical_terms(solution: Solution) -> dict[str, str]:
@@ -162,10 +162,13 @@ def canonical_text(text: str, terms: Mapping[str, str]) -> str:
     return text
 
 
-def _ends(label: str) -> tuple[str, str]:
-    """The point and the reference of a relative term: ``a^n_B@4/A`` -> (``B@4``, ``A``)."""
-    point, _, reference = label.partition("_")[2].partition("/")
-    return point, reference
+def term_ends(vector: DrawnVector) -> tuple[str, str]:
+    """The point and the reference of a vector's term, as named: ``a^n_B@4/A`` -> (``B@4``, ``A``); ``a_B`` ->
+    (``B``, "")."""
+    name = vector.name
+    if name is None:
+        return "", ""
+    return name.point.text, "" if name.reference is None else name.reference.text
 
 
 class Words:
@@ -254,11 +257,11 @@ class Words:
 
     def normal_fields(self, vector: DrawnVector) -> dict[str, str]:
         """ω, its name, the segment and its length of a normal term (``a^n_B/A = ω13² · |AB|``)."""
-        point, reference = _ends(vector.label)
+        point, reference = term_ends(vector)
         size = norm(sub(vector.end, vector.start))
         mechanism = self.solution.mechanism
         omega = self.solution.velocity.omega if self.solution.velocity is not None else {}
-        (p, _, p_on), (r, _, r_on) = (label.partition("@") for label in (point, reference))
+        (p, p_on), (r, r_on) = ((named.point, named.link or "") for named in map(LinkPoint.parse, (point, reference)))
         members = self.solution.velocity.members if self.solution.velocity is not None else {}
 
         def carries(link: str, name: str) -> bool:  # a point of the link, or one the construction found on it (S)
@@ -454,7 +457,7 @@ class _Phrase:
         solution = self.w.solution
         length = norm(sub(solution.position(second), solution.position(first)))
         first_tip, second_tip = (self.w.tip_or_pole(self.polygon, label) for label in (first, second))
-        first, second, point = (label.partition("@")[0] for label in (first, second, str(p["point"])))
+        first, second, point = (point_of(label) for label in (first, second, str(p["point"])))
         where = ("collinear_between" if 0.0 <= ratio <= 1.0 else "collinear_beyond_second" if ratio > 1.0
                  else "collinear_beyond_first")
         toward = "collinear_toward" if ratio >= 0.0 else "collinear_away"
@@ -499,7 +502,7 @@ class _Phrase:
         """A gear's pitch-point tip: the rolling condition's line crossed with the gear's own line."""
         p = self.p
         point, known = str(p["point"]), str(p["known_point"])
-        pitch = point.partition("@")[0]
+        pitch = point_of(point)
         how = (self.say.say("higher_pairs.how_rack") if p["rack"] == "yes" else
                self.say.say("higher_pairs.how_pin", centre=str(p["through"]), pitch=pitch))
         through_tip = self.w.tip_or_pole(self.polygon, str(p["through"]))  # a rack: its guide's point under P
@@ -586,8 +589,8 @@ class _Phrase:
                             magnitude=self.w.n(p["magnitude"], self.w.size_kind(self.polygon)),
                             length=self.w.n(p["length"], "position"),
                             rate=self.w.n(p["rate"], rate_kind), rate_unit=self.w.rate_unit(self.polygon),
-                            sense=self.w.sense(p["sense"]), first=first.partition("@")[0],
-                            second=second.partition("@")[0], link=str(p["link"]))
+                            sense=self.w.sense(p["sense"]), first=point_of(first),
+                            second=point_of(second), link=str(p["link"]))
         value = self.step.value[0] if self.step.value else 0.0
         return text, self.w.rate_found(self.polygon, name, value)
 
@@ -614,15 +617,15 @@ class _Phrase:
     def _normals(self) -> tuple[str, str]:
         items = []
         for v in self.step.vectors:
-            point, reference = _ends(v.label)
+            point, reference = term_ends(v)
             size = norm(sub(v.end, v.start))
             key = "step.normal_item_zero" if self.w.is_zero(size, "acceleration") else "step.normal_item"
             after = self._laid_after(v)
             if after and key == "step.normal_item":
                 key = "step.normal_item_after"
             items.append(self.say.say(key, term=v.label, magnitude=self.w.n(size, "acceleration"),
-                                      unit=self.w.unit_of(self.polygon), point=point.partition("@")[0],
-                                      reference=reference.partition("@")[0], from_tip=self._normal_start(v),
+                                      unit=self.w.unit_of(self.polygon), point=point_of(point),
+                                      reference=point_of(reference), from_tip=self._normal_start(v),
                                       after=after, paper=self.w.paper(self.polygon, size), **self.w.normal_fields(v)))
         text = self.say.say("step.normals", items="; ".join(items))
         return text, self.say.say("result.laid", terms=", ".join(v.label for v in self.step.vectors))
@@ -631,7 +634,7 @@ class _Phrase:
         """The term a normal term is laid after, where it starts at no tip but at the end of another term (a
         triad's normal term toward its Assur point, after the leg's own normal or Coriolis term); else ""."""
         tips = self.w.tips(self.polygon)
-        _point, reference = _ends(vector.label)
+        _point, reference = term_ends(vector)
         size = max([norm(t) for t in tips.values()] + [1.0])
 
         def at(point: Vec, other: Vec) -> bool:
@@ -649,7 +652,7 @@ class _Phrase:
     def _normal_start(self, vector: DrawnVector) -> str:
         """The tip a normal term is laid from: its reference point's, else the tip that is where it starts."""
         tips = self.w.tips(self.polygon)
-        _point, reference = _ends(vector.label)
+        _point, reference = term_ends(vector)
         candidates = [reference, *tips] if reference in tips else list(tips)
         for label in candidates:
             if norm(sub(tips[label], vector.start)) <= COINCIDENT_REL * max(norm(tips[label]), 1.0):

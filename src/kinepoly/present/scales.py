@@ -11,6 +11,9 @@ and the homework checker's ``kv-not-divided`` and ``ka-not-divided`` diagnoses. 
    the largest round number at which it does, and ``PolygonScale.reduced`` says so (the table,
    the JSON's warnings, the drawing and the handout all say it).
 
+The round numbers (``nice_scale``, ``nice_floor``) are those of every scale kinepoly draws at: the
+layout's panels and scale bars, the animation's frames.
+
 A layout places the polygons at these scales and finds the room for them (a panel of their own,
 or a larger paper); it never changes a scale. A handout keeps the scales of the paper asked for,
 whatever paper its text then needs, so that every language draws the same polygons.

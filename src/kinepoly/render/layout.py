@@ -3,7 +3,7 @@
 A panel is a rectangle of the page with a scale: paper = origin + scale * physical. The
 mechanism gets a round space scale that fills what the polygons leave; the polygons keep
 their scales kv and ka when they fit, and otherwise step down the round-number ladder (the
-sheet then says so).
+sheet then says so). The round numbers are ``present.scales``' (``nice_floor``), the one rule of them.
 """
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from kinepoly.geom.tolerances import FIT_MARGIN_REL, PAPER_ROUNDING_MM, PAPER_SAME_MM, ROUNDING_REL, TINY_POSITIVE
+from kinepoly.geom.tolerances import FIT_MARGIN_REL, PAPER_ROUNDING_MM, PAPER_SAME_MM
+from kinepoly.present.scales import nice_floor
 
 __all__ = [
     "PAPER_NAMES",
@@ -37,7 +38,6 @@ _SIZES_MM = {
     "tabloid": (431.8, 279.4),
 }
 PAPER_NAMES = tuple(_SIZES_MM)
-_NICE = (1.0, 2.0, 2.5, 5.0)
 _LABEL_ROOM_MM = 30.0
 """The most a polygon's column is widened beyond its polygon, when the page has room to spare."""
 HEADING_MM = 8.5
@@ -87,26 +87,6 @@ def larger_papers(size: tuple[float, float]) -> list[tuple[str, tuple[float, flo
         if w > size[0] + PAPER_SAME_MM and h > size[1] + PAPER_SAME_MM:
             out.append((paper_name((w, h)), (w, h)))
     return out
-
-
-def nice_floor(x: float) -> float:
-    """The largest round number (1, 2, 2.5 or 5 times a power of ten) not above ``x`` (> 0).
-
-    Beyond double precision's normal range (a denormal or zero ``x``, an infinite one) it gives
-    the smallest (1e-300) or the largest (1e300) round number kept.
-    """
-    if not x >= TINY_POSITIVE:
-        return TINY_POSITIVE
-    if x >= 1e300:
-        return 1e300
-    exponent = math.floor(math.log10(x))
-    best = 10.0 ** (exponent - 1) * 5.0
-    for e in (exponent - 1, exponent, exponent + 1):
-        for m in _NICE:
-            c = m * 10.0**e
-            if c <= x * (1.0 + ROUNDING_REL):
-                best = max(best, c)
-    return best
 
 
 def round_step(target: float) -> float:

@@ -15,7 +15,7 @@ import re
 from dataclasses import dataclass
 from typing import Literal
 
-from kinepoly.engine.steps import Step, Term
+from kinepoly.engine.steps import Step, Term, term_name
 from kinepoly.geom.hull import diameter
 from kinepoly.geom.lines import Line
 from kinepoly.geom.tolerances import PAPER_AREA_FLOOR_MM2, SAME_REL, TINY_POSITIVE
@@ -34,6 +34,7 @@ from kinepoly.render.style import (
     link_color,
 )
 from kinepoly.render.text import Run, text_width, tip_runs, vector_runs
+from kinepoly.scene.link_point import point_of
 from kinepoly.solution import Solution
 
 __all__ = ["Figure", "FigureDrawing", "FigureVector", "figure_box", "polygon_figure"]
@@ -90,24 +91,25 @@ class Figure:
     pole_names: tuple[str, ...]
 
 
-def _terms(equation: str) -> list[list[str]]:
-    return [[t.strip() for t in side.split(" + ")] for side in equation.split(" = ")]
-
-
 def _line_term_name(step: Step, index: int, symbol: str) -> str:
     """The name of the unknown term along the step's ``index``-th direction line: its direction's term where the
     step says its lines as data (a triad's line toward its Assur point carries two terms), else from its equation."""
     if len(step.directions) == len(step.lines) and step.directions[index].term:
         return step.directions[index].term
-    sides = _terms(step.equation)
-    result = sides[0][0].partition("_")[2]
+    sides = step.sides
+    result = _subscript(sides[0][0])
     if len(sides) > index + 1:
         terms = sides[index + 1]
         if terms[-1] != "...":
             return terms[-1]
-        first = terms[0].partition("_")[2]
-        return f"{symbol}_{result}/{first}"
+        return f"{symbol}_{result}/{_subscript(terms[0])}"
     return f"{symbol}_{result}"
+
+
+def _subscript(term: str) -> str:
+    """A term's subscript (``v_B/A`` -> ``B/A``); "" for text that names no term."""
+    name = term_name(term)
+    return "" if name is None else name.subscript
 
 
 _ROLLING_TOPICS = ("rolling", "planet-centre")
@@ -167,7 +169,7 @@ def polygon_figure(solution: Solution, kind: Kind) -> Figure:
             lines += [FigureLine(line, number) for line in step.lines]
     pole_names = tuple(sorted(label for label in polygon.tips if label in ground_points
                               and norm(polygon.tips[label]) <= _SAME * size))
-    tips = tuple(FigureTip(label, value, tip_step.get(label, tip_step.get(label.partition("@")[0], 0)))
+    tips = tuple(FigureTip(label, value, tip_step.get(label, tip_step.get(point_of(label), 0)))
                  for label, value in polygon.tips.items() if label not in pole_names)  # B@3 found with b, where
     # no step names it (a driven joint's carrier under its pin: the tip less the drive's term)
     tip_steps = {t.label: t.step for t in tips}

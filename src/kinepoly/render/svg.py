@@ -63,18 +63,29 @@ def _element(dwg: Any, item: Path | Circle | Arrow | Text, h: float) -> list[Any
     return [text]
 
 
-def svg_text(sheet: Sheet, made: dict[Any, str] | None = None) -> str:
+def svg_text(sheet: Sheet, made: dict[Any, str] | None = None,
+             view: tuple[float, float, float, float] | None = None) -> str:
     """The sheet as an SVG document (text); ``made``, shared by the sheets of one document (a handout's
     pages), holds each layer's ``<g>`` and each item's elements once written: what the pages share is
-    written once."""
+    written once. ``view``, a rectangle of the sheet (x0, y0, x1, y1 in mm, y up), is the part shown:
+    the document's size and viewBox are the rectangle's, after the other attributes of its ``<svg>``."""
     import svgwrite
 
     w, h = sheet.width, sheet.height
     dwg = svgwrite.Drawing(size=(f"{number(w)}mm", f"{number(h)}mm"), viewBox=f"0 0 {number(w)} {number(h)}",
                            profile="full", debug=False)
+    if view is not None:
+        for name in ("width", "height", "viewBox"):
+            del dwg.attribs[name]
     dwg.set_desc(title=sheet.title)
     dwg.add(dwg.rect(insert=(0, 0), size=(number(w), number(h)), fill="#ffffff"))
     head = _lines(dwg.tostring()).removesuffix("</svg>")
+    if view is not None:
+        x0, y0, x1, y1 = view
+        size = (f' width="{number(x1 - x0)}mm" height="{number(y1 - y0)}mm" '
+                f'viewBox="{number(x0)} {number(h - y1)} {number(x1 - x0)} {number(y1 - y0)}"')
+        end = head.index(">")  # the end of the <svg> tag, the first of the document
+        head = head[:end] + size + head[end:]
     made = made if made is not None else {}
     for layer in sheet.layers:
         if (layer, h) not in made:

@@ -15,6 +15,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from kinepoly.scene.link_point import LinkPoint
+
 __all__ = [
     "ASCENT_EM",
     "CAP_HEIGHT_EM",
@@ -141,14 +143,14 @@ def point_runs(name: str, size: float) -> tuple[Run, ...]:
 
 def tip_runs(name: str, size: float, prime: bool) -> tuple[Run, ...]:
     """A tip of a polygon: lower case, primed in the acceleration polygon (a', b0')."""
-    point, at, link = name.lower().partition("@")
-    base, digits = _name_parts(point)
+    named = LinkPoint.parse(name.lower())
+    base, digits = _name_parts(named.point)
     if prime:
         base = base + "′"
     runs = _stack(base, "", digits, size)
-    if at:
+    if named.link is not None:
         x = max(r.dx + text_width(r.text, r.size) for r in runs)
-        runs = (*runs, Run(at + link, x, 0.0, size))
+        runs = (*runs, Run(named.at_link, x, 0.0, size))
     return runs
 
 

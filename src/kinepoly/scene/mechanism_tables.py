@@ -11,6 +11,7 @@ import math
 
 from kinepoly.geom.tolerances import COINCIDENT_REL
 from kinepoly.scene.lines import KeyPath
+from kinepoly.scene.link_point import SEPARATOR
 from kinepoly.scene.problems import no_such, quoted, show_value, suggest
 from kinepoly.scene.reader_state import ReaderState
 from kinepoly.scene.source import Table
@@ -66,7 +67,7 @@ class MechanismTables(ReaderState):
         line = self.report.line(path)
         if not name:
             self.report.add(path, 'empty link name; expected a name like "2"')
-        elif "@" in name:
+        elif SEPARATOR in name:
             self.report.add(path, 'bad link name; expected a name without "@" (A@4 names the point of link 4 under A)')
         else:
             check_showable(self.report, path, name, "the link name")
@@ -89,7 +90,7 @@ class MechanismTables(ReaderState):
 
     def read_point(self, path: KeyPath, name: str, value: object) -> PointSpec:
         line = self.report.line(path)
-        if not name or "@" in name:
+        if not name or SEPARATOR in name:
             self.report.add(path, 'bad point name; expected a name without "@" (kept for coincident points)')
         elif "/" in name:
             self.report.add(path, 'bad point name; expected a name without "/" (v_B/A names the velocity of B '

@@ -11,6 +11,7 @@ from functools import partial
 from typing import Literal
 
 from kinepoly.scene.lines import KeyPath
+from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.problems import no_such, show_value
 from kinepoly.scene.reader_state import ReaderState
 from kinepoly.scene.spec import DrawSpec, FindSpec
@@ -87,15 +88,16 @@ class RequestTables(ReaderState):
     def check_find_point(self, path: KeyPath, name: str) -> bool:
         if self.links is None:
             return True
-        point, at, link = name.partition("@")
+        named = LinkPoint.parse(name)
+        point, link = named.point, named.link
         ok = True
         if point not in self.point_names:
             self.report.add(path, lambda: no_such("point", point, self.point_names))
             ok = False
-        if at and link not in self.links:
+        if link is not None and link not in self.links:
             self.report.add(path, f'in "{name}": {no_such("link", link, self.links)}')
             ok = False
-        elif at and point in self.links[link].point_names:
+        elif link is not None and point in self.links[link].point_names:
             self.report.add(path, f'"{name}": {point} is a point of link "{link}" itself; expected "{point}" (a name '
                             'like "A@4" is the point of link 4 that is at A, for a point of another link)')
             ok = False

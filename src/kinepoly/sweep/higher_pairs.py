@@ -22,22 +22,19 @@ from kinepoly.geom.arrays import Reals
 from kinepoly.scene.spec import LinkInput, PitchCircle
 
 if TYPE_CHECKING:
-    from kinepoly.sweep.run import Kind, _Builder
+    from kinepoly.sweep.columns import ColumnBuilder
+    from kinepoly.sweep.result import Follower, Kind
 
-__all__ = ["Follower", "higher_pair_columns", "ratio_pairs"]
+__all__ = ["higher_pair_columns", "ratio_pairs"]
 
 
-def _add(out: _Builder, name: str, kind: Kind, values: Reals | None) -> None:
+def _add(out: ColumnBuilder, name: str, kind: Kind, values: Reals | None) -> None:
     """A column, unless the scene's own asked columns (or the input) already have it."""
     if values is not None and all(name != taken for taken, *_ in out.raw):
         out.add(name, kind, values)
 
 
-Follower = tuple[str, tuple[str, ...]]
-"""A cam pair's name and its follower's columns: displacement, velocity, acceleration (those there are)."""
-
-
-def _cam_columns(out: _Builder, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
+def _cam_columns(out: ColumnBuilder, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
                  input_column: str) -> list[Follower]:
     mech, positions = out.mechanism, out.positions
     deg = mech.scene.units.angle == "deg"
@@ -70,7 +67,7 @@ def _cam_columns(out: _Builder, velocity: VelocityResult | None, acceleration: A
     return followers
 
 
-def ratio_pairs(out: _Builder) -> list[tuple[str, str]]:
+def ratio_pairs(out: ColumnBuilder) -> list[tuple[str, str]]:
     """(gear, over) pairs whose angular velocity ratio is reported: each mesh of two turning gears, then each
     turning gear against a turning input."""
     mech = out.mechanism
@@ -84,7 +81,7 @@ def ratio_pairs(out: _Builder) -> list[tuple[str, str]]:
     return list(dict.fromkeys(pairs))
 
 
-def _gear_columns(out: _Builder, velocity: VelocityResult) -> None:
+def _gear_columns(out: ColumnBuilder, velocity: VelocityResult) -> None:
     for gear, over in ratio_pairs(out):
         top, bottom = velocity.polygon.rate_of(gear), velocity.polygon.rate_of(over)
         if top is None or bottom is None:
@@ -93,7 +90,7 @@ def _gear_columns(out: _Builder, velocity: VelocityResult) -> None:
         out.add(f"ratio_{gear}_{over}", "ratio", np.asarray(top / np.where(turns, bottom, 1.0)), turns)
 
 
-def higher_pair_columns(out: _Builder, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
+def higher_pair_columns(out: ColumnBuilder, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
                         input_column: str) -> tuple[Follower, ...]:
     """The columns of the scene's cams and gears (none when it has neither); returns each cam's follower
     columns, for the s-v-a diagram."""

@@ -17,7 +17,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from kinepoly.geom.tolerances import SIZE_FLOOR
-from kinepoly.sweep.run import Column, SweepResult
+from kinepoly.scene.link_point import LinkPoint
+from kinepoly.sweep.result import CANNOT_ASSEMBLE, OK, SINGULAR, Column, SweepResult
 from kinepoly.sweep.shown import shown_values
 
 if TYPE_CHECKING:
@@ -27,7 +28,6 @@ if TYPE_CHECKING:
 
 __all__ = ["plot_figure", "plot_png", "robust_window"]
 
-_OK, _SINGULAR, _CANNOT = 0, 2, 3
 _REACH = 3.0
 """Centrodes run off to infinity where the link stops turning; the panel shows this many sizes around."""
 
@@ -93,7 +93,7 @@ def _robust_limits(ax: Axes, values: list[np.ndarray], bulk: list[np.ndarray]) -
 def _mark_rows(ax: Axes, result: SweepResult) -> None:
     x = result.input.values
     step = float(np.median(np.abs(np.diff(x)))) if len(x) > 1 else 0.0
-    for level, colour, alpha in ((_CANNOT, "0.6", 0.35), (_SINGULAR, "tab:red", 0.25)):
+    for level, colour, alpha in ((CANNOT_ASSEMBLE, "0.6", 0.35), (SINGULAR, "tab:red", 0.25)):
         rows = result.status == level
         if not rows.any():
             continue
@@ -116,7 +116,7 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
             else:
                 ax.plot(x, _masked(col), lw=1.2, label=col.name)
             shown.append(col.values[col.valid])
-            bulk.append(col.values[col.valid & (result.status == _OK)])
+            bulk.append(col.values[col.valid & (result.status == OK)])
             lines += 1
     sliders = [c for c in result.columns if c.kind == slider_kind and c.name != result.input.name]
     if sliders:
@@ -126,11 +126,11 @@ def _function_panel(ax: Axes, result: SweepResult, kinds: tuple[str, ...], slide
         target.set_ylabel(slider_unit)
         if lines:  # the sliders' own axis windowed on their own ok rows (else on the panel's, below)
             _robust_limits(target, [c.values[c.valid] for c in sliders],
-                           [c.values[c.valid & (result.status == _OK)] for c in sliders])
+                           [c.values[c.valid & (result.status == OK)] for c in sliders])
             target.legend(loc="lower right", fontsize=7)
         else:
             shown += [c.values[c.valid] for c in sliders]
-            bulk += [c.values[c.valid & (result.status == _OK)] for c in sliders]
+            bulk += [c.values[c.valid & (result.status == OK)] for c in sliders]
     ax.set_title(title, fontsize=9)
     ax.set_xlabel(_input_label(result))
     ax.set_ylabel(unit if lines else slider_unit)
@@ -230,7 +230,7 @@ def _draw_skeleton(ax: Axes, result: SweepResult, only: str | None = None) -> No
 
 
 def _paths_panel(ax: Axes, result: SweepResult) -> None:
-    paths = [p for p in _pairs(result, "r_") if "@" not in p[0]]  # A@4 runs where A runs
+    paths = [p for p in _pairs(result, "r_") if LinkPoint.parse(p[0]).link is None]  # A@4 runs where A runs
     _curve_panel(ax, paths, "point paths (the mechanism at the scene's input)", result.scene.units.length,
                  periodic=result.periodic)
     _draw_skeleton(ax, result)
@@ -413,10 +413,10 @@ def plot_figure(result: SweepResult) -> Figure:
     ]
     if _pairs(result, "v_"):
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "v_"), "velocity hodographs", f"{length}/s",
-                                              result.status == _OK, result.periodic))
+                                              result.status == OK, result.periodic))
     if _pairs(result, "a_"):
         panels.append(lambda ax: _curve_panel(ax, _pairs(result, "a_"), "acceleration hodographs",
-                                              f"{length}/s^2", result.status == _OK, result.periodic))
+                                              f"{length}/s^2", result.status == OK, result.periodic))
     if any(c.kind == "transmission" for c in result.columns):
         panels.append(lambda ax: _kind_panel(ax, result, "transmission", "transmission angles (0 dead point, 90 best)",
                                              True))

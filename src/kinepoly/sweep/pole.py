@@ -15,12 +15,11 @@ from kinepoly.engine.finite_pole import FinitePole, finite_pole
 from kinepoly.errors import SceneError
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import Scene
-from kinepoly.sweep.run import SweepResult, prepare_sweep, run_sweep
+from kinepoly.sweep.result import NEAR_SINGULAR, SweepResult
+from kinepoly.sweep.run import prepare_sweep, run_sweep
 
 __all__ = ["PoleBetween", "pole_between"]
 
-_NEAR_SINGULAR = 1
-"""A row marked at most near-singular (``sweep.run.STATUS``) has its positions."""
 
 _STEPS = 16
 """Rows the motion from A to B is followed over (continuity needs steps, the pole only the two ends)."""
@@ -55,7 +54,7 @@ def pole_between(scene: Scene, link: str, start: float, stop: float) -> PoleBetw
     result = run_sweep(prepared, steps=_STEPS, start=start, stop=stop)
     positions = result.positions
     assert positions is not None
-    if not (result.status[0] <= _NEAR_SINGULAR and result.status[-1] <= _NEAR_SINGULAR):
+    if not (result.status[0] <= NEAR_SINGULAR and result.status[-1] <= NEAR_SINGULAR):
         raise SceneError(f"--pole {start:g} {stop:g}: the mechanism is not assembled (or is singular) at both "
                          "inputs; choose two inputs of one motion")
     rows = np.flatnonzero(result.shown) if result.shown is not None else np.arange(positions.n)

@@ -13,7 +13,7 @@ import numpy as np
 
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
-from kinepoly.sweep.run import SweepResult
+from kinepoly.sweep.result import SweepResult
 
 __all__ = ["Guess", "row_guesses", "row_poses"]
 

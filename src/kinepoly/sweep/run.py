@@ -24,7 +24,6 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -46,91 +45,18 @@ from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSIT
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
+from kinepoly.scene.link_point import point_of
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
-from kinepoly.sweep.higher_pairs import Follower, higher_pair_columns
+from kinepoly.sweep.columns import ColumnBuilder
+from kinepoly.sweep.higher_pairs import higher_pair_columns
 from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
+from kinepoly.sweep.result import CANNOT_ASSEMBLE as _CANNOT
+from kinepoly.sweep.result import NEAR_SINGULAR as _NEAR
+from kinepoly.sweep.result import ORDER, Column, SweepResult
+from kinepoly.sweep.result import SINGULAR as _SINGULAR
 
-__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "cycle_turns", "prepare_sweep", "run_sweep", "sweep"]
-
-STATUS = ("ok", "near-singular", "singular", "cannot-assemble")
-"""Row status by level: a row's level is the worst thing that happened to it."""
-
-_OK, _NEAR, _SINGULAR, _CANNOT = range(4)
-
-Kind = Literal["input", "angle", "omega", "alpha", "position", "velocity", "acceleration", "slider",
-               "slider-rate", "slider-acceleration", "coriolis", "centrode", "centrode-local", "transmission",
-               "pressure", "ratio", "series-error", "series-rate-error", "series-acceleration-error"]
-_ORDER = {"input": -1, "angle": 0, "position": 0, "slider": 0, "transmission": 0, "omega": 1, "velocity": 1,
-          "slider-rate": 1, "centrode": 1, "centrode-local": 1, "alpha": 2, "acceleration": 2,
-          "slider-acceleration": 2, "coriolis": 2, "pressure": 0, "ratio": 1, "series-error": 0, "series-rate-error": 1,
-          "series-acceleration-error": 2}
-
-
-class Column(NamedTuple):
-    """One reported quantity at every row; ``values`` hold 0.0 where ``valid`` is False (a named tuple:
-    frozen, and cheap to make, for a sweep makes one per quantity per call)."""
-
-    name: str
-    kind: Kind
-    values: Reals
-    valid: Bools
-
-    @property
-    def order(self) -> int:
-        """The order of the transmission function it belongs to: 0 position, 1 velocity, 2 acceleration."""
-        return _ORDER[self.kind]
-
-
-@dataclass(frozen=True)
-class SweepResult:
-    """A sweep: the input column, the asked columns, each row's status and warnings."""
-
-    scene: Scene
-    input: Column
-    columns: tuple[Column, ...]
-    status: npt.NDArray[np.int8]
-    warnings: dict[int, str]
-    notices: tuple[Notice, ...]
-    periodic: bool
-    seed_value: float
-    seed_row: int = 0
-    """The row computed at the scene's own input (among all rows computed, shown or not)."""
-    timing: dict[str, float] = field(default_factory=dict)
-    """Seconds spent: preparing, finding the range, executing, in all (filled by ``run_sweep`` when done)."""
-    positions: Positions | None = field(default=None, repr=False, compare=False)
-    """The link poses at every row computed (shown or not), read by ``kinepoly.sweep.rows``."""
-    shown: Bools | None = field(default=None, repr=False, compare=False)
-    """Which of the rows computed are shown (the rows of ``input`` and ``columns``)."""
-    followers: tuple[Follower, ...] = ()
-    """Each cam pair's follower columns (displacement, velocity, acceleration): its s-v-a diagram."""
-
-    def _repr_png_(self) -> bytes:
-        """A notebook shows a sweep as its plots."""
-        from kinepoly.sweep.plots import plot_png
-
-        return plot_png(self)
-
-    @cached_property
-    def skeleton(self) -> tuple[tuple[str, tuple[complex, ...]], ...]:
-        """Each solved link's points at the scene's own input (frame coordinates), for drawings."""
-        if self.positions is None:
-            return ()
-        return tuple((link, tuple(complex(*pose.world(p.local)) for p in self.scene.link(link).points))
-                     for link, pose in self.positions.row(self.seed_row).items())
-
-    def column(self, name: str) -> Column:
-        for col in (self.input, *self.columns):
-            if col.name == name:
-                return col
-        raise KeyError(name)
-
-    @property
-    def rows(self) -> int:
-        return len(self.input.values)
-
-    def status_name(self, row: int) -> str:
-        return STATUS[int(self.status[row])]
+__all__ = ["PreparedSweep", "cycle_turns", "prepare_sweep", "run_sweep", "sweep"]
 
 
 @dataclass
@@ -202,60 +128,19 @@ def _condition_text(where: str, condition: Reals) -> object:
     return text
 
 
-@dataclass
-class _Builder:
-    """Collects the columns of one sweep; their validity is settled once every row's level is known."""
-
-    mechanism: Mechanism
-    positions: Positions
-    raw: list[tuple[str, Kind, Reals, Bools | None]] = field(default_factory=list)
-    sources: list[tuple[Kind, Reals | Points]] = field(default_factory=list)
-    """What each column (or pair of columns) was read from, once: the arrays whose sums tell overflow."""
-
-    def add(self, name: str, kind: Kind, values: Reals, extra: Bools | None = None) -> None:
-        self.raw.append((name, kind, values, extra))
-        self.sources.append((kind, values))
-
-    def pair(self, name: str, kind: Kind, values: Points, extra: Bools | None = None) -> None:
-        self.raw += [(f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)]
-        self.sources.append((kind, values))
-
-    def columns(self, level: npt.NDArray[np.int8] | None, shown: Bools, every: bool) -> tuple[Column, ...]:
-        """The columns of the ``shown`` rows (``every``: all of them); ``level`` None where every row is ok."""
-        if level is None:
-            everywhere = (np.ones(len(shown) if every else int(shown.sum()), np.bool_), True)
-            masks = {_SINGULAR: everywhere, _NEAR: everywhere}
-        else:
-            masks = {}
-            for limit in (_SINGULAR, _NEAR):
-                valid = level <= limit
-                masks[limit] = (valid if every else valid[shown], bool(valid.all()))
-        out = []
-        for name, kind, values, extra in self.raw:
-            valid, clean = masks[_SINGULAR if _ORDER[kind] <= 0 else _NEAR]
-            values = values if every else values[shown]
-            if extra is not None:
-                valid = valid & (extra if every else extra[shown])
-                clean = bool(valid.all())
-            if not clean:
-                values = np.where(valid, values, 0.0)
-            out.append(Column(name, kind, np.asarray(values, np.float64), valid))
-        return tuple(out)
-
-
-def _overflow_flags(flags: _Flags, ok: Bools, out: _Builder) -> None:
+def _overflow_flags(flags: _Flags, ok: Bools, out: ColumnBuilder) -> None:
     """Rows where a value is not a number (rates whose squares overflow): singular, never printed.
 
     Every value of a higher order is computed from those of the lower ones, so a non-finite value
     anywhere shows in the highest order's columns: when their sums are finite, nothing is to mark.
     """
-    top = max((_ORDER[kind] for kind, _ in out.sources), default=0)
-    if all(cmath.isfinite(complex(np.add.reduce(values))) for kind, values in out.sources if _ORDER[kind] == top):
+    top = max((ORDER[kind] for kind, _ in out.sources), default=0)
+    if all(cmath.isfinite(complex(np.add.reduce(values))) for kind, values in out.sources if ORDER[kind] == top):
         return
     for name, kind, values, extra in out.raw:
         rows = ok & ~np.isfinite(values) & (True if extra is None else extra)
         if rows.any():
-            flags.raise_to(rows, _SINGULAR if _ORDER[kind] > 0 else _CANNOT,
+            flags.raise_to(rows, _SINGULAR if ORDER[kind] > 0 else _CANNOT,
                            f"singular: {name} overflowed (beyond the range of double precision)")
 
 
@@ -269,10 +154,10 @@ def _angle_unit(scene: Scene, radians: Reals) -> Reals:
 
 
 def _position(positions: Positions, label: str) -> Points:
-    return positions.point(label.partition("@")[0])
+    return positions.point(point_of(label))
 
 
-def _columns(out: _Builder, asked: Asked, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
+def _columns(out: ColumnBuilder, asked: Asked, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
              input_column: str) -> None:
     mech, positions = out.mechanism, out.positions
     scene = mech.scene
@@ -305,7 +190,7 @@ def _columns(out: _Builder, asked: Asked, velocity: VelocityResult | None, accel
                 out.pair(f"coriolis_{name}", "coriolis", motion.coriolis)
 
 
-def _centrode(out: _Builder, link: str, velocity: VelocityResult, seed_row: int,
+def _centrode(out: ColumnBuilder, link: str, velocity: VelocityResult, seed_row: int,
               level: npt.NDArray[np.int8]) -> list[Notice]:
     """The columns of the instant center of ``link`` with the frame, in the frame and in the link."""
     ground = out.mechanism.ground or ""
@@ -463,7 +348,7 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
         acceleration = construct_acceleration(velocity, plan, asked.acceleration)
         _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings)
     name = input_name(mechanism)
-    out = _Builder(mechanism, positions)
+    out = ColumnBuilder(mechanism, positions)
     _columns(out, asked, velocity, acceleration, name)
     followers = higher_pair_columns(out, velocity, acceleration, name)
     notices = list(grid.notices)

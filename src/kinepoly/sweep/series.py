@@ -1,6 +1,6 @@
 """The course text's approximate slider-crank beside the exact one in a sweep (``kinepoly sweep --series``).
 
-The series is ``bench.series``' (two terms of the binomial expansion of cos phi2, RO 2.2.1); the exact
+The series is ``check.series``' (two terms of the binomial expansion of cos phi2, RO 2.2.1); the exact
 values are the sweep's own (``engine.sliders``). For each of s, s_dot and s_ddot the sweep gains the
 series' column (``s_series_14``) and its error against the exact one (``s_series_error_14`` = series - exact).
 """
@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from kinepoly.bench.closed_forms import _slider_crank_links
-from kinepoly.bench.series import slider_crank_series
+from kinepoly.check.series import slider_crank_links, slider_crank_series
 from kinepoly.engine.acceleration import AccelerationResult
 from kinepoly.engine.position import Positions
 from kinepoly.engine.sliders import slider_motion
@@ -31,7 +30,7 @@ _KINDS = (("s", "slider", "series-error"), ("s_dot", "slider-rate", "series-rate
 
 def check_series(mechanism: Mechanism) -> None:
     """Raise SceneError unless the scene is a slider-crank driven by its crank (the series' mechanism)."""
-    parts = _slider_crank_links(mechanism)
+    parts = slider_crank_links(mechanism)
     inp = mechanism.scene.input
     if parts is None or not isinstance(inp, LinkInput) or inp.link != parts[0]:
         raise SceneError(f"{mechanism.scene.source}: --series: the course text's series is that of a slider-crank "
@@ -43,7 +42,7 @@ def series_columns(mechanism: Mechanism, positions: Positions, seed_row: int, ve
                    acceleration: AccelerationResult | None, exact_too: bool) -> list[SeriesColumn]:
     """The series' s, s_dot, s_ddot and their errors against the exact ones, over the sweep's rows; with
     ``exact_too`` the exact ones as well (when the scene's [find] does not ask for the slider)."""
-    parts = _slider_crank_links(mechanism)
+    parts = slider_crank_links(mechanism)
     assert parts is not None
     crank, spec = parts[0], parts[6]
     keys = [f"sliders.{spec.name}.{key}" for key in ("s", "s_dot", "s_ddot")]

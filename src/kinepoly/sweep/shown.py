@@ -16,7 +16,7 @@ import numpy as np
 from kinepoly.geom.tolerances import LOUD_ERROR
 from kinepoly.present.clean import tidy
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
-from kinepoly.sweep.run import Column, SweepResult
+from kinepoly.sweep.result import Column, SweepResult
 
 __all__ = ["SWEEP_RELATIVE", "shown_values", "tidy_column"]
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import csv
 import io
 
-from kinepoly.sweep.run import STATUS, SweepResult
+from kinepoly.sweep.result import STATUS, SweepResult
 
 __all__ = ["csv_text"]
 

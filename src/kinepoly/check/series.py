@@ -22,14 +22,48 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinepoly.bench.closed_forms import _slider_crank_links
-from kinepoly.model.mechanism import Mechanism
+from kinepoly.geom.vec import Vec
+from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import Pose
-from kinepoly.scene.spec import LinkInput
+from kinepoly.scene.spec import LinkInput, SliderSpec
 
-__all__ = ["SliderSeries", "slider_crank_series"]
+__all__ = ["SliderSeries", "pin_between", "slider_crank_links", "slider_crank_series"]
 
 Array = np.ndarray
+
+
+def pin_between(mechanism: Mechanism, a: str, b: str) -> Revolute | None:
+    """The revolute joint between links ``a`` and ``b``, if any."""
+    return next((p for p in mechanism.revolutes if set(p.links) == {a, b}), None)
+
+
+def _ground_slider(mechanism: Mechanism) -> tuple[SliderSpec, Vec, Vec] | None:
+    """The one slider, on the frame: (spec, its line's point, its unit direction), frame coordinates."""
+    if len(mechanism.sliders) != 1 or mechanism.sliders[0].guide != mechanism.ground:
+        return None
+    spec = mechanism.sliders[0]
+    e = (float(np.cos(spec.angle_rad)), float(np.sin(spec.angle_rad)))
+    return spec, spec.through, e
+
+
+def slider_crank_links(mechanism: Mechanism) -> tuple[str, str, str, str, str, str, SliderSpec, Vec, Vec] | None:
+    """(crank, rod, block, O2, A, B, slider, T, e) of a slider-crank (any input), else None."""
+    slide = _ground_slider(mechanism)
+    if slide is None or len(mechanism.link_names) != 4 or len(mechanism.revolutes) != 3 or mechanism.ground is None:
+        return None
+    spec, through, e = slide
+    block, ground = spec.block, mechanism.ground
+    rod_pin = next((p for p in mechanism.revolutes if block in p.links), None)
+    if rod_pin is None or rod_pin.point != spec.point:
+        return None
+    rod = rod_pin.other(block)
+    crank = next((k for k in mechanism.link_names if k not in (ground, rod, block)), None)
+    if crank is None:
+        return None
+    o2, pa = pin_between(mechanism, crank, ground), pin_between(mechanism, crank, rod)
+    if o2 is None or pa is None:
+        return None
+    return crank, rod, block, o2.point, pa.point, spec.point, spec, through, e
 
 
 @dataclass(frozen=True)
@@ -43,7 +77,7 @@ class SliderSeries:
 
 def slider_crank_series(mechanism: Mechanism, pose: Pose, keys: list[str]) -> SliderSeries | None:
     """The series where the scene is a crank-driven slider-crank, for the asked keys it can give."""
-    parts = _slider_crank_links(mechanism)
+    parts = slider_crank_links(mechanism)
     inp = mechanism.scene.input
     if parts is None or not isinstance(inp, LinkInput) or inp.link != parts[0]:
         return None
