@@ -27,9 +27,9 @@ from kinepoly.engine.cam_contact import (
     face_parameter,
     offset_of,
 )
+from kinepoly.engine.groups import CamGroup, NewtonGroup
 from kinepoly.engine.inputs import describe_input
 from kinepoly.engine.placement import Failure, Placement
-from kinepoly.engine.plan import CamGroup, NewtonGroup
 from kinepoly.engine.policy import Policy
 from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.geom.spline import nearest_parameter

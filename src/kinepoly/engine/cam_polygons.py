@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from kinepoly.engine.cam_contact import centre_label, face_direction
+from kinepoly.engine.groups import CamGroup
 from kinepoly.engine.lines import (
     known_pairs,
     parallel,
@@ -37,7 +38,6 @@ from kinepoly.engine.lines import (
     slide_line,
     slide_rel,
 )
-from kinepoly.engine.plan import CamGroup
 from kinepoly.engine.polygon import Line, Polygon
 from kinepoly.engine.results import along_normal, along_slide, record_crossing
 from kinepoly.engine.steps import Direction, DrawnVector

@@ -23,7 +23,7 @@ import numpy as np
 from kinepoly.engine.carry import relative_acceleration, relative_velocity
 from kinepoly.engine.lines import add_motor_rate, read_rate, record_drive_term, slide_direction
 from kinepoly.engine.polygon import Polygon
-from kinepoly.engine.results import Context
+from kinepoly.engine.results import AccelerationContext
 from kinepoly.engine.steps import DrawnVector
 from kinepoly.geom.arrays import Points, Reals
 from kinepoly.model.mechanism import Drive, Revolute
@@ -78,7 +78,7 @@ def _relative_velocity(polygon: Polygon, leg: Leg) -> Points:
     return relative_velocity(_drive(leg), leg.link, at, pin, slide)
 
 
-def _relative_acceleration(ctx: Context, leg: Leg) -> Points:
+def _relative_acceleration(ctx: AccelerationContext, leg: Leg) -> Points:
     b = ctx.b
     at, pin, slide = _geometry(b, leg)
     joint = _drive(leg).joint
@@ -106,7 +106,7 @@ def velocity_terms(polygon: Polygon, leg: Leg) -> tuple[Points, Points, tuple[Dr
     return end, direction, (DrawnVector(term, polygon.vec(start), polygon.vec(end), "relative"),)
 
 
-def acceleration_terms(ctx: Context, leg: Leg) -> tuple[Points, Points, tuple[DrawnVector, ...]]:
+def acceleration_terms(ctx: AccelerationContext, leg: Leg) -> tuple[Points, Points, tuple[DrawnVector, ...]]:
     """The leg's line in the acceleration polygon: after the carrier's normal term toward K and the drive's
     relative term (its step recorded), square to K Q."""
     b = ctx.b
@@ -144,7 +144,7 @@ def finish_velocity(polygon: Polygon, leg: Leg, tip: Points, along: Reals, slidi
         sliding[joint.name] = np.asarray(sign * relative)
 
 
-def finish_acceleration(ctx: Context, leg: Leg, tip: Points, along: Reals) -> None:
+def finish_acceleration(ctx: AccelerationContext, leg: Leg, tip: Points, along: Reals) -> None:
     """After the construction: the carrier's alpha and point under Q; a cylinder's sliding and Coriolis terms."""
     _finish(ctx.b, leg, tip, along, _relative_acceleration(ctx, leg))
     joint = _drive(leg).joint

@@ -27,10 +27,10 @@ from __future__ import annotations
 import numpy as np
 
 from kinepoly.engine.cam_contact import centre_label, face_direction
+from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.inputs import describe_input
-from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import JointSolve, Polygon
-from kinepoly.engine.results import Context
+from kinepoly.engine.results import AccelerationContext
 from kinepoly.engine.steps import DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, turn
@@ -261,7 +261,7 @@ def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict
                                                                                                   joint.point))
 
 
-def acceleration_by_linear_solve(ctx: Context, group: NewtonGroup) -> None:
+def acceleration_by_linear_solve(ctx: AccelerationContext, group: NewtonGroup) -> None:
     polygon = ctx.b
     extra: dict[tuple[str, str], Points] = {}
     for link, point in _group_points(group):

@@ -7,8 +7,8 @@ from typing import Protocol
 
 from kinepoly.engine.cam_contact import Candidates, Ints
 from kinepoly.engine.closures import Choice, Closure
+from kinepoly.engine.groups import CamGroup, NewtonGroup
 from kinepoly.engine.placement import Placement
-from kinepoly.engine.plan import CamGroup, NewtonGroup
 from kinepoly.geom.arrays import Bools
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.notice import Notice

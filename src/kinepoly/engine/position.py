@@ -1,4 +1,5 @@
-"""Execute the position plan over an array of inputs: the driver, then each group in order.
+"""Execute the position plan over an array of inputs: the driver, then each group in order, placed by its
+kind (``engine.table``, ``engine.kinds``).
 
 Each dyad is closed in its closed form (``engine.closures``), a group that is not a dyad by
 Newton's method (``engine.newton``). Which assembly each row takes, where a Newton row starts,
@@ -8,19 +9,14 @@ assembly policy's decision (``engine.assembly``): this module only executes.
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
-from kinepoly.engine.cam_place import place_cam, place_floating_contacts
-from kinepoly.engine.carry import drive_values, place_on
-from kinepoly.engine.closures import Choice, Closure, close_dyad
-from kinepoly.engine.gears import place_rolling
+from kinepoly.engine.carry import drive_values
+from kinepoly.engine.groups import Group, PositionPlan
 from kinepoly.engine.inputs import describe_input, input_values
 from kinepoly.engine.placement import Failure, Placement, Positions
-from kinepoly.engine.plan import CamGroup, DriveGroup, GearGroup, Group, NewtonGroup, PositionPlan
-from kinepoly.engine.planet import place_planet
 from kinepoly.engine.policy import Policy
+from kinepoly.engine.table import kind_of
 from kinepoly.geom.arrays import Reals, turn
 from kinepoly.model.array_pose import ArrayPose, pose_from_point, still_pose
 from kinepoly.model.mechanism import Mechanism
@@ -69,54 +65,16 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
 
 
 def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placement, policy: Policy) -> Placement:
-    """Place ``groups`` in order on top of ``placed``."""
+    """Place ``groups`` in order on top of ``placed``, each by its kind (``engine.table``)."""
     for index, group in enumerate(groups):
-        if isinstance(group, NewtonGroup) and group.gears:
-            placed = place_planet(mechanism, group, placed)
-            continue
-        if isinstance(group, NewtonGroup):
-            placed = policy.newton(mechanism, group, placed)
-            if group.cams:
-                placed = place_floating_contacts(mechanism, group, placed, policy)
-            continue
-        if isinstance(group, GearGroup):
-            pose, rolled = place_rolling(mechanism, group.gear, group.link, group.joint, group.carrier,
-                                         placed.poses, placed.rolled, placed.values)
-            turned = placed.rolled if rolled is None else {**placed.rolled, group.link: rolled}
-            placed = replace(placed, poses={**placed.poses, group.link: pose}, rolled=turned)
-            continue
-        if isinstance(group, CamGroup):
-            placed = place_cam(mechanism, group, placed, policy)
-            continue
-        if isinstance(group, DriveGroup):
-            pose = place_on(mechanism, group.drive, group.link, placed.poses[group.known],
-                            placed.values[group.drive.index])
-            placed = replace(placed, poses={**placed.poses, group.link: pose})
-            continue
-        closure = close_dyad(mechanism, placed.poses, group, placed.values)
-        if closure.near is not None:
-            placed = replace(placed, near=(*placed.near, Failure(group.name, closure.joint, closure.near[0],
-                                                                 closure.near[1])))
-        if not closure.ok.all():
-            bad = placed.ok & ~closure.ok
-            policy.failed(mechanism, closure, bad)
-            placed = replace(placed, ok=placed.ok & closure.ok,
-                             failures=(*placed.failures, Failure(group.name, closure.joint, bad, closure.why)))
-        choice: Choice = 0
-        if len(closure.telling) == 2:
-            rest = groups[index + 1:]
-            base = placed
+        rest = groups[index + 1:]
 
-            def later(label: int, base: Placement = base, rest: tuple[Group, ...] = rest,
-                      closure: Closure = closure) -> Placement:
-                step = replace(base, poses={**base.poses, **closure.place(label)})
-                return place_groups(mechanism, rest, step, policy)
+        def later(step: Placement, rest: tuple[Group, ...] = rest) -> Placement:
+            return place_groups(mechanism, rest, step, policy)
 
-            chosen = policy.choose(mechanism, closure, placed, later)
-            if isinstance(chosen, Placement):
-                return chosen
-            choice = chosen
-        placed = replace(placed, poses={**placed.poses, **closure.place(choice)})
+        placed, done = kind_of(group).place(mechanism, group, placed, policy, later)
+        if done:
+            return placed
     return placed
 
 

@@ -19,8 +19,8 @@ from kinepoly.geom.arrays import Crossing, Points, Reals
 from kinepoly.geom.vec import magnitude
 from kinepoly.scene.spec import SliderSpec
 
-__all__ = ["RIGHT", "AccelerationResult", "Context", "Rules", "VelocityResult", "along_normal", "along_slide",
-           "normals_step", "record_crossing", "slide_label"]
+__all__ = ["RIGHT", "AccelerationContext", "AccelerationResult", "Rules", "VelocityContext", "VelocityResult", "along_normal",
+           "along_slide", "normals_step", "record_crossing", "slide_label"]
 
 
 @dataclass(frozen=True)
@@ -41,6 +41,17 @@ class VelocityResult:
     @property
     def omega(self) -> dict[str, Reals]:
         return self.polygon.rate
+
+
+@dataclass
+class VelocityContext:
+    """The velocity polygon being built and what the groups find besides its tips and rates: the sliding
+    velocities by slider, the sines of the crossings by group, the equivalent links by cam pair."""
+
+    polygon: Polygon
+    sliding: dict[str, Points] = field(default_factory=dict)
+    sines: dict[str, Reals] = field(default_factory=dict)
+    equivalent: dict[str, Points] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -72,7 +83,7 @@ class AccelerationResult:
         return self.polygon.rate
 
 
-class Context:
+class AccelerationContext:
     """The polygon being built, the velocity polygon it stands on, and the slider terms found."""
 
     def __init__(self, polygon: Polygon, velocity: VelocityResult, rules: Rules) -> None:
@@ -155,7 +166,7 @@ class Context:
         self.sliding[slider.name] = np.asarray(a_block - a_guide - coriolis)
 
 
-def record_crossing(ctx: Context, label: str, equation: str, first: Line, second: Line, labels: tuple[str, str],
+def record_crossing(ctx: AccelerationContext, label: str, equation: str, first: Line, second: Line, labels: tuple[str, str],
             crossing: Crossing, vectors: list[DrawnVector], directions: tuple[Direction, Direction]) -> None:
     b = ctx.b
     known = tuple((v.label, "magnitude and direction") for v in vectors)
@@ -166,21 +177,21 @@ def record_crossing(ctx: Context, label: str, equation: str, first: Line, second
                 directions=directions))
 
 
-def along_normal(ctx: Context, term: str, known_link: str, known_point: str, point: str,
+def along_normal(ctx: AccelerationContext, term: str, known_link: str, known_point: str, point: str,
                   normal: DrawnVector | None) -> Direction:
     """What ``normal_line`` draws, as data: the tangential term, after the normal one."""
     return Direction(term, "perpendicular", f"{known_point}{point}", ctx.b.label(known_link, known_point).lower(),
                      after=normal.label if normal else "")
 
 
-def along_slide(ctx: Context, term: str, slider: SliderSpec, other: str, point: str,
+def along_slide(ctx: AccelerationContext, term: str, slider: SliderSpec, other: str, point: str,
                  laid: list[DrawnVector]) -> Direction:
     """What ``slide_line`` draws, as data: the sliding term, after the Coriolis term when there is one."""
     return Direction(term, *slide_reference(ctx.b, slider), ctx.b.label(other, point).lower(),
                      after=laid[-1].label if laid else "")
 
 
-def normals_step(ctx: Context, vectors: list[DrawnVector]) -> None:
+def normals_step(ctx: AccelerationContext, vectors: list[DrawnVector]) -> None:
     normals = [v for v in vectors if v.term == "normal"]
     if normals:
         ctx.b.step(Step(polygon="acceleration", kind="known", equation=" and ".join(v.label for v in normals),

@@ -28,8 +28,8 @@ from __future__ import annotations
 import numpy as np
 
 from kinepoly.engine.gears import Mesh, mesh, pitch_label
+from kinepoly.engine.groups import GearGroup
 from kinepoly.engine.lines import read_rate, slide_direction
-from kinepoly.engine.plan import GearGroup
 from kinepoly.engine.planet import Planet
 from kinepoly.engine.polygon import Line, Polygon
 from kinepoly.engine.steps import DrawnVector, Step

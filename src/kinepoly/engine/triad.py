@@ -39,10 +39,10 @@ import numpy as np
 from kinepoly.engine import driven_leg
 from kinepoly.engine.cam_contact import centre_label, face_direction
 from kinepoly.engine.driven_leg import Leg
+from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.lines import read_rate, slide_direction
-from kinepoly.engine.plan import NewtonGroup
 from kinepoly.engine.polygon import LineCrossing, Polygon
-from kinepoly.engine.results import Context
+from kinepoly.engine.results import AccelerationContext
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, cross_lines
@@ -465,7 +465,7 @@ def _leg_line(which: str, leg: Leg, ternary: str) -> tuple[tuple[str, str], ...]
 # -- acceleration -----------------------------------------------------------------------------------
 
 
-def _acceleration_leg(ctx: Context, triad: Triad, leg: Leg) -> _LegLine:
+def _acceleration_leg(ctx: AccelerationContext, triad: Triad, leg: Leg) -> _LegLine:
     b = ctx.b
     at = b.world(leg.point)
     if leg.drive is not None:
@@ -491,7 +491,7 @@ def _acceleration_leg(ctx: Context, triad: Triad, leg: Leg) -> _LegLine:
     return _LegLine(at, end, np.asarray(slide_direction(b.positions, leg.slider)), tuple(laid))
 
 
-def acceleration_by_assur_point(ctx: Context, triad: Triad) -> None:
+def acceleration_by_assur_point(ctx: AccelerationContext, triad: Triad) -> None:
     """The triad's acceleration polygon through its Assur point, after the known terms."""
     b = ctx.b
     legs = [_acceleration_leg(ctx, triad, leg) for leg in triad.legs]
