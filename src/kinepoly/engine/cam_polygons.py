@@ -5,7 +5,7 @@ of the cam, and W (the knife edge, or the roller's centre, on the offset curve w
 curvature) stays |K W| from it to second order: the pair acts, for velocities and accelerations, as a binary
 link K W pinned to the cam at K and to the follower at W (the Romanian text's K_A(-1), eq. 4 and 5). So W's
 tip is found as in an RRR (a rocker) or RRP (a translating follower) dyad, with the direction lines of
-``engine.velocity`` and ``engine.acceleration``:
+``engine.lines`` and ``engine.results``:
 
 * velocity: through k (the image of K on the cam) perpendicular to K W; through the tip of the pivot
   perpendicular to pivot-W, or through the tip of W's point of the guide along the slide;
