@@ -11,9 +11,9 @@ import pytest
 ENGINE = Path(__file__).resolve().parents[2] / "src" / "kinepoly" / "engine"
 DRIVERS = {"plan", "position", "velocity", "acceleration", "assembly", "construct", "table"}
 """The table and the modules that loop over the plan's groups, and those above them in engine/."""
-ABOVE_DRIVERS = {"assembly", "construct", "row", "sliders", "transmission", "centrode", "centers", "kennedy",
+READERS = {"assembly", "construct", "row", "sliders", "transmission", "centrode", "centers", "kennedy",
                  "center_values", "center_velocity", "circle_diagram", "finite_pole"}
-"""Modules that may use the drivers (or that nothing below needs)."""
+"""The readers of what the drivers give (docs/architecture.md): they may import the drivers."""
 GROUP_TYPES = {"Dyad", "CarriedDyad", "DriveGroup", "GearGroup", "CamGroup", "NewtonGroup", "PlanetGroup"}
 
 
@@ -70,13 +70,13 @@ def test_every_engine_import_is_at_the_top_of_its_module(module: str) -> None:
 
 
 @pytest.mark.parametrize("module", sorted(m for m in MODULES if m.startswith("kinds.") or
-                                          m not in DRIVERS | ABOVE_DRIVERS and m not in ("kinds", "__init__")))
+                                          m not in DRIVERS | READERS and m not in ("kinds", "__init__")))
 def test_kinds_and_shared_pieces_import_no_driver(module: str) -> None:
     up = sorted(GRAPH[module] & DRIVERS)
     assert not up, f"engine.{module} imports the driver(s) {up}"
 
 
-@pytest.mark.parametrize("module", sorted(m for m in MODULES if not m.startswith("kinds") and m not in DRIVERS | ABOVE_DRIVERS))
+@pytest.mark.parametrize("module", sorted(m for m in MODULES if not m.startswith("kinds") and m not in DRIVERS | READERS))
 def test_shared_pieces_import_no_kind(module: str) -> None:
     up = sorted(t for t in GRAPH[module] if t.startswith("kinds"))
     assert not up, f"engine.{module} imports the kind(s) {up}"
