@@ -11,7 +11,7 @@ import pytest
 ENGINE = Path(__file__).resolve().parents[2] / "src" / "kinepoly" / "engine"
 DRIVERS = {"plan", "position", "velocity", "acceleration", "assembly", "construct", "table"}
 """The table and the modules that loop over the plan's groups, and those above them in engine/."""
-READERS = {"assembly", "construct", "row", "sliders", "transmission", "centrode", "centers", "kennedy",
+READERS = {"row", "sliders", "transmission", "centrode", "centers", "kennedy",
                  "center_values", "center_velocity", "circle_diagram", "finite_pole"}
 """The readers of what the drivers give (docs/architecture.md): they may import the drivers."""
 GROUP_TYPES = {"Dyad", "CarriedDyad", "DriveGroup", "GearGroup", "CamGroup", "NewtonGroup", "PlanetGroup"}
