@@ -1,4 +1,5 @@
-"""The acceleration polygon, constructed dyad by dyad after the velocity polygon, over rows.
+"""The acceleration polygon over rows, after the velocity polygon: the inputs' known terms, then each group
+of the plan constructed by its kind (``engine.table``, ``engine.kinds``).
 
 Known terms are laid end to end (normal terms omega^2 r toward the center, Coriolis terms
 2 omega x v_rel), then two direction lines are drawn (tangential: perpendicular to the link;
@@ -12,279 +13,23 @@ laid away from the center, the Coriolis term left out or reversed. The right rul
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
-from kinepoly.engine.carry import relative_acceleration
-from kinepoly.engine.closures import other_side
-from kinepoly.engine.plan import (
-    CamGroup,
-    DriveGroup,
-    Dyad,
-    GearGroup,
-    NewtonGroup,
-    PositionPlan,
-    slide_roles,
-    two_slide_roles,
-)
-from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
-from kinepoly.engine.steps import Direction, DrawnVector, Step
-from kinepoly.engine.velocity import (
-    VelocityResult,
-    add_motor_rate,
-    carried_parts,
-    drive_geometry,
-    lay_driven_slider,
-    link_length,
-    read_rate,
-    record_drive_term,
-    slide_direction,
-    slide_reference,
-)
+from kinepoly.engine.groups import PositionPlan
+from kinepoly.engine.lines import lay_driven_slider, read_rate
+from kinepoly.engine.polygon import CrossLines, Polygon, sense
+from kinepoly.engine.results import RIGHT, AccelerationContext, AccelerationResult, Rules, VelocityResult
+from kinepoly.engine.steps import DrawnVector, Step
+from kinepoly.engine.table import kind_of
 from kinepoly.errors import SceneError
-from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines
-from kinepoly.geom.vec import magnitude
-from kinepoly.model.mechanism import Revolute
-from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
+from kinepoly.geom.arrays import cross_lines
+from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 
 __all__ = ["RIGHT", "AccelerationResult", "Rules", "construct_acceleration"]
 
 
-@dataclass(frozen=True)
-class Rules:
-    """How the known terms are laid: ``normal`` -1 toward the center (right), +1 away;
-    ``coriolis`` 1 as it is (right), 0 left out, -1 reversed."""
-
-    normal: float = -1.0
-    coriolis: float = 1.0
-
-
-RIGHT = Rules()
-
-
-@dataclass(frozen=True)
-class AccelerationResult:
-    """The acceleration polygon at every row: tips, alphas, sliding accelerations, Coriolis terms, steps."""
-
-    polygon: Polygon
-    sliding: dict[str, Points]
-    coriolis: dict[str, Points]
-
-    @property
-    def tips(self) -> dict[str, Points]:
-        return self.polygon.tips
-
-    @property
-    def alpha(self) -> dict[str, Reals]:
-        return self.polygon.rate
-
-
-class _Context:
-    """The polygon being built, the velocity polygon it stands on, and the slider terms found."""
-
-    def __init__(self, polygon: Polygon, velocity: VelocityResult, rules: Rules) -> None:
-        self.b = polygon
-        self.v = velocity
-        self.rules = rules
-        self.sliding: dict[str, Points] = {}
-        self.coriolis: dict[str, Points] = {}
-
-    def v_tip(self, link: str, point: str) -> Points:
-        if link == self.b.mechanism.ground:
-            return self.b.zero
-        return self.v.tips[self.b.label(link, point)]
-
-    def normal_line(self, known_link: str, known_point: str, point: str, moving: str,
-                    rigid: bool = True, omega: Reals | None = None,
-                    name: str | None = None) -> tuple[Line, DrawnVector | None, str]:
-        """a_known + a^n (toward known_point), then the line perpendicular to known_point -> point
-        (``rigid``: both are points of ``moving``, so the direction's length is a link length; ``omega``:
-        the turning rate of known_point -> point when it is not ``moving``'s, as an equivalent link's;
-        ``name``: the point's name in the terms when it is not ``point``, as ``A@4`` for the point of the
-        guide under the block's pin, so that the normal and the tangential term name it alike)."""
-        b = self.b
-        start = b.tip(known_link, known_point)
-        r, turned = b.positions.chord(known_point, point)
-        w = b.omega_of(moving) if omega is None else omega
-        normal = (w * w) * r
-        end = np.asarray(start - normal if self.rules.normal < 0.0 else start + normal)
-        size = link_length(b.mechanism, moving, known_point, point) if rigid else None
-        named = name or point
-        vector = DrawnVector(f"a^n_{named}/{known_point}", b.vec(start), b.vec(end), "normal") if b.record else None
-        return (end, turned, size), vector, f"a^t_{named}/{known_point} perpendicular to {known_point}{named}"
-
-    def slide_line(self, slider: SliderSpec, other: str, moving: str, point: str) -> tuple[Line, list[DrawnVector]]:
-        """a_point@other (+ the Coriolis term where the guide turns), then the line along the slide."""
-        start = self.b.tip(other, point)
-        end, coriolis = self.lay_coriolis(slider, start, moving, other, point)
-        return (end, slide_direction(self.b.positions, slider), 1.0), coriolis
-
-    def lay_coriolis(self, slider: SliderSpec, start: Points, moving: str, frame: str,
-                     point: str, sign: float = 1.0) -> tuple[Points, list[DrawnVector]]:
-        """Lay 2 omega_frame x v_{point of moving}/{point of frame} (times ``sign``) from ``start``, with its step.
-
-        Nothing is laid where the slider's guide cannot turn: then there is no Coriolis term at all.
-        """
-        b = self.b
-        if not b.mechanism.has_turning_guide(slider) or self.rules.coriolis == 0.0:
-            return start, []
-        w = b.omega_of(frame)
-        v_rel = self.v_tip(moving, point) - self.v_tip(frame, point)
-        term = np.asarray((sign * self.rules.coriolis * 2.0 * w) * (1j * v_rel))
-        end = np.asarray(start + term)
-        if not b.record:
-            return end, []
-        on_moving, on_frame = b.label(moving, point), b.label(frame, point)
-        if sign < 0.0:  # laid the other way: the term of the frame's point over the moving one's
-            on_moving, on_frame = on_frame, on_moving
-        label = f"a^c_{on_moving}/{on_frame}"
-        vector = DrawnVector(label, b.vec(start), b.vec(end), "coriolis")
-        omega = b.num(w)
-        b.step(Step(polygon="acceleration", kind="coriolis", equation=f"{label} = 2 omega x v_{on_moving}/{on_frame}",
-                    result=label, known=((label, "magnitude and direction"),), vectors=(vector,),
-                    value=b.vec(term), topic="coriolis",
-                    params=(("term", label), ("guide", slider.guide), ("ground", b.ground_name()),
-                            ("omega", abs(omega)), ("relative", f"v_{on_moving}/{on_frame}"),
-                            ("speed", magnitude(complex(v_rel[0]))), ("magnitude", magnitude(complex(term[0]))),
-                            ("sense", sense(omega)), ("start", on_frame))))
-        return end, [vector]
-
-    def slide_values(self, slider: SliderSpec, link: str, point: str) -> None:
-        """Sliding acceleration and Coriolis term of the block relative to the guide (the Coriolis term as
-        the rules lay it: the sliding term is what remains of the relative acceleration)."""
-        b = self.b
-        other = slider.guide if link == slider.block else slider.block
-        block_side, guide_side = (link, other) if link == slider.block else (other, link)
-        a_block, a_guide = b.tip(block_side, point), b.tip(guide_side, point)
-        v_rel = self.v_tip(block_side, point) - self.v_tip(guide_side, point)
-        coriolis = np.asarray((self.rules.coriolis * 2.0 * b.omega_of(slider.guide)) * (1j * v_rel))
-        self.coriolis[slider.name] = coriolis
-        self.sliding[slider.name] = np.asarray(a_block - a_guide - coriolis)
-
-
-def _record(ctx: _Context, label: str, equation: str, first: Line, second: Line, labels: tuple[str, str],
-            crossing: Crossing, vectors: list[DrawnVector], directions: tuple[Direction, Direction]) -> None:
-    b = ctx.b
-    known = tuple((v.label, "magnitude and direction") for v in vectors)
-    known += tuple((d.term, "direction") for d in directions)  # the two unknown terms
-    b.step(Step(polygon="acceleration", kind="intersection", equation=equation, result=label.lower(), known=known,
-                vectors=tuple(vectors), lines=(b.step_line(first, labels[0]), b.step_line(second, labels[1])),
-                value=b.vec(crossing.point), topic="intersection", params=(("point", label),),
-                directions=directions))
-
-
-def _along_normal(ctx: _Context, term: str, known_link: str, known_point: str, point: str,
-                  normal: DrawnVector | None) -> Direction:
-    """What ``normal_line`` draws, as data: the tangential term, after the normal one."""
-    return Direction(term, "perpendicular", f"{known_point}{point}", ctx.b.label(known_link, known_point).lower(),
-                     after=normal.label if normal else "")
-
-
-def _along_slide(ctx: _Context, term: str, slider: SliderSpec, other: str, point: str,
-                 laid: list[DrawnVector]) -> Direction:
-    """What ``slide_line`` draws, as data: the sliding term, after the Coriolis term when there is one."""
-    return Direction(term, *slide_reference(ctx.b, slider), ctx.b.label(other, point).lower(),
-                     after=laid[-1].label if laid else "")
-
-
-def _normals_step(ctx: _Context, vectors: list[DrawnVector]) -> None:
-    normals = [v for v in vectors if v.term == "normal"]
-    if normals:
-        ctx.b.step(Step(polygon="acceleration", kind="known", equation=" and ".join(v.label for v in normals),
-                        result=", ".join(v.label for v in normals),
-                        known=tuple((v.label, "magnitude and direction") for v in normals), vectors=tuple(normals),
-                        topic="normals"))
-
-
-def _slide_label(slider: SliderSpec) -> str:
-    return f"sliding term along slider {slider.name}"
-
-
-def _dyad(ctx: _Context, dyad: Dyad) -> None:
-    b, i, j = ctx.b, dyad.first, dyad.second
-    if dyad.kind in ("RRR", "RRP"):
-        assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
-        p1, p2 = dyad.first_joint.point, dyad.inner.point
-        k1 = other_side(dyad.first_joint, i)
-        line1, n1, label1 = ctx.normal_line(k1, p1, p2, i)
-        vectors = [n1] if n1 else []
-        if isinstance(dyad.second_joint, Revolute):
-            p3 = dyad.second_joint.point
-            k2 = other_side(dyad.second_joint, j)
-            line2, n2, label2 = ctx.normal_line(k2, p3, p2, j)
-            vectors += [n2] if n2 else []
-        else:
-            k2 = other_side(dyad.second_joint, j)
-            line2, laid = ctx.slide_line(dyad.second_joint, k2, j, p2)
-            label2 = _slide_label(dyad.second_joint)
-            vectors += laid
-        if b.record:
-            _normals_step(ctx, vectors)
-        crossing = b.cross_lines(line1, line2, p2, dyad.name, (label1, label2))
-        b.add_tip(i, p2, crossing.point)
-        if b.record:
-            direction1 = _along_normal(ctx, f"a^t_{p2}/{p1}", k1, p1, p2, n1)
-            if isinstance(dyad.second_joint, Revolute):
-                p3 = dyad.second_joint.point
-                direction2 = _along_normal(ctx, f"a^t_{p2}/{p3}", k2, p3, p2, n2)
-                equation = (f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{p3} + a^n_{p2}/{p3} + "
-                            f"a^t_{p2}/{p3}")
-            else:
-                at2 = b.label(k2, p2)
-                direction2 = _along_slide(ctx, f"a_{p2}/{at2}", dyad.second_joint, k2, p2, laid)
-                cor = f" + a^c_{p2}/{at2}" if laid else ""
-                equation = f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{at2}{cor} + a_{p2}/{at2}"
-            _record(ctx, p2, equation, line1, line2, (label1, label2), crossing, vectors, (direction1, direction2))
-        read_rate(b, i, p1, p2, crossing.along_first)
-        if isinstance(dyad.second_joint, Revolute):
-            read_rate(b, j, dyad.second_joint.point, p2, crossing.along_second())
-        else:
-            ctx.slide_values(dyad.second_joint, j, p2)
-    elif dyad.kind == "RPR":
-        r = slide_roles(dyad)
-        q, p = r.guide_pin, r.block_pin
-        at = b.label(r.guide, p)
-        line1, n1, label1 = ctx.normal_line(r.guide_known, q, p, r.guide, rigid=False, name=at)
-        a_p = b.tip(r.block_known, p)
-        end, laid = ctx.lay_coriolis(r.slider, a_p, r.guide, r.block, p)
-        vectors = ([n1] if n1 else []) + laid
-        line2 = (end, slide_direction(b.positions, r.slider), 1.0)
-        labels = (label1, _slide_label(r.slider))
-        if b.record:
-            _normals_step(ctx, vectors)
-        crossing = b.cross_lines(line1, line2, at, dyad.name, labels)
-        b.add_tip(r.guide, p, crossing.point)
-        if b.record:
-            cor = f" + a^c_{at}/{p}" if laid else ""
-            _record(ctx, at, f"a_{at} = a_{q} + a^n_{at}/{q} + a^t_{at}/{q} = a_{p}{cor} + a_{at}/{p}", line1, line2,
-                    labels, crossing, vectors,
-                    (_along_normal(ctx, f"a^t_{at}/{q}", r.guide_known, q, p, n1),
-                     _along_slide(ctx, f"a_{at}/{p}", r.slider, r.block_known, p, laid)))
-        read_rate(b, r.guide, q, at, crossing.along_first)
-        ctx.slide_values(r.slider, r.block, p)
-    else:
-        t = two_slide_roles(dyad, b.mechanism)
-        if t.pin is not None and t.pin_known is not None:
-            b.tip(t.pin_known, t.pin)
-        point = t.point
-        line1, v1 = ctx.slide_line(t.first_slider, t.side1, t.moving, point)
-        line2, v2 = ctx.slide_line(t.second_slider, t.side2, j, point)
-        labels = (_slide_label(t.first_slider), _slide_label(t.second_slider))
-        crossing = b.cross_lines(line1, line2, point, dyad.name, labels)
-        b.add_tip(t.moving, point, crossing.point)
-        if b.record:
-            a1, a2 = b.label(t.side1, point), b.label(t.side2, point)
-            side_terms = ["".join(f" + {v.label}" for v in laid) for laid in (v1, v2)]
-            _record(ctx, point, f"a_{point} = a_{a1}{side_terms[0]} + a_{point}/{a1} = a_{a2}{side_terms[1]} + "
-                    f"a_{point}/{a2}", line1, line2, labels, crossing, v1 + v2,
-                    (_along_slide(ctx, f"a_{point}/{a1}", t.first_slider, t.side1, point, v1),
-                     _along_slide(ctx, f"a_{point}/{a2}", t.second_slider, t.side2, point, v2)))
-        ctx.slide_values(t.first_slider, t.first_relative, point)
-        ctx.slide_values(t.second_slider, j, point)
-
-
-def _drive(ctx: _Context) -> None:
+def _drive(ctx: AccelerationContext) -> None:
     mech = ctx.b.mechanism
     if isinstance(mech.scene.input, GivenInput):
         _given(ctx, mech.scene.input)
@@ -294,7 +39,7 @@ def _drive(ctx: _Context) -> None:
             _frame_drive(ctx, drive.spec)
 
 
-def _frame_drive(ctx: _Context, inp: LinkInput | SliderInput) -> None:
+def _frame_drive(ctx: AccelerationContext, inp: LinkInput | SliderInput) -> None:
     b = ctx.b
     mech = b.mechanism
     if isinstance(inp, LinkInput):
@@ -310,66 +55,7 @@ def _frame_drive(ctx: _Context, inp: LinkInput | SliderInput) -> None:
         ctx.coriolis[slider.name] = b.zero
 
 
-def _drive_group(ctx: _Context, group: DriveGroup) -> None:
-    """A link placed on a known one by a driven joint: a motor adds its alpha; a cylinder's block point
-    gets the Coriolis term 2 omega x s_dot e, then s_ddot along the slide."""
-    b, drive = ctx.b, group.drive
-    if isinstance(drive.joint, SliderSpec):
-        slider = drive.joint
-        start = b.tip(group.known, slider.point)
-        moving = slider.block if group.known == slider.guide else slider.guide
-        sign = 1.0 if moving == slider.block else -1.0
-        end, _ = ctx.lay_coriolis(slider, start, slider.block, slider.guide, slider.point, sign)
-        ctx.sliding[slider.name] = lay_driven_slider(b, slider, drive.rate(2), group.known, end)
-        ctx.coriolis[slider.name] = np.asarray(sign * (end - start))
-        return
-    b.tip(group.known, drive.joint.point)
-    known_rate = b.rate_of(group.known)
-    assert known_rate is not None
-    add_motor_rate(b, drive, group.link, group.known, known_rate)
-
-
-def _carried(ctx: _Context, dyad: Dyad) -> None:
-    """A carried RRR dyad: the carrier's normal term and the drive's relative acceleration laid from the
-    carrier's known tip, then the line perpendicular to the carrier's span; the second link as in any RRR."""
-    b = ctx.b
-    i, j, carrier, drive, (p1, p2, p3), (k1, k2) = carried_parts(dyad)
-    at, pin, slide = drive_geometry(b, dyad)
-    omega_i, omega_c = b.omega_of(i), b.omega_of(carrier)
-    rel = relative_acceleration(drive, i, at, pin, slide, omega_i, omega_c, omega_c)
-    on_carrier = b.label(carrier, p2)
-    (start, direction, _), n1, label1 = ctx.normal_line(k1, p1, p2, carrier, rigid=False)
-    if n1 is not None:
-        n1 = DrawnVector(f"a^n_{on_carrier}/{p1}", n1.start, n1.end, "normal")
-    moved = np.asarray(start + rel)
-    line1: Line = (moved, direction, None)
-    line2, n2, label2 = ctx.normal_line(k2, p3, p2, j)
-    vectors = [v for v in (n1, n2) if v is not None]
-    if b.record:
-        _normals_step(ctx, vectors)
-        record_drive_term(b, drive, f"a_{p2}/{on_carrier}", start, moved, p2, carrier,
-                          n1.label if n1 is not None else b.label(k1, p1).lower())
-    crossing = b.cross_lines(line1, line2, p2, dyad.name, (label1, label2))
-    b.add_tip(i, p2, crossing.point)
-    b.add_tip(carrier, p2, np.asarray(crossing.point - rel))
-    if b.record:
-        drawn = vectors + [DrawnVector(f"a_{p2}/{on_carrier}", b.vec(start), b.vec(moved), "relative")]
-        _record(ctx, p2, f"a_{p2} = a_{p1} + a^n_{on_carrier}/{p1} + a_{p2}/{on_carrier} + a^t_{on_carrier}/{p1} = "
-                f"a_{p3} + a^n_{p2}/{p3} + a^t_{p2}/{p3}", line1, line2, (label1, label2), crossing, drawn,
-                (Direction(f"a^t_{on_carrier}/{p1}", "perpendicular", f"{p1}{p2}", b.label(k1, p1).lower(),
-                           after=f"a_{p2}/{on_carrier}"),
-                 _along_normal(ctx, f"a^t_{p2}/{p3}", k2, p3, p2, n2)))
-    read_rate(b, carrier, p1, on_carrier, crossing.along_first)
-    if isinstance(drive.joint, Revolute):
-        add_motor_rate(b, drive, i, carrier, crossing.along_first)
-    else:
-        assert slide is not None
-        ctx.sliding[drive.joint.name] = np.asarray(drive.rate(2) * slide)
-        ctx.coriolis[drive.joint.name] = np.asarray(2.0 * omega_c * (1j * drive.rate(1) * slide))
-    read_rate(b, j, p3, p2, crossing.along_second())
-
-
-def _given(ctx: _Context, given: GivenInput) -> None:
+def _given(ctx: AccelerationContext, given: GivenInput) -> None:
     b = ctx.b
     link = b.mechanism.link_names[0]
     for g in given.points:
@@ -416,38 +102,10 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
     polygon = Polygon(positions, "acceleration", omega=velocity.omega, unit=unit, record=record, strict=strict,
                       crossing=crossing)
     polygon.normal_sign = rules.normal
-    ctx = _Context(polygon, velocity, rules)
+    ctx = AccelerationContext(polygon, velocity, rules)
     _drive(ctx)
     for group in plan.groups:
-        if isinstance(group, Dyad) and group.carrier is not None:
-            _carried(ctx, group)
-        elif isinstance(group, Dyad):
-            _dyad(ctx, group)
-        elif isinstance(group, DriveGroup):
-            _drive_group(ctx, group)
-        else:
-            _other_group(ctx, group)
+        kind_of(group).acceleration(ctx, group)
     for link, point in wanted:
         polygon.tip(link, point)
     return AccelerationResult(polygon, ctx.sliding, ctx.coriolis)
-
-
-def _other_group(ctx: _Context, group: GearGroup | CamGroup | NewtonGroup) -> None:
-    """A gear pair, a cam pair, a triad (through its Assur point) or any other group (a linear solve), by the
-    modules that build on this one (imported here, where such a group is met)."""
-    from kinepoly.engine.cam_polygons import acceleration_by_cam
-    from kinepoly.engine.group import acceleration_by_linear_solve
-    from kinepoly.engine.planet import planet_of
-    from kinepoly.engine.rolling import acceleration_by_rolling, acceleration_of_planet
-    from kinepoly.engine.triad import acceleration_by_assur_point, triad_of
-
-    if isinstance(group, GearGroup):
-        acceleration_by_rolling(ctx, group)
-    elif isinstance(group, CamGroup):
-        acceleration_by_cam(ctx, group)
-    elif isinstance(group, NewtonGroup) and (planet := planet_of(group)) is not None:
-        acceleration_of_planet(ctx, planet)
-    elif (triad := triad_of(ctx.b.mechanism, group)) is not None:
-        acceleration_by_assur_point(ctx, triad)
-    else:
-        acceleration_by_linear_solve(ctx, group)

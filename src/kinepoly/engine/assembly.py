@@ -26,9 +26,9 @@ from kinepoly.engine.branches import follow_branch
 from kinepoly.engine.cam_contact import Candidates, Ints
 from kinepoly.engine.cam_place import floating_unreachable, follow_contact, guessed_contact, seeded_contact
 from kinepoly.engine.closures import Choice, Closure
+from kinepoly.engine.groups import CamGroup, NewtonGroup, PositionPlan
 from kinepoly.engine.newton import RowClosure, group_reach, group_size, newton_row, start_poses
 from kinepoly.engine.newton_walk import Walk, known_points
-from kinepoly.engine.plan import CamGroup, NewtonGroup, PositionPlan
 from kinepoly.engine.position import Failure, Placement, Positions, describe_input, input_values, solve_positions
 from kinepoly.errors import AssemblyError, SingularityError
 from kinepoly.geom.arrays import Bools, Reals

@@ -33,7 +33,7 @@ from functools import lru_cache
 import numpy as np
 import numpy.typing as npt
 
-from kinepoly.engine.plan import CamGroup
+from kinepoly.engine.groups import CamGroup
 from kinepoly.engine.polygon import Polygon
 from kinepoly.engine.steps import Step
 from kinepoly.errors import SceneError

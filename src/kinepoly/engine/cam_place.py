@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import replace
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -28,16 +27,16 @@ from kinepoly.engine.cam_contact import (
     face_parameter,
     offset_of,
 )
-from kinepoly.engine.plan import CamGroup, NewtonGroup
+from kinepoly.engine.groups import CamGroup, NewtonGroup
+from kinepoly.engine.inputs import describe_input
+from kinepoly.engine.placement import Failure, Placement
+from kinepoly.engine.policy import Policy
 from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.geom.spline import nearest_parameter
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import CamSpec
-
-if TYPE_CHECKING:
-    from kinepoly.engine.position import Placement, Policy
 
 __all__ = ["floating_unreachable", "follow_contact", "guessed_contact", "place_cam", "place_floating_contacts",
            "seeded_contact"]
@@ -98,8 +97,6 @@ def seeded_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidates
 
 def _where(mechanism: Mechanism, cam: CamSpec) -> str:
     """The start of a solve's message: the file, the pair, the input."""
-    from kinepoly.engine.position import describe_input
-
     return f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: at {describe_input(mechanism)}, "
 
 
@@ -146,8 +143,6 @@ def _undercut(cam: CamSpec, curvature: np.ndarray) -> Bools:
 
 def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: Policy) -> Placement:
     """The follower of ``group`` placed on its cam at every row, with its contact recorded."""
-    from kinepoly.engine.position import Failure
-
     cam = group.cam
     candidates = contact_candidates(mechanism, group, placed.poses)
     ok, failures = placed.ok, placed.failures
@@ -166,8 +161,6 @@ def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: 
 def _recorded(mechanism: Mechanism, group: str, cam: CamSpec, u: Reals, placed: Placement,
               policy: Policy) -> Placement:
     """The kept contact at parameters ``u`` recorded (Q, K and u), its undercut rows raised or marked."""
-    from kinepoly.engine.position import Failure
-
     rows = contact_rows(cam, placed.poses[cam.cam], u)
     ok, failures = placed.ok, placed.failures
     undercut = ok & _undercut(cam, rows.curvature)

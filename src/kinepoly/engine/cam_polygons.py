@@ -5,7 +5,7 @@ of the cam, and W (the knife edge, or the roller's centre, on the offset curve w
 curvature) stays |K W| from it to second order: the pair acts, for velocities and accelerations, as a binary
 link K W pinned to the cam at K and to the follower at W (the Romanian text's K_A(-1), eq. 4 and 5). So W's
 tip is found as in an RRR (a rocker) or RRP (a translating follower) dyad, with the direction lines of
-``engine.velocity`` and ``engine.acceleration``:
+``engine.lines`` and ``engine.results``:
 
 * velocity: through k (the image of K on the cam) perpendicular to K W; through the tip of the pivot
   perpendicular to pivot-W, or through the tip of W's point of the guide along the slide;
@@ -26,20 +26,21 @@ from __future__ import annotations
 import numpy as np
 
 from kinepoly.engine.cam_contact import centre_label, face_direction
-from kinepoly.engine.plan import CamGroup
-from kinepoly.engine.polygon import Line, Polygon
-from kinepoly.engine.steps import Direction, DrawnVector
-from kinepoly.engine.velocity import (
-    _known_pairs,
-    _parallel,
-    _perpendicular,
-    _perpendicular_label,
-    _record_intersection,
-    _revolute_line,
-    _slide_line,
-    _slide_rel,
+from kinepoly.engine.groups import CamGroup
+from kinepoly.engine.lines import (
+    known_pairs,
+    parallel,
+    perpendicular,
+    perpendicular_label,
     read_rate,
+    record_intersection,
+    revolute_line,
+    slide_line,
+    slide_rel,
 )
+from kinepoly.engine.polygon import Line, Polygon
+from kinepoly.engine.results import along_normal, along_slide, record_crossing
+from kinepoly.engine.steps import Direction, DrawnVector
 from kinepoly.geom.arrays import Points
 from kinepoly.model.mechanism import Joint, Revolute
 from kinepoly.scene.spec import SliderSpec
@@ -60,14 +61,14 @@ def _own_line(polygon: Polygon, group: CamGroup, point: str, size_link: str | No
     joint = group.joint
     if isinstance(joint, Revolute):
         far = joint.point
-        return (_revolute_line(polygon, group.carrier, far, point, size_link),
-                _perpendicular_label(polygon, group.carrier, far, point), far,
-                _perpendicular(polygon, f"v_{tip}/{far}", group.carrier, far, point))
+        return (revolute_line(polygon, group.carrier, far, point, size_link),
+                perpendicular_label(polygon, group.carrier, far, point), far,
+                perpendicular(polygon, f"v_{tip}/{far}", group.carrier, far, point))
     assert isinstance(joint, SliderSpec)
     far = polygon.label(group.carrier, point)
-    return (_slide_line(polygon, joint, group.carrier, point),
+    return (slide_line(polygon, joint, group.carrier, point),
             f"parallel to slider {joint.name} through {far.lower()}", far,
-            _parallel(polygon, f"v_{tip}/{far}", joint, group.carrier, point))
+            parallel(polygon, f"v_{tip}/{far}", joint, group.carrier, point))
 
 
 def _flat_velocity(polygon: Polygon, group: CamGroup, sliding: dict[str, Points],
@@ -85,14 +86,14 @@ def _flat_velocity(polygon: Polygon, group: CamGroup, sliding: dict[str, Points]
     equivalent[group.cam.name] = np.asarray(on_cam - crossing.point)  # v of the block over the face
     if polygon.record:
         k_label = polygon.label(group.known, k)
-        _record_intersection(polygon, tip, f"v_{tip} = v_{far} + v_{tip}/{far} = v_{k_label} + v_{tip}/{k_label}",
+        record_intersection(polygon, tip, f"v_{tip} = v_{far} + v_{tip}/{far} = v_{k_label} + v_{tip}/{k_label}",
                              line1, along_face, (label1, label2), crossing,
-                             _known_pairs((f"v_{far}", f"v_{tip}/{far}"), (f"v_{k_label}", f"v_{tip}/{k_label}")),
+                             known_pairs((f"v_{far}", f"v_{tip}/{far}"), (f"v_{k_label}", f"v_{tip}/{k_label}")),
                              (direction1, Direction(f"v_{tip}/{k_label}", "face", group.link, k_label.lower())))
     if isinstance(joint, Revolute):
         read_rate(polygon, group.link, joint.point, tip, crossing.along_first)
     else:
-        _slide_rel(polygon, joint, group.link, k, sliding)
+        slide_rel(polygon, joint, group.link, k, sliding)
 
 
 def velocity_by_cam(polygon: Polygon, group: CamGroup, sliding: dict[str, Points],
@@ -101,8 +102,8 @@ def velocity_by_cam(polygon: Polygon, group: CamGroup, sliding: dict[str, Points
         _flat_velocity(polygon, group, sliding, equivalent)
         return
     k, w = _ends(group)
-    line1 = _revolute_line(polygon, group.known, k, w, None)
-    label1 = _perpendicular_label(polygon, group.known, k, w)
+    line1 = revolute_line(polygon, group.known, k, w, None)
+    label1 = perpendicular_label(polygon, group.known, k, w)
     joint = group.joint
     line2, label2, far, direction2 = _own_line(polygon, group, w, group.link, w)
     crossing = polygon.cross_lines(line1, line2, w, group.name, (label1, label2))
@@ -110,21 +111,19 @@ def velocity_by_cam(polygon: Polygon, group: CamGroup, sliding: dict[str, Points
     equivalent[group.cam.name] = np.asarray(crossing.along_first + 0j)
     k_label = polygon.label(group.known, k)
     if polygon.record:
-        _record_intersection(polygon, w, f"v_{w} = v_{k_label} + v_{w}/{k_label} = v_{far} + v_{w}/{far}", line1, line2,
+        record_intersection(polygon, w, f"v_{w} = v_{k_label} + v_{w}/{k_label} = v_{far} + v_{w}/{far}", line1, line2,
                              (label1, label2), crossing,
-                             _known_pairs((f"v_{k_label}", f"v_{w}/{k_label}"), (f"v_{far}", f"v_{w}/{far}")),
-                             (_perpendicular(polygon, f"v_{w}/{k_label}", group.known, k, w), direction2))
+                             known_pairs((f"v_{k_label}", f"v_{w}/{k_label}"), (f"v_{far}", f"v_{w}/{far}")),
+                             (perpendicular(polygon, f"v_{w}/{k_label}", group.known, k, w), direction2))
     if isinstance(joint, Revolute):
         read_rate(polygon, group.link, joint.point, w, crossing.along_second())
     else:
-        _slide_rel(polygon, joint, group.link, w, sliding)
+        slide_rel(polygon, joint, group.link, w, sliding)
 
 
 def _flat_acceleration(ctx: object, group: CamGroup) -> None:
     """a_K@cam = a_K@follower + a^c (2 omega_follower x the block's velocity over the face) + a term along the
     face: the line through a_K@cam - a^c along the face, crossed with the follower's own line."""
-    from kinepoly.engine.acceleration import _along_normal, _along_slide, _record
-
     b: Polygon = ctx.b  # type: ignore[attr-defined]
     k = centre_label(group.cam)
     on_cam = b.tip(group.known, k)
@@ -151,9 +150,9 @@ def _flat_acceleration(ctx: object, group: CamGroup) -> None:
         far = joint.point if isinstance(joint, Revolute) else b.label(group.carrier, k)
         term = f"a^c_{tip}/{k_label}"
         vectors = [*laid, DrawnVector(term, b.vec(on_cam), b.vec(start), "coriolis")]
-        own = (_along_normal(ctx, f"a^t_{tip}/{far}", group.carrier, far, k, laid[-1] if laid else None)  # type: ignore[arg-type]
-               if isinstance(joint, Revolute) else _along_slide(ctx, f"a_{tip}/{far}", joint, group.carrier, k, laid))  # type: ignore[arg-type]
-        _record(ctx, tip, f"a_{tip} = {_own_side(joint, tip, far, laid)} = a_{k_label} + {term} + a_{tip}/{k_label}",  # type: ignore[arg-type]
+        own = (along_normal(ctx, f"a^t_{tip}/{far}", group.carrier, far, k, laid[-1] if laid else None)  # type: ignore[arg-type]
+               if isinstance(joint, Revolute) else along_slide(ctx, f"a_{tip}/{far}", joint, group.carrier, k, laid))  # type: ignore[arg-type]
+        record_crossing(ctx, tip, f"a_{tip} = {_own_side(joint, tip, far, laid)} = a_{k_label} + {term} + a_{tip}/{k_label}",  # type: ignore[arg-type]
                 line1, along_face, (label1, label2), crossing, vectors,
                 (own, Direction(f"a_{tip}/{k_label}", "face", group.link, k_label.lower(), after=term)))
     if isinstance(joint, Revolute):
@@ -172,8 +171,6 @@ def _own_side(joint: Joint, tip: str, far: str, laid: list[DrawnVector]) -> str:
 
 def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
     """The acceleration polygon's part (``ctx`` is ``engine.acceleration``'s context)."""
-    from kinepoly.engine.acceleration import _along_normal, _along_slide, _record
-
     if group.cam.kind == "flat":
         _flat_acceleration(ctx, group)
         return
@@ -197,11 +194,11 @@ def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
     if b.record:
         k_label = b.label(group.known, k)
         far = joint.point if isinstance(joint, Revolute) else b.label(group.carrier, w)
-        second = (_along_normal(ctx, f"a^t_{w}/{far}", group.carrier, far, w, vectors[-1] if len(vectors) > 1 else None)  # type: ignore[arg-type]
-                  if isinstance(joint, Revolute) else _along_slide(ctx, f"a_{w}/{far}", joint, group.carrier, w, laid))  # type: ignore[arg-type]
-        _record(ctx, w, f"a_{w} = a_{k_label} + a^n_{w}/{k_label} + a^t_{w}/{k_label} = {_own_side(joint, w, far, laid)}",  # type: ignore[arg-type]
+        second = (along_normal(ctx, f"a^t_{w}/{far}", group.carrier, far, w, vectors[-1] if len(vectors) > 1 else None)  # type: ignore[arg-type]
+                  if isinstance(joint, Revolute) else along_slide(ctx, f"a_{w}/{far}", joint, group.carrier, w, laid))  # type: ignore[arg-type]
+        record_crossing(ctx, w, f"a_{w} = a_{k_label} + a^n_{w}/{k_label} + a^t_{w}/{k_label} = {_own_side(joint, w, far, laid)}",  # type: ignore[arg-type]
                 line1, line2, (label1, label2), crossing, [*vectors, *laid],
-                (_along_normal(ctx, f"a^t_{w}/{k_label}", group.known, k, w, n1), second))  # type: ignore[arg-type]
+                (along_normal(ctx, f"a^t_{w}/{k_label}", group.known, k, w, n1), second))  # type: ignore[arg-type]
     if isinstance(joint, Revolute):
         read_rate(b, group.link, joint.point, w, crossing.along_second())
     else:

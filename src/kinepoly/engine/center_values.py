@@ -6,16 +6,16 @@ Frozen; made by ``construct.centers`` (plan, find) and ``construct.kennedy`` (th
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal
 
-from kinepoly.engine.center_velocity import CenterOmega
 from kinepoly.engine.circle_diagram import CircleDiagram, Edge, KennedyPlan, center_label, pair_name
 from kinepoly.geom.homogeneous import Place, Triple
-from kinepoly.geom.vec import Vec
+from kinepoly.geom.vec import Vec, add, perp, scale, sub
 from kinepoly.model.mechanism import Joint
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import CamSpec, GearSpec
 
-__all__ = ["CenterPlan", "InstantCenter", "InstantCenters", "KennedyLine", "KennedyStep"]
+__all__ = ["CenterOmega", "CenterPlan", "How", "InstantCenter", "InstantCenters", "KennedyLine", "KennedyStep", "Motion"]
 
 
 @dataclass(frozen=True)
@@ -144,3 +144,50 @@ class InstantCenters:
         """The center under the key the scene used (``"31"``) or its own name (``"13"``)."""
         names = dict(self.asked)
         return self.centers[names.get(key, key)]
+
+
+@dataclass(frozen=True)
+class Motion:
+    """A link's motion: it turns at ``omega`` and the point ``at`` moves with ``velocity``.
+
+    ``about`` names the center it turns about (``"12"``) when ``velocity`` is zero there.
+    """
+
+    omega: float
+    at: Vec
+    velocity: Vec
+    about: str | None = None
+
+    def velocity_of(self, point: Vec) -> Vec:
+        return add(self.velocity, scale(self.omega, perp(sub(point, self.at))))
+
+
+How = Literal["ratio", "velocity", "same", "translating"]
+
+
+@dataclass(frozen=True)
+class CenterOmega:
+    """omega_1j (``symbol``, e.g. ``"omega13"``) of ``link`` j from the centers I_1j and I_ij (``centers``)
+    and the motion of link i (``reference``).
+
+    ``how`` says how, and ``params`` give its numbers, so that any language can say it
+    (``kinepoly.present.phrasing``):
+
+    - ``ratio``: I_1i, I_ij and I_1j on one line, omega_1j = omega_1i (I_1i I_ij)/(I_1j I_ij); ``given`` is
+      omega_1i, ``near`` and ``far`` the two signed distances along I_1j -> I_ij
+    - ``velocity``: link i does not turn about a center of its own: omega_1j = (r x v) / |r|^2 with
+      ``vx``, ``vy`` the velocity of I_ij, ``rx``, ``ry`` the vector r from I_1j to I_ij, ``cross`` r x v,
+      ``distance`` |r|
+    - ``same``: I_ij at infinity, links i and j turn alike: ``given`` is omega_1i
+    - ``translating``: I_1j at infinity, link j translates with the velocity ``vx``, ``vy`` of I_ij
+    """
+
+    link: str
+    symbol: str
+    omega: float
+    reference: str
+    centers: tuple[str, str]
+    equation: str
+    how: How
+    params: tuple[tuple[str, float], ...]
+    motion: Motion

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from kinepoly.engine.carry import carried_local, relative_turn
-from kinepoly.engine.plan import Dyad
+from kinepoly.engine.groups import Dyad
 from kinepoly.geom.arrays import Bools, Points, Reals, circle_circle, circle_line, cross_lines, length, turn
 from kinepoly.geom.tolerances import ASSEMBLY_REL_TOL, NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
 from kinepoly.model.array_pose import ArrayPose, pose_from_point, pose_from_two_points

@@ -13,7 +13,7 @@ import numpy as np
 from kinepoly.engine.acceleration import RIGHT, Rules, construct_acceleration
 from kinepoly.engine.assembly import position_at_input
 from kinepoly.engine.contacts import ContactRows, contacts_over_rows, polygon_velocity
-from kinepoly.engine.plan import PositionPlan
+from kinepoly.engine.groups import PositionPlan
 from kinepoly.engine.polygon import CrossLines
 from kinepoly.engine.position import Positions
 from kinepoly.engine.row import (

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinepoly.engine.cam_contact import contact_rows, record_spline_equivalent
 from kinepoly.engine.gears import mesh
 from kinepoly.engine.polygon import Polygon
 from kinepoly.engine.steps import Step
@@ -96,8 +97,6 @@ def _world(mechanism: Mechanism, poses: dict[str, ArrayPose], link: str, point: 
 def _cam_contact(mechanism: Mechanism, poses: dict[str, ArrayPose], cam: CamSpec,
                  parameters: Mapping[str, Reals]) -> tuple[Points, Points]:
     if cam.is_spline:
-        from kinepoly.engine.cam_contact import contact_rows
-
         found = contact_rows(cam, poses[cam.cam], parameters[cam.name])
         return found.point, found.normal
     k = _world(mechanism, poses, cam.cam, cam.center_point)
@@ -203,8 +202,6 @@ def record_equivalent_links(polygon: Polygon) -> None:
     mechanism = polygon.mechanism
     for cam in mechanism.scene.cams:
         if cam.is_spline:
-            from kinepoly.engine.cam_contact import record_spline_equivalent
-
             record_spline_equivalent(polygon, cam)
             continue
         point = cam.point or cam.center_point

@@ -15,22 +15,48 @@ leg's known terms, and reads the carrier's rate, its point under Q and the slide
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 
 from kinepoly.engine.carry import relative_acceleration, relative_velocity
+from kinepoly.engine.lines import add_motor_rate, read_rate, record_drive_term, slide_direction
 from kinepoly.engine.polygon import Polygon
+from kinepoly.engine.results import AccelerationContext
 from kinepoly.engine.steps import DrawnVector
 from kinepoly.geom.arrays import Points, Reals
 from kinepoly.model.mechanism import Drive, Revolute
 from kinepoly.scene.spec import SliderSpec
 
-if TYPE_CHECKING:
-    from kinepoly.engine.acceleration import _Context
-    from kinepoly.engine.triad import Leg
+__all__ = ["Leg", "acceleration_terms", "finish_acceleration", "finish_velocity", "velocity_terms"]
 
-__all__ = ["acceleration_terms", "finish_acceleration", "finish_velocity", "velocity_terms"]
+
+@dataclass(frozen=True)
+class Leg:
+    """One leg of a triad (see ``engine.triad``): its kind, its own link, the point Q, the known link it joins,
+    the outer pin K (a pin or slot leg) and the slider (a slide or slot leg)."""
+
+    kind: Literal["pin", "slide", "slot", "face"]
+    link: str
+    point: str
+    known: str
+    pin: str | None
+    slider: SliderSpec | None
+    equivalent: str = ""
+    """A spline cam pair's name where the leg is its equivalent link K W (``link`` names it, K on the cam is
+    ``pin``, W on the ternary ``point``): a link at this instant only, whose omega is kept with the pair; or,
+    for a flat face (kind ``face``), the block pinned to the cam at K (``point``) sliding along the ternary's
+    face, whose velocity over the face is kept with the pair."""
+    carrier: str = ""
+    """A driven leg's other link, pinned to the known link at ``pin`` (``link`` is pinned to the ternary)."""
+    drive: Drive | None = None
+    """A driven leg's input, the joint between ``carrier`` and ``link``."""
+
+    @property
+    def name(self) -> str:
+        """The leg as the steps name it: its link, or both links of a driven leg (``5+6``)."""
+        return f"{self.carrier}+{self.link}" if self.carrier else self.link
 
 
 def _drive(leg: Leg) -> Drive:
@@ -40,8 +66,6 @@ def _drive(leg: Leg) -> Drive:
 
 def _geometry(polygon: Polygon, leg: Leg) -> tuple[Points, Points | None, Points | None]:
     """Where Q is, the motor's pin (or None), the slide's unit direction (or None)."""
-    from kinepoly.engine.velocity import slide_direction
-
     joint = _drive(leg).joint
     at = polygon.world(leg.point)
     if isinstance(joint, Revolute):
@@ -54,7 +78,7 @@ def _relative_velocity(polygon: Polygon, leg: Leg) -> Points:
     return relative_velocity(_drive(leg), leg.link, at, pin, slide)
 
 
-def _relative_acceleration(ctx: _Context, leg: Leg) -> Points:
+def _relative_acceleration(ctx: AccelerationContext, leg: Leg) -> Points:
     b = ctx.b
     at, pin, slide = _geometry(b, leg)
     joint = _drive(leg).joint
@@ -70,8 +94,6 @@ def _term(polygon: Polygon, leg: Leg) -> str:
 def velocity_terms(polygon: Polygon, leg: Leg) -> tuple[Points, Points, tuple[DrawnVector, ...]]:
     """The leg's line in the velocity polygon: through the tip of K plus the drive's term, square to K Q;
     with the term laid (its step recorded)."""
-    from kinepoly.engine.velocity import record_drive_term
-
     assert leg.pin is not None
     start = polygon.tip(leg.known, leg.pin)
     end = np.asarray(start + _relative_velocity(polygon, leg))
@@ -84,11 +106,9 @@ def velocity_terms(polygon: Polygon, leg: Leg) -> tuple[Points, Points, tuple[Dr
     return end, direction, (DrawnVector(term, polygon.vec(start), polygon.vec(end), "relative"),)
 
 
-def acceleration_terms(ctx: _Context, leg: Leg) -> tuple[Points, Points, tuple[DrawnVector, ...]]:
+def acceleration_terms(ctx: AccelerationContext, leg: Leg) -> tuple[Points, Points, tuple[DrawnVector, ...]]:
     """The leg's line in the acceleration polygon: after the carrier's normal term toward K and the drive's
     relative term (its step recorded), square to K Q."""
-    from kinepoly.engine.velocity import record_drive_term
-
     b = ctx.b
     assert leg.pin is not None
     (start, direction, _), normal, _ = ctx.normal_line(leg.known, leg.pin, leg.point, leg.carrier, rigid=False)
@@ -106,8 +126,6 @@ def acceleration_terms(ctx: _Context, leg: Leg) -> tuple[Points, Points, tuple[D
 def _finish(polygon: Polygon, leg: Leg, tip: Points, along: Reals, relative: Points) -> None:
     """The carrier's rate read off the leg's line, its point under Q (the tip less the drive's term, found
     with Q's tip, as in a carried dyad), and a motor's rate."""
-    from kinepoly.engine.velocity import add_motor_rate, read_rate
-
     assert leg.pin is not None
     polygon.add_tip(leg.carrier, leg.point, np.asarray(tip - relative))
     read_rate(polygon, leg.carrier, leg.pin, polygon.label(leg.carrier, leg.point), along)
@@ -126,7 +144,7 @@ def finish_velocity(polygon: Polygon, leg: Leg, tip: Points, along: Reals, slidi
         sliding[joint.name] = np.asarray(sign * relative)
 
 
-def finish_acceleration(ctx: _Context, leg: Leg, tip: Points, along: Reals) -> None:
+def finish_acceleration(ctx: AccelerationContext, leg: Leg, tip: Points, along: Reals) -> None:
     """After the construction: the carrier's alpha and point under Q; a cylinder's sliding and Coriolis terms."""
     _finish(ctx.b, leg, tip, along, _relative_acceleration(ctx, leg))
     joint = _drive(leg).joint

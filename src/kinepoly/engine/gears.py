@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from kinepoly.engine.inputs import describe_input
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Points, Reals, turn
 from kinepoly.model.array_pose import ArrayPose
@@ -71,8 +72,6 @@ def _line(curve: PitchLine, pose: ArrayPose) -> tuple[Points, Points]:
 
 
 def _where(mechanism: Mechanism) -> str:
-    from kinepoly.engine.position import describe_input
-
     return describe_input(mechanism)
 
 

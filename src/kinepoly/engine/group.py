@@ -24,22 +24,18 @@ and each slider's block over its guide.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from kinepoly.engine.cam_contact import centre_label, face_direction
-from kinepoly.engine.plan import NewtonGroup
+from kinepoly.engine.groups import NewtonGroup
+from kinepoly.engine.inputs import describe_input
 from kinepoly.engine.polygon import JointSolve, Polygon
-from kinepoly.engine.position import describe_input
+from kinepoly.engine.results import AccelerationContext
 from kinepoly.engine.steps import DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, turn
 from kinepoly.model.mechanism import Revolute
 from kinepoly.scene.spec import CamSpec, SliderSpec
-
-if TYPE_CHECKING:
-    from kinepoly.engine.acceleration import _Context
 
 __all__ = ["NEAR_SINGULAR_CONDITION", "SINGULAR_CONDITION", "acceleration_by_linear_solve", "assur_class",
            "velocity_by_linear_solve"]
@@ -265,7 +261,7 @@ def velocity_by_linear_solve(polygon: Polygon, group: NewtonGroup, sliding: dict
                                                                                                   joint.point))
 
 
-def acceleration_by_linear_solve(ctx: _Context, group: NewtonGroup) -> None:
+def acceleration_by_linear_solve(ctx: AccelerationContext, group: NewtonGroup) -> None:
     polygon = ctx.b
     extra: dict[tuple[str, str], Points] = {}
     for link, point in _group_points(group):

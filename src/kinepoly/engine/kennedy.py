@@ -27,6 +27,7 @@ from itertools import combinations
 
 import numpy as np
 
+from kinepoly.engine.cam_contact import parameter_at
 from kinepoly.engine.center_values import CenterPlan, InstantCenter, KennedyLine, KennedyStep
 from kinepoly.engine.circle_diagram import (
     CircleDiagram,
@@ -39,8 +40,9 @@ from kinepoly.engine.circle_diagram import (
     split_pair,
     triangle_name,
 )
+from kinepoly.engine.contacts import contacts_over_rows
 from kinepoly.engine.gears import mesh
-from kinepoly.engine.position import describe_input
+from kinepoly.engine.inputs import describe_input
 from kinepoly.errors import SingularityError
 from kinepoly.geom.homogeneous import LocalFrame, Place, Projective, Wedge, canonical_direction, wedge
 from kinepoly.geom.tolerances import LOUD_ERROR, NEAR_SINGULAR_SIN
@@ -145,9 +147,6 @@ class _Normal:
 def _common_normals(mechanism: Mechanism, pose: Pose, frame: LocalFrame) -> dict[str, _Normal]:
     """Each cam's common normal at its contact, by the contacts' one computation on a batch of one row;
     a cam whose links were not solved has none."""
-    from kinepoly.engine.cam_contact import parameter_at
-    from kinepoly.engine.contacts import contacts_over_rows
-
     poses = {link: ArrayPose.of_rows([pose.links[link]]) for link in pose.links}
     parameters = {cam.name: np.array([parameter_at(cam, pose)]) for cam in mechanism.scene.cams
                   if cam.is_spline and cam.cam in pose.links and cam.follower in pose.links}

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from kinepoly.engine.cam_contact import cam_spline, face_parameter, offset_of
-from kinepoly.engine.plan import NewtonGroup
+from kinepoly.engine.groups import NewtonGroup
 from kinepoly.geom.arrays import Reals
 from kinepoly.geom.spline import nearest_parameter
 from kinepoly.geom.vec import phase

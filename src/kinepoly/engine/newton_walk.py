@@ -19,9 +19,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
 
+from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.newton import RowClosure, group_reach, newton_row, start_poses
-from kinepoly.engine.plan import NewtonGroup
-from kinepoly.engine.position import Placement
+from kinepoly.engine.placement import Placement
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 

@@ -30,8 +30,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from kinepoly.engine.gears import Rolled, anchor_row, free_delta, mesh
-from kinepoly.engine.plan import NewtonGroup
-from kinepoly.engine.position import Placement
+from kinepoly.engine.groups import NewtonGroup
+from kinepoly.engine.placement import Placement
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Reals
 from kinepoly.model.array_pose import ArrayPose

@@ -26,7 +26,8 @@ from typing import Literal, NamedTuple
 
 import numpy as np
 
-from kinepoly.engine.position import Positions, describe_input
+from kinepoly.engine.inputs import describe_input
+from kinepoly.engine.placement import Positions
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross, cross_lines

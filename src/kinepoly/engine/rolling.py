@@ -28,11 +28,12 @@ from __future__ import annotations
 import numpy as np
 
 from kinepoly.engine.gears import Mesh, mesh, pitch_label
-from kinepoly.engine.plan import GearGroup
+from kinepoly.engine.groups import GearGroup
+from kinepoly.engine.lines import read_rate, slide_direction
 from kinepoly.engine.planet import Planet
 from kinepoly.engine.polygon import Line, Polygon
+from kinepoly.engine.results import AccelerationContext
 from kinepoly.engine.steps import DrawnVector, Step
-from kinepoly.engine.velocity import read_rate, slide_direction
 from kinepoly.geom.arrays import Crossing, Points, Reals
 from kinepoly.model.mechanism import Revolute
 from kinepoly.scene.spec import GearSpec, SliderSpec
@@ -102,9 +103,9 @@ def velocity_by_rolling(polygon: Polygon, group: GearGroup, sliding: dict[str, P
     sliding[slider.name] = np.asarray(crossing.point - under)
 
 
-def acceleration_by_rolling(ctx: object, group: GearGroup) -> None:
-    """The acceleration polygon's part (``ctx`` is ``engine.acceleration``'s context)."""
-    b: Polygon = ctx.b  # type: ignore[attr-defined]
+def acceleration_by_rolling(ctx: AccelerationContext, group: GearGroup) -> None:
+    """The acceleration polygon's part."""
+    b = ctx.b
     point, known_label, tip, second = _common_normal(b, group)
     if isinstance(group.joint, Revolute):
         centre = group.joint.point
@@ -121,11 +122,11 @@ def acceleration_by_rolling(ctx: object, group: GearGroup) -> None:
         return
     slider = group.joint
     assert isinstance(slider, SliderSpec)
-    line, coriolis = ctx.slide_line(slider, group.carrier, group.link, point)  # type: ignore[attr-defined]
+    line, coriolis = ctx.slide_line(slider, group.carrier, group.link, point)
     crossing = b.cross_lines(line, second, tip, group.name)
     b.add_tip(group.link, point, crossing.point)
     _record(b, group, tip, known_label, line, second, crossing, tuple(coriolis))
-    ctx.slide_values(slider, group.link, point)  # type: ignore[attr-defined]
+    ctx.slide_values(slider, group.link, point)
 
 
 def _rate_from(polygon: Polygon, link: str, first: str, second: str) -> Reals:
@@ -160,10 +161,10 @@ def velocity_of_planet(polygon: Polygon, planet: Planet) -> None:
     read_rate(polygon, planet.arm, pivot, centre, _rate_from(polygon, planet.arm, pivot, centre))
 
 
-def acceleration_of_planet(ctx: object, planet: Planet) -> None:
+def acceleration_of_planet(ctx: AccelerationContext, planet: Planet) -> None:
     """The planet's centre C through the known gears' tips at the pitch points, alpha of the arm, then the planet
-    rolling on its first known gear about C (``ctx`` is ``engine.acceleration``'s context)."""
-    b: Polygon = ctx.b  # type: ignore[attr-defined]
+    rolling on its first known gear about C."""
+    b = ctx.b
     (one, two), centre, pivot = planet.meshes, planet.pin.point, planet.pivot.point
     known = [gear.links[1 - gear.links.index(planet.planet)] for gear in planet.meshes]
     for gear in planet.meshes:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinepoly.engine.plan import Dyad, PositionPlan, slide_roles, two_slide_roles
+from kinepoly.engine.groups import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.engine.position import Positions
 from kinepoly.engine.velocity import slide_direction
 from kinepoly.geom.arrays import Points, Reals, cross, dot, length

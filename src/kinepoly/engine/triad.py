@@ -33,52 +33,24 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
 from kinepoly.engine import driven_leg
 from kinepoly.engine.cam_contact import centre_label, face_direction
-from kinepoly.engine.plan import NewtonGroup
+from kinepoly.engine.driven_leg import Leg
+from kinepoly.engine.groups import NewtonGroup
+from kinepoly.engine.lines import read_rate, slide_direction
 from kinepoly.engine.polygon import LineCrossing, Polygon
+from kinepoly.engine.results import AccelerationContext
 from kinepoly.engine.steps import Direction, DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, cross_lines
 from kinepoly.geom.tolerances import PARALLEL_SIN
-from kinepoly.model.mechanism import Drive, Mechanism, Revolute, joint_links
+from kinepoly.model.mechanism import Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import SliderSpec
 
-if TYPE_CHECKING:
-    from kinepoly.engine.acceleration import _Context
-
 __all__ = ["Leg", "Triad", "acceleration_by_assur_point", "triad_of", "velocity_by_assur_point"]
-
-
-@dataclass(frozen=True)
-class Leg:
-    """One leg of a triad (see the module): its kind, its own link, the point Q, the known link it joins,
-    the outer pin K (a pin or slot leg) and the slider (a slide or slot leg)."""
-
-    kind: Literal["pin", "slide", "slot", "face"]
-    link: str
-    point: str
-    known: str
-    pin: str | None
-    slider: SliderSpec | None
-    equivalent: str = ""
-    """A spline cam pair's name where the leg is its equivalent link K W (``link`` names it, K on the cam is
-    ``pin``, W on the ternary ``point``): a link at this instant only, whose omega is kept with the pair; or,
-    for a flat face (kind ``face``), the block pinned to the cam at K (``point``) sliding along the ternary's
-    face, whose velocity over the face is kept with the pair."""
-    carrier: str = ""
-    """A driven leg's other link, pinned to the known link at ``pin`` (``link`` is pinned to the ternary)."""
-    drive: Drive | None = None
-    """A driven leg's input, the joint between ``carrier`` and ``link``."""
-
-    @property
-    def name(self) -> str:
-        """The leg as the steps name it: its link, or both links of a driven leg (``5+6``)."""
-        return f"{self.carrier}+{self.link}" if self.carrier else self.link
 
 
 @dataclass(frozen=True)
@@ -294,8 +266,6 @@ def _name(triad: Triad) -> str:
 
 
 def _velocity_leg(polygon: Polygon, triad: Triad, leg: Leg) -> _LegLine:
-    from kinepoly.engine.velocity import slide_direction
-
     at = polygon.world(leg.point)
     if leg.drive is not None:
         return _LegLine(at, *driven_leg.velocity_terms(polygon, leg))
@@ -338,8 +308,6 @@ def _finish(polygon: Polygon, triad: Triad, legs: list[_LegLine], built: _Built,
             order: tuple[int, int, int], normal_t: Callable[[Points], Points] | None = None) -> None:
     """Register the tips and rates the construction found, and record its steps (row 0); ``normal_t`` is
     T's normal term for a segment (accelerations; None for velocities)."""
-    from kinepoly.engine.velocity import read_rate
-
     t = triad.ternary
     polygon.positions.add_point(triad.assur, s_world)
     polygon.add_virtual_tip(t, triad.assur, built.s)
@@ -497,9 +465,7 @@ def _leg_line(which: str, leg: Leg, ternary: str) -> tuple[tuple[str, str], ...]
 # -- acceleration -----------------------------------------------------------------------------------
 
 
-def _acceleration_leg(ctx: _Context, triad: Triad, leg: Leg) -> _LegLine:
-    from kinepoly.engine.velocity import slide_direction
-
+def _acceleration_leg(ctx: AccelerationContext, triad: Triad, leg: Leg) -> _LegLine:
     b = ctx.b
     at = b.world(leg.point)
     if leg.drive is not None:
@@ -525,7 +491,7 @@ def _acceleration_leg(ctx: _Context, triad: Triad, leg: Leg) -> _LegLine:
     return _LegLine(at, end, np.asarray(slide_direction(b.positions, leg.slider)), tuple(laid))
 
 
-def acceleration_by_assur_point(ctx: _Context, triad: Triad) -> None:
+def acceleration_by_assur_point(ctx: AccelerationContext, triad: Triad) -> None:
     """The triad's acceleration polygon through its Assur point, after the known terms."""
     b = ctx.b
     legs = [_acceleration_leg(ctx, triad, leg) for leg in triad.legs]

@@ -1,4 +1,5 @@
-"""The velocity polygon, constructed dyad by dyad by crossing two direction lines, over rows.
+"""The velocity polygon over rows: the inputs' known terms, then each group of the plan constructed by its
+kind (``engine.table``, ``engine.kinds``).
 
 For each dyad the unknown tip is where two lines through known tips cross: perpendicular to
 the link for a turning relative velocity (v_B/A is perpendicular to AB), parallel to the slide
@@ -10,85 +11,22 @@ crossing's ``along`` (``read_rate``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 
-from kinepoly.engine.carry import relative_velocity
-from kinepoly.engine.closures import other_side
 from kinepoly.engine.contacts import record_equivalent_links
-from kinepoly.engine.plan import (
-    CamGroup,
-    DriveGroup,
-    Dyad,
-    GearGroup,
-    NewtonGroup,
-    PositionPlan,
-    slide_roles,
-    two_slide_roles,
-)
-from kinepoly.engine.polygon import CrossLines, Line, Polygon, sense
+from kinepoly.engine.groups import PositionPlan
+from kinepoly.engine.lines import lay_driven_slider, link_length, read_rate, slide_direction, slide_reference
+from kinepoly.engine.polygon import CrossLines, Polygon, sense
 from kinepoly.engine.position import Positions
-from kinepoly.engine.steps import Direction, DrawnVector, Relation, Step
+from kinepoly.engine.results import VelocityContext, VelocityResult
+from kinepoly.engine.steps import DrawnVector, Step
+from kinepoly.engine.table import kind_of
 from kinepoly.errors import SceneError
-from kinepoly.geom.arrays import Crossing, Points, Reals, cross_lines, turn
-from kinepoly.geom.vec import magnitude
-from kinepoly.model.mechanism import Drive, Mechanism, Revolute
-from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput, SliderSpec
+from kinepoly.geom.arrays import Points, cross_lines
+from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 
 __all__ = ["VelocityResult", "construct_velocity", "link_length", "read_rate", "slide_direction", "slide_reference"]
-
-
-@dataclass(frozen=True)
-class VelocityResult:
-    """The velocity polygon at every row: tips, omegas, sliding velocities, crossings and steps."""
-
-    polygon: Polygon
-    sliding: dict[str, Points]
-    line_sines: dict[str, Reals]
-    equivalent: dict[str, Points] = field(default_factory=dict)
-    """Each spline cam's equivalent link, by pair (``engine.cam_polygons``): omega of the link K W (its real
-    part), or for a flat face the velocity of the block at K over the face."""
-
-    @property
-    def tips(self) -> dict[str, Points]:
-        return self.polygon.tips
-
-    @property
-    def omega(self) -> dict[str, Reals]:
-        return self.polygon.rate
-
-
-def slide_direction(positions: Positions, slider: SliderSpec) -> Points:
-    """The unit direction of a slide at every row (it turns with the guide)."""
-    return np.asarray(positions.poses[slider.guide].rotation * turn(slider.angle_rad))
-
-
-def link_length(mechanism: Mechanism, link: str, a: str, b: str) -> float:
-    """|ab| in ``link``'s own frame: the length of a direction k x ab drawn for that link."""
-    (ax, ay), (bx, by) = mechanism.local(link, a), mechanism.local(link, b)
-    return math.hypot(bx - ax, by - ay)
-
-
-def read_rate(polygon: Polygon, link: str, first: str, second: str, along: Reals) -> None:
-    """Read omega (or alpha, from a tangential term) of ``link`` off the polygon, with its step.
-
-    The crossing lies ``along`` direction vectors k x (first -> second) from the known tip, so the
-    relative vector is along * (k x r): |term| / |r| = |along|, counter-clockwise when positive.
-    """
-    polygon.set_rate(link, along)
-    if not polygon.record:
-        return
-    value = polygon.num(along)
-    length = magnitude(complex(polygon.world(second.partition("@")[0])[0] - polygon.world(first)[0]))
-    symbol = "omega" if polygon.kind == "velocity" else "alpha"
-    term = f"v_{second}/{first}" if polygon.kind == "velocity" else f"a^t_{second}/{first}"
-    ground = polygon.ground_name()
-    polygon.step(Step(polygon=polygon.kind, kind="read", equation=f"{symbol}{ground}{link} = |{term}| / |{first}{second}|",
-                      result=f"{symbol}{ground}{link}", value=(value,), topic="read",
-                      params=(("link", link), ("ground", ground), ("term", term), ("first", first),
-                              ("second", second), ("magnitude", abs(value) * length), ("length", length),
-                              ("rate", abs(value)), ("sense", sense(value)))))
 
 
 def _drive(polygon: Polygon, sliding: dict[str, Points]) -> None:
@@ -115,34 +53,6 @@ def _frame_drive(polygon: Polygon, inp: LinkInput | SliderInput, sliding: dict[s
         sliding[slider.name] = lay_driven_slider(polygon, slider, inp.s_dot)
 
 
-def lay_driven_slider(polygon: Polygon, slider: SliderSpec, amount: float, known: str | None = None,
-                      start: Points | None = None) -> Points:
-    """The tip of a driven slider's point: ``amount`` (s_dot or s_ddot) along the slide, from the tip
-    ``start`` of the point on the ``known`` side (by default the frame's side, from o).
-
-    Returns the block's motion relative to the guide, ``amount`` along the slide.
-    """
-    rel = np.asarray(amount * slide_direction(polygon.positions, slider))
-    known = known if known is not None else polygon.mechanism.ground
-    moving = slider.block if slider.guide == known else slider.guide
-    origin = polygon.zero if start is None else start
-    value = np.asarray(origin + (rel if moving == slider.block else -rel))
-    label = polygon.add_tip(moving, slider.point, value)
-    if polygon.record:
-        name = "s_dot" if polygon.kind == "velocity" else "s_ddot"
-        symbol = polygon.symbol
-        term = f"{symbol}_{label}" if start is None or known is None else (
-            f"{symbol}_{label}/{polygon.label(known, slider.point)}")
-        polygon.step(Step(polygon=polygon.kind, kind="known",
-                          equation=f"{term} = {name}{slider.name} along the slide", result=label.lower(),
-                          known=((term, "magnitude and direction"),),
-                          vectors=(DrawnVector(term, polygon.vec(origin), polygon.vec(value),
-                                               "absolute" if start is None else "relative"),),
-                          value=polygon.vec(value), topic="driven-slider",
-                          params=(("slider", slider.name), ("point", label), ("amount", amount))))
-    return rel
-
-
 def _given(polygon: Polygon, given: GivenInput) -> None:
     link = polygon.mechanism.link_names[0]
     for g in given.points:
@@ -166,249 +76,6 @@ def _given(polygon: Polygon, given: GivenInput) -> None:
     read_rate(polygon, link, first.name, second.name, np.asarray((rel / (1j * at)).real))
 
 
-def _revolute_line(polygon: Polygon, known_link: str, known_point: str, point: str, link: str | None) -> Line:
-    """Through the tip of known_point, perpendicular to known_point -> point (both points of ``link``,
-    when given, so that the direction's length is that link's)."""
-    start = polygon.tip(known_link, known_point)
-    size = None if link is None else link_length(polygon.mechanism, link, known_point, point)
-    return start, polygon.positions.chord(known_point, point)[1], size
-
-
-def _perpendicular(polygon: Polygon, term: str, known_link: str, known_point: str, point: str) -> Direction:
-    """What ``_revolute_line`` draws, as data."""
-    return Direction(term, "perpendicular", f"{known_point}{point}", polygon.label(known_link, known_point).lower())
-
-
-def slide_reference(polygon: Polygon, slider: SliderSpec) -> tuple[Relation, str]:
-    """What a line along ``slider`` is parallel to, as a step says it: the slide of the slider, or the flat face
-    of the follower where the slider is a cam's equivalent block (the block at K on the face)."""
-    if slider.block in polygon.mechanism.scene.equivalent_links:
-        return "face", slider.guide
-    return "parallel", slider.name
-
-
-def _parallel(polygon: Polygon, term: str, slider: SliderSpec, other: str, point: str) -> Direction:
-    """What ``_slide_line`` draws, as data."""
-    return Direction(term, *slide_reference(polygon, slider), polygon.label(other, point).lower())
-
-
-def _slide_line(polygon: Polygon, slider: SliderSpec, other: str, point: str) -> Line:
-    """Through the tip of point@other, parallel to the slide (a unit direction)."""
-    return polygon.tip(other, point), slide_direction(polygon.positions, slider), 1.0
-
-
-def _perpendicular_label(polygon: Polygon, known_link: str, known_point: str, point: str) -> str:
-    return f"perpendicular to {known_point}{point} through {polygon.label(known_link, known_point).lower()}"
-
-
-def _parallel_label(slider: SliderSpec, through: str) -> str:
-    return f"parallel to slider {slider.name} through {through.lower()}"
-
-
-def _record_intersection(polygon: Polygon, label: str, equation: str, first: Line, second: Line,
-                         line_labels: tuple[str, str], crossing: Crossing, known: tuple[tuple[str, str], ...],
-                         directions: tuple[Direction, Direction], vectors: tuple[DrawnVector, ...] = ()) -> None:
-    polygon.step(Step(polygon="velocity", kind="intersection", equation=equation, result=label.lower(), known=known,
-                      vectors=vectors,
-                      lines=(polygon.step_line(first, line_labels[0]), polygon.step_line(second, line_labels[1])),
-                      value=polygon.vec(crossing.point), topic="intersection", params=(("point", label),),
-                      directions=directions))
-
-
-def _slide_rel(polygon: Polygon, slider: SliderSpec, link: str, point: str, sliding: dict[str, Points]) -> None:
-    """Velocity of the block relative to the guide, from the tips of ``point`` on both sides."""
-    other = slider.guide if link == slider.block else slider.block
-    on_link = polygon.tips[polygon.label(link, point)]
-    on_other = polygon.tip(other, point)
-    sliding[slider.name] = np.asarray(on_link - on_other if link == slider.block else on_other - on_link)
-
-
-def _known_pairs(*terms: tuple[str, str]) -> tuple[tuple[str, str], ...]:
-    """(term, what is known of it) for the four terms of a dyad's equation: known, direction, known, direction."""
-    return tuple((term, "magnitude and direction" if k % 2 == 0 else "direction") for k, term in
-                 enumerate(t for pair in terms for t in pair))
-
-
-def _dyad(polygon: Polygon, dyad: Dyad, sliding: dict[str, Points], sines: dict[str, Reals]) -> None:
-    mech, i, j = polygon.mechanism, dyad.first, dyad.second
-    if dyad.kind in ("RRR", "RRP"):
-        assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
-        p1, p2 = dyad.first_joint.point, dyad.inner.point
-        k1 = other_side(dyad.first_joint, i)
-        line1 = _revolute_line(polygon, k1, p1, p2, i)
-        label1 = _perpendicular_label(polygon, k1, p1, p2)
-        if isinstance(dyad.second_joint, Revolute):
-            p3 = dyad.second_joint.point
-            k2 = other_side(dyad.second_joint, j)
-            line2 = _revolute_line(polygon, k2, p3, p2, j)
-            label2 = _perpendicular_label(polygon, k2, p3, p2)
-        else:
-            k2 = other_side(dyad.second_joint, j)
-            line2 = _slide_line(polygon, dyad.second_joint, k2, p2)
-            label2 = _parallel_label(dyad.second_joint, polygon.label(k2, p2))
-        crossing = polygon.cross_lines(line1, line2, p2, dyad.name, (label1, label2))
-        polygon.add_tip(i, p2, crossing.point)
-        if polygon.record:
-            direction1 = _perpendicular(polygon, f"v_{p2}/{p1}", k1, p1, p2)
-            if isinstance(dyad.second_joint, Revolute):
-                p3 = dyad.second_joint.point
-                direction2 = _perpendicular(polygon, f"v_{p2}/{p3}", k2, p3, p2)
-                equation = f"v_{p2} = v_{p1} + v_{p2}/{p1} = v_{p3} + v_{p2}/{p3}"
-                known = _known_pairs((f"v_{p1}", f"v_{p2}/{p1}"), (f"v_{p3}", f"v_{p2}/{p3}"))
-            else:
-                at2 = polygon.label(k2, p2)
-                direction2 = _parallel(polygon, f"v_{p2}/{at2}", dyad.second_joint, k2, p2)
-                equation = f"v_{p2} = v_{p1} + v_{p2}/{p1} = v_{at2} + v_{p2}/{at2}"
-                known = _known_pairs((f"v_{p1}", f"v_{p2}/{p1}"), (f"v_{at2}", f"v_{p2}/{at2}"))
-            _record_intersection(polygon, p2, equation, line1, line2, (label1, label2), crossing, known,
-                                 (direction1, direction2))
-        read_rate(polygon, i, p1, p2, crossing.along_first)
-        if isinstance(dyad.second_joint, Revolute):
-            read_rate(polygon, j, dyad.second_joint.point, p2, crossing.along_second())
-        else:
-            _slide_rel(polygon, dyad.second_joint, j, p2, sliding)
-    elif dyad.kind == "RPR":
-        r = slide_roles(dyad)
-        q, p = r.guide_pin, r.block_pin
-        line1 = _revolute_line(polygon, r.guide_known, q, p, None)
-        start = polygon.tip(r.block_known, p)
-        line2 = (start, slide_direction(polygon.positions, r.slider), 1.0)
-        at = polygon.label(r.guide, p)
-        labels = (_perpendicular_label(polygon, r.guide_known, q, p), _parallel_label(r.slider, p))
-        crossing = polygon.cross_lines(line1, line2, at, dyad.name, labels)
-        polygon.add_tip(r.guide, p, crossing.point)
-        if polygon.record:
-            _record_intersection(polygon, at, f"v_{at} = v_{q} + v_{at}/{q} = v_{p} + v_{at}/{p}", line1, line2,
-                                 labels, crossing, _known_pairs((f"v_{q}", f"v_{at}/{q}"), (f"v_{p}", f"v_{at}/{p}")),
-                                 (_perpendicular(polygon, f"v_{at}/{q}", r.guide_known, q, p),
-                                  _parallel(polygon, f"v_{at}/{p}", r.slider, r.block_known, p)))
-        read_rate(polygon, r.guide, q, at, crossing.along_first)
-        sliding[r.slider.name] = np.asarray(start - crossing.point)
-    else:  # PRP and RPP: both links' omegas are known from their guides, two slide lines cross
-        t = two_slide_roles(dyad, mech)
-        if t.pin is not None and t.pin_known is not None:
-            polygon.tip(t.pin_known, t.pin)
-        point = t.point
-        line1 = _slide_line(polygon, t.first_slider, t.side1, point)
-        line2 = _slide_line(polygon, t.second_slider, t.side2, point)
-        a1, a2 = polygon.label(t.side1, point), polygon.label(t.side2, point)
-        labels = (_parallel_label(t.first_slider, a1), _parallel_label(t.second_slider, a2))
-        crossing = polygon.cross_lines(line1, line2, point, dyad.name, labels)
-        polygon.add_tip(t.moving, point, crossing.point)
-        if polygon.record:
-            _record_intersection(polygon, point, f"v_{point} = v_{a1} + v_{point}/{a1} = v_{a2} + v_{point}/{a2}",
-                                 line1, line2, labels, crossing,
-                                 _known_pairs((f"v_{a1}", f"v_{point}/{a1}"), (f"v_{a2}", f"v_{point}/{a2}")),
-                                 (_parallel(polygon, f"v_{point}/{a1}", t.first_slider, t.side1, point),
-                                  _parallel(polygon, f"v_{point}/{a2}", t.second_slider, t.side2, point)))
-        _slide_rel(polygon, t.first_slider, t.first_relative, point, sliding)
-        _slide_rel(polygon, t.second_slider, j, point, sliding)
-    sines[dyad.name] = crossing.sin_angle
-
-
-def _drive_group(polygon: Polygon, group: DriveGroup, sliding: dict[str, Points]) -> None:
-    """A link placed on a known one by a driven joint: a motor adds its omega, a cylinder its s_dot."""
-    drive = group.drive
-    if isinstance(drive.joint, SliderSpec):
-        slider = drive.joint
-        start = polygon.tip(group.known, slider.point)
-        sliding[slider.name] = lay_driven_slider(polygon, slider, drive.rate(1), group.known, start)
-        return
-    polygon.tip(group.known, drive.joint.point)
-    known_rate = polygon.rate_of(group.known)
-    assert known_rate is not None
-    add_motor_rate(polygon, drive, group.link, group.known, known_rate)
-
-
-def add_motor_rate(polygon: Polygon, drive: Drive, link: str, known: str, known_rate: Reals) -> None:
-    """``link``'s rate (omega or alpha, as the polygon is) as ``known``'s plus the motor's, with its step."""
-    sign = 1.0 if link == drive.moving else -1.0
-    polygon.set_rate(link, np.asarray(known_rate + sign * drive.rate(1 if polygon.kind == "velocity" else 2)))
-    if not polygon.record:
-        return
-    symbol = "omega" if polygon.kind == "velocity" else "alpha"
-    ground = polygon.ground_name()
-    value = polygon.num(polygon.rate[link])
-    moving, base = drive.moving, drive.base
-    sign_text = "+" if sign > 0 else "-"
-    polygon.step(Step(polygon=polygon.kind, kind="known",
-                      equation=f"{symbol}{ground}{link} = {symbol}{ground}{known} {sign_text} {symbol}{base}{moving}",
-                      result=f"{symbol}{ground}{link}", value=(value,), topic="added-rate",
-                      params=(("link", link), ("known", known), ("ground", ground), ("motor", f"{base}{moving}"),
-                              ("sign", sign_text), ("rate", abs(value)), ("sense", sense(value)))))
-
-
-def carried_parts(dyad: Dyad) -> tuple[str, str, str, Drive, tuple[str, str, str], tuple[str, str]]:
-    """A carried RRR dyad's links (first, second, carrier), its drive, its three pins (the carrier's known
-    one, the inner one, the second link's known one) and the known links across the two outer pins."""
-    carrier, drive = dyad.carrier, dyad.drive
-    assert carrier is not None and drive is not None
-    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
-    assert isinstance(dyad.second_joint, Revolute)
-    pins = (dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point)
-    return (dyad.first, dyad.second, carrier, drive, pins,
-            (other_side(dyad.first_joint, carrier), other_side(dyad.second_joint, dyad.second)))
-
-
-def drive_geometry(polygon: Polygon, dyad: Dyad) -> tuple[Points, Points | None, Points | None]:
-    """For a carried dyad: where its inner joint is, the motor's pin (or None), the slide's direction (or None)."""
-    drive = dyad.drive
-    assert drive is not None and isinstance(dyad.inner, Revolute)
-    at = polygon.world(dyad.inner.point)
-    if isinstance(drive.joint, Revolute):
-        return at, polygon.world(drive.joint.point), None
-    return at, None, slide_direction(polygon.positions, drive.joint)
-
-
-def _carried(polygon: Polygon, dyad: Dyad, sliding: dict[str, Points], sines: dict[str, Reals]) -> None:
-    """A carried RRR dyad: the drive's relative velocity is laid from the carrier's known tip, then the
-    line perpendicular to the carrier's span; the second link's line as in any RRR dyad."""
-    i, j, carrier, drive, (p1, p2, p3), (k1, k2) = carried_parts(dyad)
-    at, pin, slide = drive_geometry(polygon, dyad)
-    rel = relative_velocity(drive, i, at, pin, slide)
-    start = polygon.tip(k1, p1)
-    moved = np.asarray(start + rel)
-    on_carrier = polygon.label(carrier, p2)
-    line1: Line = (moved, np.asarray(1j * (at - polygon.world(p1))), None)
-    line2 = _revolute_line(polygon, k2, p3, p2, j)
-    labels = (_perpendicular_label(polygon, k1, p1, p2), _perpendicular_label(polygon, k2, p3, p2))
-    if polygon.record:
-        record_drive_term(polygon, drive, f"v_{p2}/{on_carrier}", start, moved, p2, carrier,
-                          polygon.label(k1, p1).lower())
-    crossing = polygon.cross_lines(line1, line2, p2, dyad.name, labels)
-    polygon.add_tip(i, p2, crossing.point)
-    polygon.add_tip(carrier, p2, np.asarray(crossing.point - rel))
-    if polygon.record:
-        _record_intersection(polygon, p2, f"v_{p2} = v_{p1} + v_{p2}/{on_carrier} + v_{on_carrier}/{p1} = v_{p3} + "
-                             f"v_{p2}/{p3}", line1, line2, labels, crossing,
-                             ((f"v_{p1}", "magnitude and direction"), (f"v_{p2}/{on_carrier}", "magnitude and direction"),
-                              (f"v_{on_carrier}/{p1}", "direction"), (f"v_{p3}", "magnitude and direction"),
-                              (f"v_{p2}/{p3}", "direction")),
-                             (Direction(f"v_{on_carrier}/{p1}", "perpendicular", f"{p1}{p2}",
-                                        polygon.label(k1, p1).lower(), after=f"v_{p2}/{on_carrier}"),
-                              _perpendicular(polygon, f"v_{p2}/{p3}", k2, p3, p2)),
-                             (DrawnVector(f"v_{p2}/{on_carrier}", polygon.vec(start), polygon.vec(moved), "relative"),))
-    read_rate(polygon, carrier, p1, on_carrier, crossing.along_first)
-    if isinstance(drive.joint, Revolute):
-        add_motor_rate(polygon, drive, i, carrier, crossing.along_first)
-    else:
-        sliding[drive.joint.name] = np.asarray(drive.rate(1) * slide_direction(polygon.positions, drive.joint))
-    read_rate(polygon, j, p3, p2, crossing.along_second())
-    sines[dyad.name] = crossing.sin_angle
-
-
-def record_drive_term(polygon: Polygon, drive: Drive, term: str, start: Points, end: Points, point: str,
-                      carrier: str, after: str) -> None:
-    """The known step of a driven joint's relative term (velocity or acceleration), laid from ``start``
-    (the tip or the end of the term named ``after``)."""
-    polygon.step(Step(polygon=polygon.kind, kind="known", equation=f"{term} from {drive.name}", result=term,
-                      known=((term, "magnitude and direction"),),
-                      vectors=(DrawnVector(term, polygon.vec(start), polygon.vec(end), "relative"),),
-                      value=polygon.vec(np.asarray(end - start)), topic="drive-term",
-                      params=(("term", term), ("drive", drive.name), ("point", point), ("carrier", carrier),
-                              ("after", after), ("magnitude", magnitude(complex(end[0]) - complex(start[0]))))))
-
-
 def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[tuple[str, str], ...] = (), *,
                        unit: str = "mm", record: bool = False, strict: bool = False,
                        crossing: CrossLines = cross_lines) -> VelocityResult:
@@ -418,41 +85,11 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
     ``record``: keep the steps of row 0; ``strict``: a parallel pair of lines raises (a solve).
     """
     polygon = Polygon(positions, "velocity", unit=unit, record=record, strict=strict, crossing=crossing)
-    sliding: dict[str, Points] = {}
-    sines: dict[str, Reals] = {}
-    equivalent: dict[str, Points] = {}
-    _drive(polygon, sliding)
+    state = VelocityContext(polygon)
+    _drive(polygon, state.sliding)
     record_equivalent_links(polygon)
     for group in plan.groups:
-        if isinstance(group, Dyad) and group.carrier is not None:
-            _carried(polygon, group, sliding, sines)
-        elif isinstance(group, Dyad):
-            _dyad(polygon, group, sliding, sines)
-        elif isinstance(group, DriveGroup):
-            _drive_group(polygon, group, sliding)
-        else:
-            _other_group(polygon, group, sliding, equivalent)
+        kind_of(group).velocity(state, group)
     for link, point in wanted:
         polygon.tip(link, point)
-    return VelocityResult(polygon, sliding, sines, equivalent)
-
-
-def _other_group(polygon: Polygon, group: GearGroup | CamGroup | NewtonGroup, sliding: dict[str, Points], equivalent: dict[str, Points]) -> None:
-    """A gear pair, a cam pair, a triad (through its Assur point) or any other group (a linear solve), by the
-    modules that build on this one (imported here, where such a group is met)."""
-    from kinepoly.engine.cam_polygons import velocity_by_cam
-    from kinepoly.engine.group import velocity_by_linear_solve
-    from kinepoly.engine.planet import planet_of
-    from kinepoly.engine.rolling import velocity_by_rolling, velocity_of_planet
-    from kinepoly.engine.triad import triad_of, velocity_by_assur_point
-
-    if isinstance(group, GearGroup):
-        velocity_by_rolling(polygon, group, sliding)
-    elif isinstance(group, CamGroup):
-        velocity_by_cam(polygon, group, sliding, equivalent)
-    elif isinstance(group, NewtonGroup) and (planet := planet_of(group)) is not None:
-        velocity_of_planet(polygon, planet)
-    elif (triad := triad_of(polygon.mechanism, group)) is not None:
-        velocity_by_assur_point(polygon, triad, sliding, equivalent)
-    else:
-        velocity_by_linear_solve(polygon, group, sliding)
+    return VelocityResult(polygon, state.sliding, state.sines, state.equivalent)

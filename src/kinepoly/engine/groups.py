@@ -1,0 +1,255 @@
+"""The groups of a position plan as values, one type per group kind (``engine.table`` maps each type to
+its kind's functions), and the plan itself."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
+from kinepoly.scene.spec import CamSpec, GearSpec, SliderSpec
+
+__all__ = [
+    "CamGroup",
+    "CarriedDyad",
+    "DriveGroup",
+    "Dyad",
+    "GearGroup",
+    "Group",
+    "NewtonGroup",
+    "PlanetGroup",
+    "PositionPlan",
+    "SlideRoles",
+    "TwoSlideRoles",
+    "far_side",
+    "free_joints",
+    "joint_kind",
+    "slide_roles",
+    "two_slide_roles",
+]
+
+
+def joint_kind(joint: Joint) -> str:
+    return "R" if isinstance(joint, Revolute) else "P"
+
+
+@dataclass(frozen=True)
+class Dyad:
+    """Two links solved together in closed form.
+
+    A *carried* dyad's first side is two links held together by a driven joint: ``carrier`` has the
+    outer joint, ``drive`` joins it to ``first``, which has the inner joint (an RRR dyad only).
+    """
+
+    kind: str
+    first: str
+    second: str
+    first_joint: Joint
+    inner: Joint
+    second_joint: Joint
+    carrier: str | None = None
+    drive: Drive | None = None
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        return (self.first, self.second) if self.carrier is None else (self.carrier, self.first, self.second)
+
+    @property
+    def outer_first(self) -> str:
+        """The link that has the first outer joint: ``first``, or the carrier of a carried dyad."""
+        return self.first if self.carrier is None else self.carrier
+
+    def known_links(self) -> tuple[str, str]:
+        a = next(x for x in joint_links(self.first_joint) if x != self.outer_first)
+        b = next(x for x in joint_links(self.second_joint) if x != self.second)
+        return (a, b)
+
+    @property
+    def name(self) -> str:
+        if self.carrier is not None and self.drive is not None:
+            return f"{self.carrier}+{self.first}-{self.second} ({self.kind}, {self.drive.name} driven)"
+        return f"{self.first}-{self.second} ({self.kind})"
+
+
+@dataclass(frozen=True)
+class DriveGroup:
+    """One link placed on a known one by a driven joint between them (a motor on a link, a cylinder)."""
+
+    drive: Drive
+    link: str
+    known: str
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        return (self.link,)
+
+    def known_links(self) -> tuple[str, ...]:
+        return (self.known,)
+
+    @property
+    def name(self) -> str:
+        return f"{self.link} on {self.known} ({self.drive.name} driven)"
+
+
+@dataclass(frozen=True)
+class _HigherPairGroup:
+    """One link placed on a known one through a higher pair: ``link`` is held by one ``joint`` to the known
+    ``carrier``; ``known`` carries the other element of the pair."""
+
+    link: str
+    known: str
+    carrier: str
+    joint: Joint
+
+    @property
+    def links(self) -> tuple[str, ...]:
+        return (self.link,)
+
+    def known_links(self) -> tuple[str, ...]:
+        return (self.known, self.carrier)
+
+
+@dataclass(frozen=True)
+class GearGroup(_HigherPairGroup):
+    """A gear placed by rolling on a known gear: ``link`` is pinned at its pitch centre to the known
+    ``carrier`` (the frame, an arm), or is a rack sliding on it; ``known`` carries the other pitch curve."""
+
+    gear: GearSpec = field(kw_only=True)
+
+    @property
+    def name(self) -> str:
+        return f"{self.link} rolling on {self.known} (gears {self.gear.name})"
+
+
+@dataclass(frozen=True)
+class CamGroup(_HigherPairGroup):
+    """A spline cam's follower placed on the known cam link by its contact: ``link`` (the follower) is held
+    by one ``joint`` to the known ``carrier``, a pin (a pivoted rocker) or a slider whose block it is (a
+    translating follower); ``engine.cam_contact`` finds the contact."""
+
+    cam: CamSpec = field(kw_only=True)
+
+    @property
+    def name(self) -> str:
+        return f"{self.link} on cam {self.known} (cam {self.cam.name})"
+
+
+@dataclass(frozen=True)
+class SlideRoles:
+    """Who is who in an RPR dyad: the guide turns about its pin ``guide_pin`` on ``guide_known``;
+    the block is pinned at ``block_pin`` to ``block_known``; the unknown tip is block_pin@guide."""
+
+    slider: SliderSpec
+    guide: str
+    block: str
+    guide_pin: str
+    block_pin: str
+    guide_known: str
+    block_known: str
+
+
+@dataclass(frozen=True)
+class TwoSlideRoles:
+    """Who is who in a PRP or RPP dyad: ``point`` of ``moving`` is where the two slide lines cross.
+
+    The first line slides on ``side1`` along ``first_slider``, the second on ``side2`` along
+    ``second_slider``; ``first_relative`` is the link whose motion relative to ``side1`` the first
+    slider carries. In an RPP dyad the first link turns with the second's guide and is pinned at
+    ``pin`` to the known link ``pin_known``, so its tips come from that pin.
+    """
+
+    first_slider: SliderSpec
+    second_slider: SliderSpec
+    point: str
+    moving: str
+    side1: str
+    side2: str
+    first_relative: str
+    pin: str | None
+    pin_known: str | None
+
+
+def far_side(joint: Joint, link: str) -> str:
+    return next(x for x in joint_links(joint) if x != link)
+
+
+def slide_roles(dyad: Dyad) -> SlideRoles:
+    """The roles of an RPR dyad's links and pins."""
+    slider = dyad.inner
+    assert isinstance(slider, SliderSpec) and dyad.kind == "RPR"
+    outer = {dyad.first: dyad.first_joint, dyad.second: dyad.second_joint}
+    guide_joint, block_joint = outer[slider.guide], outer[slider.block]
+    assert isinstance(guide_joint, Revolute) and isinstance(block_joint, Revolute), "RPR: the outer joints are pins"
+    return SlideRoles(slider, slider.guide, slider.block, guide_joint.point, block_joint.point,
+                      far_side(guide_joint, slider.guide), far_side(block_joint, slider.block))
+
+
+def two_slide_roles(dyad: Dyad, mechanism: Mechanism) -> TwoSlideRoles:
+    """The roles of a PRP or RPP dyad's links and points."""
+    i, j = dyad.first, dyad.second
+    second = dyad.second_joint
+    assert isinstance(second, SliderSpec) and dyad.kind in ("PRP", "RPP")
+    if dyad.kind == "PRP":
+        first, inner = dyad.first_joint, dyad.inner
+        assert isinstance(first, SliderSpec) and isinstance(inner, Revolute)
+        return TwoSlideRoles(first, second, inner.point, i, far_side(first, i), far_side(second, j), i, None, None)
+    pin, inner_slider = dyad.first_joint, dyad.inner
+    assert isinstance(pin, Revolute) and isinstance(inner_slider, SliderSpec)
+    point = mechanism.scene.link(j).points[0].name
+    return TwoSlideRoles(inner_slider, second, point, j, i, far_side(second, j), j, pin.point, far_side(pin, i))
+
+
+@dataclass(frozen=True)
+class NewtonGroup:
+    """Links that form no dyad: solved together by damped Newton from the guess. ``drives``: the inputs
+    that drive joints of the group (each one more equation); ``cams``: the spline cams whose follower floats
+    in the group on a cam known before it (the contact's parameter one more unknown, ``engine.newton``);
+    ``gears``: the gear pairs with a gear in the group (a planet on an arm that no input drives: placed by
+    rolling in ``engine.planet``, its polygons constructed in ``engine.rolling``)."""
+
+    links: tuple[str, ...]
+    joints: tuple[Joint, ...]
+    drives: tuple[Drive, ...] = ()
+    cams: tuple[CamSpec, ...] = ()
+    gears: tuple[GearSpec, ...] = ()
+
+    @property
+    def name(self) -> str:
+        return "-".join(self.links) + (" (planet on its arm)" if self.gears else " (Newton)")
+
+    def known_links(self) -> tuple[str, ...]:
+        return tuple(sorted({x for j in self.joints for x in joint_links(j) if x not in self.links}
+                            | {cam.cam for cam in self.cams}
+                            | {x for gear in self.gears for x in gear.links if x not in self.links}))
+
+
+@dataclass(frozen=True)
+class CarriedDyad(Dyad):
+    """A carried RRR dyad (see ``Dyad``): its ``carrier`` and ``drive`` are given."""
+
+
+@dataclass(frozen=True)
+class PlanetGroup(NewtonGroup):
+    """A group holding gears that no dyad and no single pair places: a planet on an arm that no input drives,
+    placed by rolling (``engine.planet``), the only such group this version places."""
+
+
+Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
+
+
+@dataclass(frozen=True)
+class PositionPlan:
+    """Links known from the input, then the groups in order."""
+
+    driven: tuple[str, ...]
+    groups: tuple[Group, ...]
+
+    def describe(self) -> list[str]:
+        lines = [f"input: link(s) {', '.join(self.driven)}"] if self.driven else []
+        lines += [f"group {g.name}" for g in self.groups]
+        return lines
+
+
+def free_joints(mechanism: Mechanism, link: str) -> list[Joint]:
+    """The joints of ``link`` that no input drives."""
+    driven = {d.joint for d in mechanism.drives if not d.on_frame}
+    return [joint for joint in mechanism.joints_of(link) if joint not in driven]

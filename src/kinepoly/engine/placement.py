@@ -1,0 +1,110 @@
+"""What placing groups gives: the poses at every row, the rows that closed, the failures (``Placement``
+while the executor works, ``Positions`` when it is done)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from kinepoly.engine.gears import Rolled
+from kinepoly.geom.arrays import Bools, Points, Reals
+from kinepoly.model.array_pose import ArrayPose
+from kinepoly.model.mechanism import Mechanism
+from kinepoly.model.pose import LinkPose
+from kinepoly.notice import Notice
+
+__all__ = ["Failure", "Placement", "Positions"]
+
+
+@dataclass(frozen=True)
+class Failure:
+    """Rows where one group cannot be assembled (rows where an earlier group failed are not among them)."""
+
+    group: str
+    joint: str
+    rows: Bools
+    why: Callable[[int], str]
+
+
+@dataclass(frozen=True)
+class Placement:
+    """What placing some groups gave: poses, the rows that closed, failures, rough rows, warnings."""
+
+    poses: dict[str, ArrayPose]
+    ok: Bools
+    failures: tuple[Failure, ...] = ()
+    near: tuple[Failure, ...] = ()
+    notices: tuple[Notice, ...] = ()
+    values: tuple[Reals, ...] = ()
+    """Each input's value at every row (``engine.carry.drive_values``)."""
+    rolled: dict[str, Rolled] = field(default_factory=dict)
+    """The gears placed by rolling, with how far each has rolled (``engine.gears``)."""
+    marks: dict[str, Points] = field(default_factory=dict)
+    """Points found while placing (a spline cam's contact and centre of curvature), by name."""
+    contact_parameters: dict[str, Reals] = field(default_factory=dict)
+    """Each spline cam's contact parameter on its profile at every row (``engine.cam_place``)."""
+
+    def row_poses(self, links: Iterable[str], row: int) -> dict[str, LinkPose]:
+        """The poses of ``links`` at ``row`` as scalar values (for the one-row solvers)."""
+        return {link: LinkPose(*self.poses[link].row(row)) for link in links}
+
+    def row_values(self, row: int) -> dict[int, float]:
+        """Each input's value at ``row``, by input index."""
+        return {index: float(values[row]) for index, values in enumerate(self.values)}
+
+
+@dataclass
+class Positions:
+    """Poses of every link of the plan at every row; ``ok`` where all of them could be placed."""
+
+    mechanism: Mechanism
+    poses: dict[str, ArrayPose]
+    ok: Bools
+    failures: tuple[Failure, ...] = ()
+    near: tuple[Failure, ...] = ()
+    notices: tuple[Notice, ...] = ()
+    values: tuple[Reals, ...] = ()
+    """Each input's value at every row: theta (rad) or s (length)."""
+    marks: dict[str, Points] = field(default_factory=dict)
+    """Points the construction found on the mechanism (a triad's Assur point), by name."""
+    contact_parameters: dict[str, Reals] = field(default_factory=dict)
+    """Each spline cam's contact parameter on its profile at every row."""
+    _points: dict[str, Points] = field(default_factory=dict)
+    _turned: dict[tuple[str, str], tuple[Points, Points]] = field(default_factory=dict)
+
+    @property
+    def n(self) -> int:
+        return len(self.ok)
+
+    def point(self, name: str) -> Points:
+        """World position of a named point (through the first solved link that has it)."""
+        found = self._points.get(name)
+        if found is None:
+            owner = next(link for link in self.mechanism.links_of_point(name) if link in self.poses)
+            found = self.poses[owner].world(self.mechanism.local(owner, name))
+            self._points[name] = found
+        return found
+
+    def chord(self, start: str, end: str) -> tuple[Points, Points]:
+        """The vector from point ``start`` to point ``end`` at every row, and that vector turned a quarter
+        counter-clockwise: the direction of the relative velocity of ``end`` about ``start`` on their link.
+        Made once, for the velocity and acceleration polygons alike (do not change them in place)."""
+        found = self._turned.get((start, end))
+        if found is None:
+            r = np.asarray(self.point(end) - self.point(start))
+            found = self._turned[start, end] = (r, np.asarray(1j * r))
+        return found
+
+    def world(self, link: str, point: str) -> Points:
+        return self.poses[link].world(self.mechanism.local(link, point))
+
+    def add_point(self, name: str, at: Points) -> None:
+        """A point the construction finds on the mechanism (a triad's Assur point), by name."""
+        self._points[name] = at
+        self.marks[name] = at
+
+    def row(self, k: int) -> dict[str, LinkPose]:
+        """The poses of row k as scalar values."""
+        return {link: LinkPose(*pose.row(k)) for link, pose in self.poses.items()}
