@@ -239,8 +239,12 @@ def test_a_fifo_is_written_to_not_replaced(capsys: pytest.CaptureFixture[str], t
     thread = threading.Thread(target=reader, daemon=True)
     thread.start()
     code, _, err = run_on(capsys, tmp_path, BASE, "sweep", "--steps", "12", "-o", str(fifo))
-    if thread.is_alive():  # nothing opened the FIFO: let the reader go
-        os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK)) if stat.S_ISFIFO(os.stat(fifo).st_mode) else None
+    thread.join(5)  # the reader ends at the writer's close
+    if thread.is_alive() and stat.S_ISFIFO(os.stat(fifo).st_mode):  # nothing opened the FIFO: let the reader go
+        try:
+            os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
+        except OSError:  # the reader closed between the two looks: it has ended
+            pass
     thread.join(10)
     assert code == 0, err
     assert stat.S_ISFIFO(os.stat(fifo).st_mode)
