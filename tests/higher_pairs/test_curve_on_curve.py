@@ -140,6 +140,28 @@ C = [{c.real!r}, {c.imag!r}]
     assert abs(q - c) == pytest.approx(small, rel=1e-12)
 
 
+def test_the_pressure_angle_is_taken_where_the_arc_is_pushed() -> None:
+    # the force acts on the follower at the contact Q (the arc is fixed to it, no pin at C): the acute angle
+    # between the common normal and Q's direction of motion about the pivot P, not C's as for a roller
+    result = sweep(kinepoly.load_scene(EXAMPLE), steps=36)
+    theta = np.radians(result.input.values)
+    cx, cy = result.column("r_C_x").values, result.column("r_C_y").values
+    pressure = result.column("pressure_angle_23")
+    assert pressure.valid.all()
+    p = complex(70.0, 45.0)
+    worst_roller_gap = 0.0
+    for row, t in enumerate(theta):
+        k, c = 12.0 * complex(math.cos(t), math.sin(t)), complex(cx[row], cy[row])
+        n = (c - k) / abs(c - k)
+        q = k + 30.0 * n
+        moving = 1j * (q - p) / abs(q - p)
+        expected = math.degrees(math.acos(min(1.0, abs(_dot(n, moving)))))
+        assert pressure.values[row] == pytest.approx(expected, abs=1e-9)
+        at_c = math.degrees(math.acos(min(1.0, abs(_dot(n, 1j * (c - p) / abs(c - p))))))
+        worst_roller_gap = max(worst_roller_gap, abs(expected - at_c))
+    assert worst_roller_gap > 1.0  # the two readings differ here: the test tells them apart
+
+
 def _on_spline_disc(count: int) -> dict[str, float]:
     """omega3, alpha3 and the check's error with the example's disc given as a spline through ``count`` of its
     points."""
@@ -211,3 +233,17 @@ def test_a_bad_follower_profile_exits_2_without_a_traceback(tmp_path: Path,
     assert code == 2 and out == ""
     assert "bad.toml" in err and "more than one follower: knife, follower_profile" in err
     assert "Traceback" not in err
+
+
+def test_an_arc_that_cannot_reach_a_spline_cam_is_named_as_the_arc(tmp_path: Path,
+                                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    points = ", ".join(f"[{12 + 30 * math.cos(2 * math.pi * j / 36)!r}, {30 * math.sin(2 * math.pi * j / 36)!r}]"
+                       for j in range(36))
+    far = (TEXT.replace("profile = { circle = { center = [12, 0], radius = 30 } }", f"profile = {{ points = [{points}] }}")
+           .replace("P = [70, 45]", "P = [170, 45]"))
+    scene = tmp_path / "far.toml"
+    scene.write_text(far, encoding="utf-8")
+    code, out, err = run(capsys, "solve", str(scene))
+    assert code == 3 and out == ""
+    assert "the centre C of the follower's arc cannot reach it" in err and "offset by the arc's radius" in err
+    assert "roller" not in err and "Traceback" not in err
