@@ -24,7 +24,8 @@ from kinepoly.homework.higher_pairs import as_written
 from kinepoly.homework.toml_out import scene_toml
 from kinepoly.scene.loader import loads_scene
 
-HIGHER_PAIRS = ("gear-pair", "planetary", "rack-pinion", "eccentric-cam-flat", "cam-roller-rocker", "metu-cam")
+HIGHER_PAIRS = ("gear-pair", "planetary", "rack-pinion", "eccentric-cam-flat", "cam-roller-rocker", "metu-cam",
+                "curve-on-curve")
 
 
 def _variants(capsys: pytest.CaptureFixture[str], folder: Path, name: str, *options: str) -> list[Path]:

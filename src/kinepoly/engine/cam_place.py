@@ -110,10 +110,23 @@ def _unreachable(group: CamGroup) -> str:
                 "move the pivot or the face toward the cam")
     path = (f"the circle W runs on about the pivot {joint.point}" if isinstance(joint, Revolute)
             else f"the line W slides along on {group.carrier}")
-    what = f"the roller's centre {cam.point}" if cam.kind == "roller" else f"the knife edge {cam.point}"
-    offset = " offset by the roller" if cam.kind == "roller" else ""
+    what = _what(cam)
+    offset = _offset_words(cam)
     return (f"follower {group.link} cannot touch cam {group.known}: {path} misses the profile{offset}, so {what} "
             "cannot reach it; move the follower's joint or its point toward the cam")
+
+
+def _what(cam: CamSpec) -> str:
+    """The follower's point that runs on the (offset) profile, in words."""
+    if cam.kind != "roller":
+        return f"the knife edge {cam.point}"
+    return f"the centre {cam.point} of the follower's arc" if cam.follower_profile else f"the roller's centre {cam.point}"
+
+
+def _offset_words(cam: CamSpec) -> str:
+    if cam.kind != "roller":
+        return ""
+    return " offset by the arc's radius" if cam.follower_profile else " offset by the roller"
 
 
 def _concave(cam: CamSpec, curvature: Reals, unit: str) -> Callable[[int], str]:
@@ -124,6 +137,10 @@ def _concave(cam: CamSpec, curvature: Reals, unit: str) -> Callable[[int], str]:
         if cam.kind == "flat":
             return (f"the flat face meets the profile where it is concave (radius {radius}): a flat face can touch "
                     "only a convex profile; make the profile convex there, or use a knife edge or a roller")
+        if cam.follower_profile:
+            return (f"the follower's arc of radius {cam.roller_radius:g} {unit} is larger than the profile's concave "
+                    f"radius {radius} at the contact: it cannot touch the profile there; use a smaller arc or a "
+                    "profile whose hollows are wider than the arc")
         return (f"the roller of radius {cam.roller_radius:g} {unit} is larger than the profile's concave radius "
                 f"{radius} at the contact: it cannot touch the profile there; use a smaller roller or a profile "
                 "whose hollows are wider than the roller")
@@ -181,10 +198,8 @@ def floating_unreachable(group: NewtonGroup) -> str:
             return (f"; or follower {cam.follower} cannot touch cam {cam.cam}: with the group's joints held, its flat "
                     "face cannot be laid along a tangent of the profile; move the follower's joints or its face "
                     "toward the cam")
-        what = "the roller's centre" if cam.kind == "roller" else "the knife edge"
-        offset = " offset by the roller" if cam.kind == "roller" else ""
-        return (f"; or follower {cam.follower} cannot touch cam {cam.cam}: with the group's joints held, {what} "
-                f"{cam.point} cannot reach the profile{offset}; move the follower's joints or its point toward the cam")
+        return (f"; or follower {cam.follower} cannot touch cam {cam.cam}: with the group's joints held, {_what(cam)} "
+                f"cannot reach the profile{_offset_words(cam)}; move the follower's joints or its point toward the cam")
     return "".join(why(cam) for cam in group.cams)
 
 

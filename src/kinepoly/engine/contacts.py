@@ -166,8 +166,8 @@ def follower_coordinate(mechanism: Mechanism, cam: CamSpec) -> FollowerCoordinat
 
 def _force_point(mechanism: Mechanism, poses: dict[str, ArrayPose], cam: CamSpec, contact: ContactRows) -> Points:
     """Where the contact force acts on the follower: a roller's centre (the force passes through its pin),
-    else the contact point itself."""
-    if cam.kind == "roller":
+    else the contact point itself (a knife edge, a flat face, an arc fixed to the follower)."""
+    if cam.kind == "roller" and not cam.follower_profile:
         assert cam.point is not None
         return _world(mechanism, poses, cam.follower, cam.point)
     return contact.point

@@ -136,7 +136,8 @@ def _cam(solution: Solution, say: Catalogue, cam: CamSpec) -> list[Paragraph]:
     follower = cam.follower
     if cam.kind == "roller":
         assert cam.point is not None
-        touch = say.say("problem.roller_inside" if cam.inside else "problem.roller", follower=follower,
+        key = "problem.follower_circle" if cam.follower_profile else "problem.roller"
+        touch = say.say(key + "_inside" if cam.inside else key, follower=follower,
                         point=cam.point, radius=_length(say, cam.roller_radius, unit))
     elif cam.kind == "knife":
         touch = say.say("problem.knife", follower=follower, point=cam.point or "")

@@ -88,7 +88,10 @@ def _profile_toml(cam: CamSpec) -> str:
 def _cam_toml(scene: Scene, cam: CamSpec) -> list[str]:
     out = ["", "[[cams]]", f"cam = {json.dumps(cam.cam)}", f"follower = {json.dumps(cam.follower)}",
            _profile_toml(cam)]
-    if cam.kind == "roller":
+    if cam.kind == "roller" and cam.follower_profile:
+        out.append(f"follower_profile = {{ circle = {{ center = {json.dumps(cam.point)}, "
+                   f"radius = {toml_number(cam.roller_radius)} }} }}")
+    elif cam.kind == "roller":
         out.append(f"roller = {{ center = {json.dumps(cam.point)}, radius = {toml_number(cam.roller_radius)} }}")
     elif cam.kind == "knife":
         out.append(f"knife = {json.dumps(cam.point)}")

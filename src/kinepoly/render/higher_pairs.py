@@ -149,7 +149,11 @@ def _cam_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[Item]:
     follower_ink = link_label_color(_link_index(solution, cam.follower))
     if cam.kind == "roller" and cam.point is not None:
         w = panel.paper(_point(solution, cam.follower, cam.point))
-        items.append(_ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"roller {cam.name}"))
+        if cam.follower_profile:  # a curve of the follower's own, shaded like the cam's
+            ring = _ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"follower profile {cam.name}")
+            items.append(replace(ring, fill=link_color(_link_index(solution, cam.follower)), fill_opacity=0.18))
+        else:
+            items.append(_ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"roller {cam.name}"))
     elif cam.kind == "flat":
         a, b = _flat_face(solution, cam)
         items.append(Path((panel.paper(a), panel.paper(b)), Stroke(follower_ink, 0.6), role=f"flat face {cam.name}"))

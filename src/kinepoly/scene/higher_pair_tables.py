@@ -4,7 +4,9 @@ A gear's pitch is ``{ center = "O2", radius = 48 }`` (a point of the gear's own 
 ``{ line = { through = [x, y], angle = a } }`` in the rack's frame; ``phase`` places the reference mesh (a
 circle's in the scene's angle unit, a line's a length; see docs/scene-format.md, "Higher pairs").
 A cam's profile is ``{ circle = { center = [x, y], radius = R } }`` in the cam's frame; its follower
-touches it by a ``roller``, a ``flat`` face or a ``knife`` edge. Pairs are numbered from 1 in key
+touches it by a ``roller``, a ``flat`` face, a ``knife`` edge or a circular profile of its own
+(``follower_profile = { circle = { center = "C", radius = r } }``, read as a roller on C: two circles in
+contact keep their centres R + r apart). Pairs are numbered from 1 in key
 paths (``gears.1.pitch.2.radius``) and named like sliders (``"23"``).
 """
 
@@ -26,7 +28,8 @@ __all__ = ["HigherPairTables"]
 _GEAR_KEYS = ("links", "pitch", "internal", "phase", "name")
 _PITCH_KEYS = ("center", "radius", "line")
 _LINE_KEYS = ("through", "angle")
-_CAM_KEYS = ("cam", "follower", "profile", "roller", "flat", "knife", "contact", "name")
+_CAM_KEYS = ("cam", "follower", "profile", "roller", "flat", "knife", "follower_profile", "contact", "name")
+_FOLLOWERS = ("roller", "flat", "knife", "follower_profile")
 _PROFILE_KEYS = ("circle", "points")
 _CIRCLE_KEYS = ("center", "radius")
 _ROLLER_KEYS = ("center", "radius")
@@ -187,11 +190,11 @@ class HigherPairTables(ReaderState):
         if contact not in ("outside", "inside"):
             self.report.add(path + ("contact",), f'expected "outside" or "inside", got {show_value(contact)}')
             return None
-        kinds = [key for key in ("roller", "flat", "knife") if key in table]
+        kinds = [key for key in _FOLLOWERS if key in table]
         if len(kinds) != 1:
             self.report.add(path, f"{'no follower' if not kinds else 'more than one follower: ' + ', '.join(kinds)}; "
                             'expected one of roller = { center = "W", radius = r }, flat = { through = [x, y], '
-                            'angle = a }, knife = "W"')
+                            'angle = a }, knife = "W", follower_profile = { circle = { center = "C", radius = r } }')
             return None
         if cam is None or follower is None or circle is None:
             return None
@@ -207,13 +210,22 @@ class HigherPairTables(ReaderState):
         if kind == "knife":
             point = self._follower_point(key, table["knife"], follower)
             return None if point is None else _with(base, kind="knife", point=point)
-        if kind == "roller":
-            roller = read_table(self.report, key, table["roller"], '{ center = "W", radius = r }')
+        if kind in ("roller", "follower_profile"):
+            own = kind == "follower_profile"
+            circle_table = self._follower_circle(key, table[kind]) if own else table[kind]
+            if circle_table is None:
+                return None
+            key = key + ("circle",) if own else key
+            what = "the follower's circle" if own else "roller"
+            roller = read_table(self.report, key, circle_table, '{ center = "W", radius = r }')
             if roller is None:
                 return None
             check_keys(self.report, key, roller, _ROLLER_KEYS)
-            center = require(self.report, key, roller, "center", 'center = "W", the roller\'s pin on the follower')
-            radius = require(self.report, key, roller, "radius", "radius = r, the roller's radius")
+            center = require(self.report, key, roller, "center",
+                             'center = "C", the point of the follower at its circle\'s centre' if own
+                             else 'center = "W", the roller\'s pin on the follower')
+            radius = require(self.report, key, roller, "radius",
+                             "radius = r, the follower's circle's radius" if own else "radius = r, the roller's radius")
             if center is None or radius is None:
                 return None
             point = self._follower_point(key + ("center",), center, follower)
@@ -221,15 +233,28 @@ class HigherPairTables(ReaderState):
             if point is None or r is None:
                 return None
             if base.inside and not base.is_spline and not r < base.radius:
-                self.report.add(key + ("radius",), f"a roller of radius {r:g} inside a groove of radius "
-                                f"{base.radius:g}; expected a roller smaller than the profile")
+                self.report.add(key + ("radius",), f"{'a circle' if own else 'a roller'} of radius {r:g} inside a "
+                                f"groove of radius {base.radius:g}; expected {what} smaller than the profile")
                 return None
-            return _with(base, kind="roller", point=point, roller_radius=r)
+            return _with(base, kind="roller", point=point, roller_radius=r, follower_profile=own)
         if base.inside:
             self.report.add(path + ("contact",), 'a flat face cannot touch a disc from inside; expected "outside"')
             return None
         found = self._line(key, table["flat"])
         return None if found is None else _with(base, kind="flat", flat=found)
+
+    def _follower_circle(self, path: KeyPath, value: object) -> object | None:
+        """The ``circle`` table of a ``follower_profile``; a ``points`` follower profile is refused by name."""
+        table = read_table(self.report, path, value, '{ circle = { center = "C", radius = r } }')
+        if table is None:
+            return None
+        if "points" in table:
+            self.report.add(path + ("points",), "a follower profile of points (two splines in contact) is not "
+                            'supported; expected circle = { center = "C", radius = r }, a circle of the follower')
+            return None
+        check_keys(self.report, path, table, ("circle",))
+        return require(self.report, path, table, "circle",
+                       'circle = { center = "C", radius = r }, C a point of the follower')
 
     def read_profile(self, path: KeyPath, value: object) -> tuple[Vector, float, tuple[Vector, ...]] | None:
         """A circle's (centre, radius, ()), or a ``points`` profile's ((0, 0), 0, points)."""

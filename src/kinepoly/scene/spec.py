@@ -146,6 +146,10 @@ class CamSpec:
     profile_points: tuple[Vector, ...] = ()
     """A ``points`` profile: the points the closed spline runs through, counter-clockwise, in the cam's
     frame (empty for a circle; ``center`` and ``radius`` describe a circle profile only)."""
+    follower_profile: bool = False
+    """Whether the follower touches by a circular profile of its own (``follower_profile``), centred on
+    ``point`` with radius ``roller_radius``, rather than by a roller turning on a pin at ``point``: the same
+    motion (a roller's spin moves nothing else), so the pair is read as a roller (``kind`` "roller")."""
 
     @property
     def is_spline(self) -> bool:
