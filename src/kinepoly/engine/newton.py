@@ -48,6 +48,7 @@ class _RowSystem:
     def __init__(self, mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], size: float,
                  values: Mapping[int, float]) -> None:
         self.known = known
+        self._turned: dict[str, tuple[float, float, float, float, float]] = {}
         self.index = {link: 3 * k for k, link in enumerate(group.links)}
         self.size = 3 * len(group.links) + len(group.cams)
         self.scale = size
@@ -69,13 +70,21 @@ class _RowSystem:
         """World point of ``local`` on ``link``, its lever r = R local, and the link's theta."""
         k = self.index.get(link)
         if k is None:
-            pose = self.known[link]
-            x, y, theta = pose.x, pose.y, pose.theta
+            x, y, theta, c, s = self._known_turned(link)
         else:
             x, y, theta = float(q[k]), float(q[k + 1]), float(q[k + 2])
-        c, s = math.cos(theta), math.sin(theta)
+            c, s = math.cos(theta), math.sin(theta)
         rx, ry = c * local[0] - s * local[1], s * local[0] + c * local[1]
         return x + rx, y + ry, rx, ry, theta
+
+    def _known_turned(self, link: str) -> tuple[float, float, float, float, float]:
+        """A known link's x, y, theta, cos theta and sin theta, worked out once per row (they do not move while
+        the iteration runs)."""
+        found = self._turned.get(link)
+        if found is None:
+            pose = self.known[link]
+            found = self._turned[link] = (pose.x, pose.y, pose.theta, math.cos(pose.theta), math.sin(pose.theta))
+        return found
 
     def evaluate(self, q: Reals) -> tuple[Reals, Reals]:
         out = np.zeros(self.count)
