@@ -2,6 +2,7 @@
 
 For each chain length N (2N + 2 links) it times, in-process and best of a few runs:
 
+- ``load``: reading the scene's TOML text into a ``Scene`` (``kinepoly.scene.loader.loads_scene``);
 - ``solve``: the whole pipeline with its analytic cross-check (``kinepoly.solution.solve``);
 - ``sweep``: 36 positions over 10 degrees of the crank;
 - ``draw``: the sheet and its SVG (smaller chains only: ``--draw-max``);
@@ -9,12 +10,12 @@ For each chain length N (2N + 2 links) it times, in-process and best of a few ru
   when the chain needs it (chains of 1, 2, 5, 10 loops and ``--handout-max``); ``handout-pdf`` and
   ``handout-html`` each of the two alone;
 
-then fits time = c N^p by least squares on log-log (solve and sweep over the lengths of at least
+then fits time = c N^p by least squares on log-log (load, solve and sweep over the lengths of at least
 10 loops, draw and handout over all) and prints each growth exponent p (1 is linear). The issue's targets: the solve of 400 loops under
 2 s and at most 6 times that of 100; the 10-loop handout (PDF and HTML, together and each) at most 14 times the 1-loop one.
 
     python benchmarks/scaling.py [--quick] [--sizes 1,10,100,400,800] [--draw-max 40] [--handout-max 10]
-                                 [--tasks solve,sweep,draw,handout,handout-pdf,handout-html]
+                                 [--tasks load,solve,sweep,draw,handout,handout-pdf,handout-html]
 """
 
 from __future__ import annotations
@@ -39,6 +40,11 @@ def _best(work: Callable[[], object], repeat: int) -> float:
         work()
         best = min(best, time.perf_counter() - t0)
     return best
+
+
+def _load(n: int) -> Callable[[], object]:
+    text = chain_text(n)
+    return lambda: loads_scene(text, f"chain-{n}.toml")
 
 
 def _solve(n: int) -> Callable[[], object]:
@@ -109,8 +115,8 @@ def main() -> None:
     parser.add_argument("--sizes", help="comma-separated chain lengths (default 1,3,10,30,100,200,400,800)")
     parser.add_argument("--draw-max", type=int, default=40, help="the longest chain drawn (default 40)")
     parser.add_argument("--handout-max", type=int, default=10, help="the longest chain made a handout (default 10)")
-    parser.add_argument("--tasks", default="solve,sweep,draw,handout,handout-pdf,handout-html",
-                        help="which to time, comma-separated (default: all of solve, sweep, draw, handout, "
+    parser.add_argument("--tasks", default="load,solve,sweep,draw,handout,handout-pdf,handout-html",
+                        help="which to time, comma-separated (default: all of load, solve, sweep, draw, handout, "
                              "handout-pdf, handout-html)")
     args = parser.parse_args()
     wanted = set(args.tasks.split(","))
@@ -118,7 +124,7 @@ def main() -> None:
         ([1, 10, 100, 400] if args.quick else [1, 3, 10, 30, 100, 200, 400, 800])
     repeat = 1 if args.quick else 3
     tasks: list[tuple[str, Callable[[int], Callable[[], object]], int]] = [
-        ("solve", _solve, max(sizes)), ("sweep", _sweep, max(sizes)), ("draw", _draw, args.draw_max),
+        ("load", _load, max(sizes)), ("solve", _solve, max(sizes)), ("sweep", _sweep, max(sizes)), ("draw", _draw, args.draw_max),
         ("handout", _handout, args.handout_max), ("handout-pdf", _handout_pdf, args.handout_max),
         ("handout-html", _handout_html, args.handout_max)]
     results: dict[str, tuple[list[int], list[float]]] = {}
@@ -132,9 +138,9 @@ def main() -> None:
             times.append(_best(work, repeat if n <= 100 else 1))
             print(f"{name:12s} N = {n:4d}: {1e3 * times[-1]:10.1f} ms", flush=True)
         results[name] = (ns, times)
-    print("\ngrowth exponents (time ~ N^p; solve and sweep fitted over N >= 10, draw and handout over every N):")
+    print("\ngrowth exponents (time ~ N^p; load, solve and sweep fitted over N >= 10, draw and handout over every N):")
     for name, (ns, times) in results.items():
-        least = 10 if name in ("solve", "sweep") else 1
+        least = 10 if name in ("load", "solve", "sweep") else 1
         print(f"  {name:12s} p = {exponent(ns, times, least):.2f}   (N = {', '.join(map(str, ns))})")
     by_n = dict(zip(*results.get("solve", ([], [])), strict=True))
     if 100 in by_n and 400 in by_n:

@@ -23,13 +23,20 @@ from kinepoly.errors import (
     SceneError,
     SingularityError,
 )
-from kinepoly.present.report import steps_text, table_text, to_json
-from kinepoly.scene.loader import load_scene, loads_scene
-from kinepoly.scene.spec import Scene
-from kinepoly.solution import Solution, solve
 
 if TYPE_CHECKING:
     from kinepoly.motion.api import animate, draw
+    from kinepoly.present.report import steps_text, table_text, to_json
+    from kinepoly.scene.loader import load_scene, loads_scene
+    from kinepoly.scene.spec import Scene
+    from kinepoly.solution import Solution, solve
+
+_LAZY = {"animate": "kinepoly.motion.api", "draw": "kinepoly.motion.api", "steps_text": "kinepoly.present.report",
+         "table_text": "kinepoly.present.report", "to_json": "kinepoly.present.report",
+         "load_scene": "kinepoly.scene.loader", "loads_scene": "kinepoly.scene.loader", "Scene": "kinepoly.scene.spec",
+         "Solution": "kinepoly.solution", "solve": "kinepoly.solution"}
+"""Where each public name lives: loaded when first used, so that ``import kinepoly`` (and every command,
+which imports only what it runs) starts fast."""
 
 __all__ = [
     "AssemblyError",
@@ -65,10 +72,13 @@ setattr(Solution, "_repr_svg_", _solution_svg)  # noqa: B010 (a method the class
 
 
 def __getattr__(name: str) -> Any:
-    """``animate`` and ``draw`` load the drawing and animation code (matplotlib, the sweep) when first
-    used, so that ``import kinepoly`` and ``kinepoly solve`` start fast."""
-    if name in ("animate", "draw"):
-        from kinepoly.motion import api
+    """A public name's module is imported when the name is first used (``animate`` and ``draw`` load the
+    drawing and animation code, matplotlib and the sweep); the name is then kept on the package."""
+    where = _LAZY.get(name)
+    if where is None:
+        raise AttributeError(f"module 'kinepoly' has no attribute {name!r}")
+    from importlib import import_module
 
-        return getattr(api, name)
-    raise AttributeError(f"module 'kinepoly' has no attribute {name!r}")
+    value = getattr(import_module(where), name)
+    globals()[name] = value
+    return value

@@ -89,6 +89,15 @@ def version() -> str:
         return "unknown"
 
 
+class _Version(argparse.Action):
+    """``--version``: the package's metadata is read when the option is given, not on every start."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: object,
+                 option_string: str | None = None) -> None:
+        print(f"kinepoly {version()}")
+        parser.exit()
+
+
 def _usage_exit(message: str) -> int:
     print(f"kinepoly: error: {message}", file=sys.stderr)
     return EXIT_SCENE
@@ -108,7 +117,7 @@ def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="kinepoly", description="Velocity and acceleration polygons of planar mechanisms, "
                      "constructed as the graphical method draws them and checked analytically.",
                      epilog=_EXIT_STATUS, formatter_class=HelpFormatter)
-    parser.add_argument("--version", action="version", version=f"kinepoly {version()}")
+    parser.add_argument("--version", action=_Version, nargs=0, help="show program's version number and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     for name, help_text, add_arguments, run in _COMMANDS:
         command = sub.add_parser(name, help=help_text, description=help_text[0].upper() + help_text[1:] + ".",

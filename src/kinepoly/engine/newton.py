@@ -48,6 +48,7 @@ class _RowSystem:
     def __init__(self, mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], size: float,
                  values: Mapping[int, float]) -> None:
         self.known = known
+        self._turned: dict[str, tuple[float, float, float, float, float]] = {}
         self.index = {link: 3 * k for k, link in enumerate(group.links)}
         self.size = 3 * len(group.links) + len(group.cams)
         self.scale = size
@@ -64,27 +65,45 @@ class _RowSystem:
         self.cams = [(cam, cam.flat[0] if cam.flat is not None and cam.kind == "flat" else
                       mechanism.local(cam.follower, cam.point or "")) for cam in group.cams]
         self.count = 2 * (len(self.pins) + len(self.slides) + len(self.cams)) + len(self.drives)
+        self._scratch = np.zeros((self.count, self.size))
+        """Where the rows that write their Jacobian entries as they go write them when none is wanted."""
 
     def _point(self, q: Reals, link: str, local: tuple[float, float]) -> tuple[float, float, float, float, float]:
         """World point of ``local`` on ``link``, its lever r = R local, and the link's theta."""
         k = self.index.get(link)
         if k is None:
-            pose = self.known[link]
-            x, y, theta = pose.x, pose.y, pose.theta
+            x, y, theta, c, s = self._known_turned(link)
         else:
             x, y, theta = float(q[k]), float(q[k + 1]), float(q[k + 2])
-        c, s = math.cos(theta), math.sin(theta)
+            c, s = math.cos(theta), math.sin(theta)
         rx, ry = c * local[0] - s * local[1], s * local[0] + c * local[1]
         return x + rx, y + ry, rx, ry, theta
 
-    def evaluate(self, q: Reals) -> tuple[Reals, Reals]:
+    def _known_turned(self, link: str) -> tuple[float, float, float, float, float]:
+        """A known link's x, y, theta, cos theta and sin theta, worked out once per row (they do not move while
+        the iteration runs)."""
+        found = self._turned.get(link)
+        if found is None:
+            pose = self.known[link]
+            found = self._turned[link] = (pose.x, pose.y, pose.theta, math.cos(pose.theta), math.sin(pose.theta))
+        return found
+
+    def residual(self, q: Reals) -> Reals:
+        """The joint residual alone (a line search's trial, whose Jacobian is wanted only if it is taken): the same
+        numbers as ``evaluate``'s first."""
+        return self.evaluate(q, jacobian=False)[0]
+
+    def evaluate(self, q: Reals, jacobian: bool = True) -> tuple[Reals, Reals]:
         out = np.zeros(self.count)
-        jac = np.zeros((self.count, self.size))
+        jac = np.zeros((self.count, self.size)) if jacobian else self._scratch
         row = 0
         for a, local_a, b, local_b in self.pins:
             ax, ay, arx, ary, _ = self._point(q, a, local_a)
             bx, by, brx, bry, _ = self._point(q, b, local_b)
             out[row], out[row + 1] = ax - bx, ay - by
+            if not jacobian:
+                row += 2
+                continue
             for link, sign, rx, ry in ((a, 1.0, arx, ary), (b, -1.0, brx, bry)):
                 k = self.index.get(link)
                 if k is not None:
@@ -330,11 +349,13 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
         step = step * cut
         t = 1.0
         while t > 1e-6:
-            trial, trial_jac = system.evaluate(q + t * step)
+            trial = system.residual(q + t * step)
             norm_trial = float(np.linalg.norm(trial))
             if norm_trial < norm_r:
                 stalled = stalled + 1 if norm_trial > 0.5 * norm_r and cut == 1.0 else 0
-                q, r, jac, norm_r = q + t * step, trial, trial_jac, norm_trial
+                q = q + t * step
+                r, jac = system.evaluate(q)
+                norm_r = norm_trial
                 break
             t /= 2
         else:

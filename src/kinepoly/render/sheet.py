@@ -120,6 +120,13 @@ def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *,
         return first
     best: Layout | None = None
     kept: Layout | None = None
+    counted: dict[int, int] = {}
+
+    def crowded_on(layout: Layout) -> int:  # each paper's sheet built once to count its crowded labels
+        if id(layout) not in counted:
+            counted[id(layout)] = crowded(solution, layout)
+        return counted[id(layout)]
+
     for name, candidate in [("", size), *larger_papers(size)]:
         note = (f"drawn on {name}: the polygons at their scales, the mechanism and their labels need more room "
                 f"than {paper_name(size)} has")
@@ -129,10 +136,10 @@ def layout_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *,
             if best is None:
                 continue
             break
-        if best is not None and crowded(solution, layout) > GAIN * crowded(solution, best):
+        if best is not None and crowded_on(layout) > GAIN * crowded_on(best):
             break  # little room gained for the labels: they crowd where the polygon does, at any paper
         best = layout
-        if not 0 < crowded(solution, layout) <= FEW:
+        if not 0 < crowded_on(layout) <= FEW:
             break  # every label free, or so many crowded that their polygon's points crowd, at any paper
     return best or kept or first
 

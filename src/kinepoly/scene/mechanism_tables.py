@@ -113,15 +113,15 @@ class MechanismTables(ReaderState):
             self.check_distinct_joints(link.name, joints)
 
     def check_distinct_joints(self, link: str, joints: list[PointSpec]) -> None:
-        for i, first in enumerate(joints):
-            for second in joints[i + 1 :]:
-                if _same_place(first.local, second.local):
-                    x, y = first.local
-                    self.report.add(
-                        ("links", link, "points", second.name),
-                        f'joints "{first.name}" and "{second.name}" of link "{link}" are both at ({x:g}, {y:g}), '
-                        "a zero-length link; expected joints at distinct places",
-                    )
+        for i, j in _close_pairs([joint.local for joint in joints]):
+            first, second = joints[i], joints[j]
+            if _same_place(first.local, second.local):
+                x, y = first.local
+                self.report.add(
+                    ("links", link, "points", second.name),
+                    f'joints "{first.name}" and "{second.name}" of link "{link}" are both at ({x:g}, {y:g}), '
+                    "a zero-length link; expected joints at distinct places",
+                )
 
     # -- sliders
 
@@ -207,6 +207,24 @@ class MechanismTables(ReaderState):
                     'expected a different name = "..."',
                 )
             seen.setdefault(slider.name, index)
+
+
+def _close_pairs(places: list[Vector]) -> list[tuple[int, int]]:
+    """The pairs (i, j), i < j, in the order of a double loop, whose x differ by at most the widest tolerance of
+    ``_same_place`` among ``places``: every pair at the same place is among them. Sorted by x and scanned, so that a
+    link with many joints is checked in n log n, not by comparing every pair."""
+    if len(places) < 2:
+        return []
+    reach = 1e-12 * max(1.0, *(max(abs(x), abs(y)) for x, y in places))
+    order = sorted(range(len(places)), key=lambda k: places[k][0])
+    pairs = []
+    for at, i in enumerate(order):
+        x = places[i][0]
+        for j in order[at + 1:]:
+            if places[j][0] - x > reach:
+                break
+            pairs.append((min(i, j), max(i, j)))
+    return sorted(pairs)
 
 
 def _same_place(first: Vector, second: Vector) -> bool:

@@ -31,6 +31,7 @@ class ReaderState:
     links: dict[str, LinkSpec] | None = None  # None: [links] could not be read at all
     sliders: list[SliderSpec] = field(default_factory=list)
     ground: str | None = None
+    _point_names: tuple[tuple[int, int], set[str]] | None = field(default=None, repr=False, compare=False)
 
     # -- names known so far
 
@@ -39,7 +40,12 @@ class ReaderState:
 
     @property
     def point_names(self) -> set[str]:
-        return {p.name for link in (self.links or {}).values() for p in link.points}
+        """Every point's name, gathered once for the links read (each reference to a point asks for it)."""
+        links = self.links or {}
+        key = (id(links), len(links))
+        if self._point_names is None or self._point_names[0] != key:
+            self._point_names = (key, {p.name for link in links.values() for p in link.points})
+        return self._point_names[1]
 
     @property
     def slider_names(self) -> list[str]:

@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import NamedTuple
 
 import numpy as np
 
@@ -44,7 +45,8 @@ from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, PitchCircle, SliderInput
 
-__all__ = ["CYCLE_TURNS", "FULL_TURN_CHECK_ROWS", "MAX_STEPS", "InputGrid", "full_turn_grid", "input_grid", "input_name"]
+__all__ = ["CYCLE_TURNS", "FULL_TURN_CHECK_ROWS", "MAX_STEPS", "DefaultRange", "InputGrid", "default_range", "full_turn_grid",
+           "input_grid", "input_name"]
 
 MAX_STEPS = 2_000_000
 """The most rows a sweep takes (memory grows with rows times quantities)."""
@@ -365,16 +367,38 @@ def _is_full_turn(start: float, stop: float, full: float | None) -> bool:
     return full is not None and abs(abs(stop - start) - full) <= ROUNDING_REL * full
 
 
+class DefaultRange(NamedTuple):
+    """The range of ``default_range``: its ends, whether it is a full turn, what to say of it, and how far each end
+    is put inside a dead point."""
+
+    start: float
+    stop: float
+    periodic: bool
+    notices: tuple[Notice, ...]
+    pulled: tuple[float, float]
+
+
+def default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPose]) -> DefaultRange:
+    """The input's range a sweep without ``--from`` and ``--to`` covers: a full turn (or a geared mechanism's cycle),
+    else the range about the scene's input where the mechanism closes. It does not depend on how many rows are
+    asked: a prepared sweep finds it once for all its calls."""
+    start, stop, periodic, notices, pulled = _default_range(mechanism, plan, seed, mechanism_size(mechanism, seed))
+    return DefaultRange(start, stop, periodic, tuple(notices), pulled)
+
+
 def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPose], steps: int,
-               start: float | None, stop: float | None) -> InputGrid:
+               start: float | None, stop: float | None, found: DefaultRange | None = None) -> InputGrid:
     """The rows of a sweep of ``steps`` equal intervals from ``start`` to ``stop`` (the scene's input unit):
-    ``steps + 1`` shown rows, or ``steps`` over a full turn (its end would repeat its start)."""
+    ``steps + 1`` shown rows, or ``steps`` over a full turn (its end would repeat its start). Without ``start`` and
+    ``stop``, the ``default_range`` (``found``, when the caller has it already)."""
     _check_steps(steps)
     full = _full_turn(mechanism)
     notices: list[Notice] = []
     pulled = (0.0, 0.0)
     if start is None or stop is None:
-        start, stop, periodic, notices, pulled = _default_range(mechanism, plan, seed, mechanism_size(mechanism, seed))
+        found = found if found is not None else default_range(mechanism, plan, seed)
+        start, stop, periodic, notices, pulled = found.start, found.stop, found.periodic, list(found.notices), \
+            found.pulled
     else:
         if start == stop:
             raise SceneError(f"--from and --to: the range from {start:.6g} to {stop:.6g} is empty; give two different "

@@ -23,7 +23,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 import numpy.typing as npt
@@ -50,7 +50,15 @@ from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
 from kinepoly.sweep.columns import ColumnBuilder
 from kinepoly.sweep.higher_pairs import higher_pair_columns
-from kinepoly.sweep.inputs import FULL_TURN_CHECK_ROWS, InputGrid, full_turn_grid, input_grid, input_name
+from kinepoly.sweep.inputs import (
+    FULL_TURN_CHECK_ROWS,
+    DefaultRange,
+    InputGrid,
+    default_range,
+    full_turn_grid,
+    input_grid,
+    input_name,
+)
 from kinepoly.sweep.result import CANNOT_ASSEMBLE as _CANNOT
 from kinepoly.sweep.result import NEAR_SINGULAR as _NEAR
 from kinepoly.sweep.result import ORDER, Column, SweepResult
@@ -250,6 +258,11 @@ class PreparedSweep:
     def seed(self) -> dict[str, LinkPose]:
         return seed_poses(self.mechanism, self.plan)
 
+    @cached_property
+    def default_range(self) -> DefaultRange:
+        """The range a sweep without ``start`` and ``stop`` covers, found once for every call (``sweep.inputs``)."""
+        return default_range(self.mechanism, self.plan, self.seed)
+
 
 def prepare_sweep(scene: Scene, centrode: str | None = None, series: bool = False) -> PreparedSweep:
     """Build the mechanism, plan backwards from ``[find]`` and take the assembly at the scene's input."""
@@ -279,7 +292,7 @@ def cycle_turns(prepared: PreparedSweep) -> int:
     if not mechanism.scene.gears or not isinstance(mechanism.scene.input, LinkInput):
         return 1
     with np.errstate(all="ignore"):
-        grid = input_grid(mechanism, prepared.plan, prepared.seed, 2, None, None)
+        grid = input_grid(mechanism, prepared.plan, prepared.seed, 2, None, None, prepared.default_range)
     if not grid.periodic:
         return 1
     shown = grid.values[grid.shown]
@@ -303,7 +316,8 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
             positions = solve_positions(mechanism, plan, trial.internal, policy)
             grid, positions = (trial, positions) if positions.ok.all() else (None, None)
         if grid is None:
-            grid = input_grid(mechanism, plan, prepared.seed, steps, start, stop)
+            grid = input_grid(mechanism, plan, prepared.seed, steps, start, stop,
+                              prepared.default_range if start is None else None)
         t1 = time.perf_counter()
         result = _execute(mechanism, plan, prepared.asked, grid, prepared, progress, positions)
     t2 = time.perf_counter()
@@ -319,7 +333,14 @@ def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float |
     Without ``start`` and ``stop``: a full turn, or the input's range where the mechanism closes.
     ``centrode`` names a link whose instant center with the frame is reported (both centrodes).
     """
-    return run_sweep(prepare_sweep(scene, centrode, series), steps=steps, start=start, stop=stop, progress=progress)
+    return run_sweep(_prepared(scene, centrode, series), steps=steps, start=start, stop=stop, progress=progress)
+
+
+@lru_cache(maxsize=8)
+def _prepared(scene: Scene, centrode: str | None, series: bool) -> PreparedSweep:
+    """A scene's prepared sweep kept for the calls that follow on the same scene (a scene is a frozen value): its
+    mechanism, plan, seed assembly and default range are found once, so a repeated call pays only its rows."""
+    return prepare_sweep(scene, centrode, series)
 
 
 def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: InputGrid, prepared: PreparedSweep,

@@ -1,0 +1,109 @@
+"""A family of mechanisms: 1,000 randomised crank-rocker four-bars (one topology, the dimensions drawn at random) over
+360 positions of the crank each, as kinepoly sweeps them today (one ``sweep`` per member), against a numpy closed form
+over the whole family at once, measured in the same run.
+
+The closed form is ``bench_sweep.py``'s textbook vector loop, broadcast over (members, positions). The figures
+printed: the time of each, their ratio (the issue's target for a family sweep: at most 2), and the agreement of
+the two (the largest difference in theta, omega and alpha of links 3 and 4, relative to the largest magnitude of
+each). Scenes are read before the clock starts.
+
+    python benchmarks/family.py [--members 1000] [--seed 0]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "src"))
+
+from kinepoly.scene.loader import loads_scene
+from kinepoly.sweep import sweep
+
+POSITIONS = 360
+A1, OMEGA2, ALPHA2 = 100.0, 10.0, 5.0
+
+
+def members(count: int, seed: int) -> np.ndarray:
+    """(a2, a3, a4) of ``count`` Grashof crank-rockers (the crank the shortest link) with frame a1 = 100."""
+    rng = np.random.default_rng(seed)
+    out: list[tuple[float, float, float]] = []
+    while len(out) < count:
+        a2, a3, a4 = rng.uniform(20.0, 45.0), rng.uniform(90.0, 140.0), rng.uniform(60.0, 110.0)
+        if a2 + max(A1, a3, a4) < sum(sorted((A1, a3, a4))[:2]) - 1.0:
+            out.append((a2, a3, a4))
+    return np.array(out)
+
+
+def closed_form(dims: np.ndarray, theta2: np.ndarray) -> dict[str, np.ndarray]:
+    """theta, omega, alpha of links 3 and 4 over (members, positions), B left of A -> B0."""
+    a2, a3, a4 = (dims[:, k:k + 1] for k in range(3))
+    e2 = np.exp(1j * theta2)[None, :]
+    a = a2 * e2
+    to_b0 = A1 - a
+    dist = np.abs(to_b0)
+    theta3 = np.angle(to_b0) + np.arccos((a3 * a3 + dist * dist - a4 * a4) / (2 * a3 * dist))
+    e3 = np.exp(1j * theta3)
+    b = a + a3 * e3
+    theta4 = np.angle(b - A1)
+    e4 = np.exp(1j * theta4)
+    s34 = np.sin(theta3 - theta4)
+    omega3 = OMEGA2 * a2 * np.sin(theta4 - theta2) / (a3 * s34)
+    omega4 = OMEGA2 * a2 * np.sin(theta3 - theta2) / (a4 * s34)
+    known = (1j * ALPHA2 - OMEGA2**2) * a - omega3**2 * a3 * e3 + omega4**2 * a4 * e4
+    return {"theta_3": np.degrees(theta3), "theta_4": np.degrees(theta4), "omega_3": omega3, "omega_4": omega4,
+            "alpha_3": (known * np.conj(e4)).real / (a3 * s34), "alpha_4": (known * np.conj(e3)).real / (a4 * s34)}
+
+
+def scene_text(a2: float, a3: float, a4: float) -> str:
+    """The member as a scene, its [guess] at the closed form's assembly at the scene's input (60 deg)."""
+    theta3 = float(closed_form(np.array([[a2, a3, a4]]), np.radians([60.0]))["theta_3"][0, 0])
+    b = a2 * complex(math.cos(math.radians(60.0)), math.sin(math.radians(60.0))) + \
+        a3 * complex(math.cos(math.radians(theta3)), math.sin(math.radians(theta3)))
+    return (f'title = "four-bar member"\n[links]\n1 = {{ points = {{ A0 = [0, 0], B0 = [{A1!r}, 0] }} }}\n'
+            f"2 = {{ points = {{ A0 = [0, 0], A = [{a2!r}, 0] }} }}\n"
+            f"3 = {{ points = {{ A = [0, 0], B = [{a3!r}, 0] }} }}\n"
+            f"4 = {{ points = {{ B0 = [0, 0], B = [{a4!r}, 0] }} }}\n"
+            f'[input]\nlink = "2"\nangle = 60\nomega = {OMEGA2!r}\nalpha = {ALPHA2!r}\n'
+            f"[guess]\nB = [{b.real!r}, {b.imag!r}]\n"
+            '[find]\nomega = ["3", "4"]\nalpha = ["3", "4"]\n')
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--members", type=int, default=1000, help="how many four-bars (default 1000)")
+    parser.add_argument("--seed", type=int, default=0, help="the random seed of their dimensions (default 0)")
+    args = parser.parse_args()
+    dims = members(args.members, args.seed)
+    scenes = [loads_scene(scene_text(*map(float, row)), f"member-{k}.toml") for k, row in enumerate(dims)]
+    theta2 = np.radians(np.arange(POSITIONS, dtype=np.float64))
+    best_closed = math.inf
+    for _ in range(5):
+        t0 = time.perf_counter()
+        reference = closed_form(dims, theta2)
+        best_closed = min(best_closed, time.perf_counter() - t0)
+    t0 = time.perf_counter()
+    results = [sweep(scene, steps=POSITIONS) for scene in scenes]
+    looped = time.perf_counter() - t0
+    worst = 0.0
+    for name, expected in reference.items():
+        got = np.array([result.column(name).values for result in results])
+        if name.startswith("theta"):
+            got = np.where(got - expected > 180.0, got - 360.0, np.where(expected - got > 180.0, got + 360.0, got))
+        worst = max(worst, float(np.abs(got - expected).max() / np.abs(expected).max()))
+    print(f"{args.members} four-bars x {POSITIONS} positions (theta, omega, alpha of links 3 and 4)")
+    print(f"numpy closed form over the family at once   {best_closed * 1e3:9.1f} ms   1.00")
+    print(f"one kinepoly sweep per member (a loop)      {looped * 1e3:9.1f} ms   {looped / best_closed:6.1f}"
+          "   (target of a family sweep: at most 2)")
+    print(f"per member: {looped / args.members * 1e3:.3f} ms; agreement (largest relative difference): {worst:.1e}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
