@@ -60,15 +60,12 @@ __all__ = [
 ]
 
 
-def _solution_svg(solution: Solution) -> str:
-    """A notebook shows a solution as its drawing (``Solution._repr_svg_``, set here, at the package's face, so
-    that the solution does not import the drawing code above it)."""
+def _solution_svg(solution: "Solution") -> str:
+    """A notebook shows a solution as its drawing (``Solution._repr_svg_``, set at the package's face when the
+    solution's module is first loaded through it, so that the solution does not import the drawing code above it)."""
     from kinepoly.motion.api import draw
 
     return draw(solution)
-
-
-setattr(Solution, "_repr_svg_", _solution_svg)  # noqa: B010 (a method the class does not declare)
 
 
 def __getattr__(name: str) -> Any:
@@ -79,6 +76,9 @@ def __getattr__(name: str) -> Any:
         raise AttributeError(f"module 'kinepoly' has no attribute {name!r}")
     from importlib import import_module
 
-    value = getattr(import_module(where), name)
+    module = import_module(where)
+    if where == "kinepoly.solution":
+        setattr(module.Solution, "_repr_svg_", _solution_svg)  # noqa: B010 (a method the class does not declare)
+    value = getattr(module, name)
     globals()[name] = value
     return value
