@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from kinepoly.engine.cam_contact import centre_label, face_direction
+from kinepoly.engine.cam_curves import follower_centre_label
 from kinepoly.engine.groups import CamGroup
 from kinepoly.engine.lines import (
     known_pairs,
@@ -49,7 +50,10 @@ __all__ = ["acceleration_by_cam", "velocity_by_cam"]
 
 
 def _ends(group: CamGroup) -> tuple[str, str]:
-    """K (the cam's point at the centre of curvature) and W (the follower's point)."""
+    """K (the cam's point at the centre of curvature) and W (the follower's point; where the follower's profile
+    is a spline, its own centre of curvature K2)."""
+    if group.cam.is_curve_pair:
+        return centre_label(group.cam), follower_centre_label(group.cam)
     return centre_label(group.cam), group.cam.point or ""
 
 
@@ -105,7 +109,7 @@ def velocity_by_cam(polygon: Polygon, group: CamGroup, sliding: dict[str, Points
     line1 = revolute_line(polygon, group.known, k, w, None)
     label1 = perpendicular_label(polygon, group.known, k, w)
     joint = group.joint
-    line2, label2, far, direction2 = _own_line(polygon, group, w, group.link, w)
+    line2, label2, far, direction2 = _own_line(polygon, group, w, None if group.cam.is_curve_pair else group.link, w)
     crossing = polygon.cross_lines(line1, line2, w, group.name, (label1, label2))
     polygon.add_tip(group.link, w, crossing.point)
     equivalent[group.cam.name] = np.asarray(crossing.along_first + 0j)
@@ -182,7 +186,8 @@ def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
     joint = group.joint
     line2: Line
     if isinstance(joint, Revolute):
-        line2, n2, label2 = ctx.normal_line(group.carrier, joint.point, w, group.link)  # type: ignore[attr-defined]
+        line2, n2, label2 = ctx.normal_line(group.carrier, joint.point, w, group.link,  # type: ignore[attr-defined]
+                                            rigid=not group.cam.is_curve_pair)
         vectors += [n2] if n2 else []
         laid: list[DrawnVector] = []
     else:
