@@ -11,7 +11,8 @@ At every row the contact is a root (u, v, q) of three equations, in the frame:
 with T the tangents (the curves' derivatives turned into the frame); the tangents must run opposite (both
 curves counter-clockwise, touching from outside: normals opposite). Newton's method on (u, v, q), in numpy
 over all rows and many starting points at once (a grid of u and v on both curves, q from the tangents),
-keeps every distinct root of every row; the assembly policy then keeps one per row as for any spline cam.
+keeps every distinct root of every row (the grid at a few rows spread over the input, every other row
+started from the roots of the nearest of them); the assembly policy then keeps one per row as for any spline cam.
 
 Both centres of curvature at the contact, K1 = Q + n1 / kappa1 on the cam and K2 = Q + n2 / kappa2 on the
 follower, are points of their links at that instant: the pair acts as the link K1 K2 of length
@@ -56,8 +57,8 @@ def follower_spline(cam: CamSpec) -> PeriodicSpline:
 
 @dataclass(frozen=True)
 class _Carried:
-    """The follower's pose as a function of its one unknown q, per row: origin = base + slide q + turn(q)
-    about the pivot: ``revolute`` says which (rotation = e^{iq} for a rocker, fixed for a slide)."""
+    """The follower's pose as a function of its one unknown q, per row: turned by q about the pivot (a rocker:
+    rotation e^{iq}) or slid by q along the guide (a translating follower: its rotation fixed)."""
 
     revolute: bool
     pivot: Points       # a rocker: the pivot in the frame; a slide: the origin at s = 0
@@ -65,17 +66,14 @@ class _Carried:
     rotation: Points    # a slide: the follower's fixed rotation
     direction: Points   # a slide: the unit direction of s
 
-    def pose(self, q: Reals) -> tuple[Points, Points, Points, Points]:
-        """origin, rotation and their derivatives by q (shapes of ``q``: rows x candidates)."""
+    def pose(self, row: Ints, q: Reals) -> tuple[Points, Points, Points, Points]:
+        """origin, rotation and their derivatives by q, for lanes of rows ``row``."""
         if self.revolute:
             rotation = np.exp(1j * q)
-            origin = self.pivot[:, None] - rotation * self.pivot_local
-            return np.asarray(origin), np.asarray(rotation), np.asarray(-1j * rotation * self.pivot_local), \
-                np.asarray(1j * rotation)
-        rotation = np.broadcast_to(self.rotation[:, None], q.shape)
-        origin = self.pivot[:, None] + q * self.direction[:, None]
-        return (np.asarray(origin), np.asarray(rotation), np.asarray(np.broadcast_to(self.direction[:, None], q.shape)),
-                np.zeros(q.shape, np.complex128))
+            return (np.asarray(self.pivot[row] - rotation * self.pivot_local), np.asarray(rotation),
+                    np.asarray(-1j * rotation * self.pivot_local), np.asarray(1j * rotation))
+        return (np.asarray(self.pivot[row] + q * self.direction[row]), np.asarray(self.rotation[row]),
+                np.asarray(self.direction[row]), np.zeros(q.shape, np.complex128))
 
 
 def _carried(mechanism: Mechanism, group: CamGroup, carrier_pose: ArrayPose) -> _Carried:
@@ -106,94 +104,131 @@ class CurveCandidates:
         return np.asarray(self.v[np.arange(len(choice)), np.maximum(choice, 0)])
 
 
-def _residual(cam_pose: ArrayPose, carried: _Carried, s1: PeriodicSpline, s2: PeriodicSpline, u: Reals, v: Reals,
-              q: Reals) -> tuple[Points, Reals, np.ndarray]:
-    """(E, G) and the 3x3 Jacobian by (u, v, q), lanes rows x seeds."""
-    rc = cam_pose.rotation[:, None]
+def _residual(cam_pose: ArrayPose, carried: _Carried, s1: PeriodicSpline, s2: PeriodicSpline, row: Ints,
+              u: Reals, v: Reals, q: Reals) -> tuple[Points, Reals, np.ndarray]:
+    """(E, G) and the 3x3 Jacobian by (u, v, q), one per lane (lanes of rows ``row``)."""
+    rc = cam_pose.rotation[row]
     p1, d1, e1 = s1.derivatives(u)
     p2, d2, e2 = s2.derivatives(v)
-    origin, rotation, d_origin, d_rotation = carried.pose(q)
+    origin, rotation, d_origin, d_rotation = carried.pose(row, q)
     t1, t2 = rc * d1, rotation * d2
-    gap = cam_pose.origin[:, None] + rc * p1 - origin - rotation * p2
+    gap = cam_pose.origin[row] + rc * p1 - origin - rotation * p2
     parallel = _cross(t1, t2)
     dq = -(d_origin + d_rotation * p2)
-    jac = np.empty((*u.shape, 3, 3))
+    jac = np.empty((len(u), 3, 3))
     for col, de, dg in ((0, t1, _cross(rc * e1, t2)), (1, -t2, _cross(t1, rotation * e2)),
                         (2, dq, _cross(t1, d_rotation * d2))):
-        jac[..., 0, col], jac[..., 1, col], jac[..., 2, col] = de.real, de.imag, dg
+        jac[:, 0, col], jac[:, 1, col], jac[:, 2, col] = de.real, de.imag, dg
     return np.asarray(gap), parallel, jac
 
 
-_SEEDS_PER_CURVE = 20
-_STEPS = 40
+def _det3(m: np.ndarray) -> Reals:
+    """The determinants of a stack of 3x3 matrices, written out."""
+    return np.asarray(m[:, 0, 0] * (m[:, 1, 1] * m[:, 2, 2] - m[:, 1, 2] * m[:, 2, 1])
+                      - m[:, 0, 1] * (m[:, 1, 0] * m[:, 2, 2] - m[:, 1, 2] * m[:, 2, 0])
+                      + m[:, 0, 2] * (m[:, 1, 0] * m[:, 2, 1] - m[:, 1, 1] * m[:, 2, 0]))
+
+
+def _solve3(jac: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, Bools]:
+    """jac x = rhs for every lane by Cramer's rule, with the lanes where jac is singular."""
+    det = _det3(jac)
+    good = np.abs(det) > 1e-300
+    safe = np.where(good, det, 1.0)
+    out = np.empty(rhs.shape)
+    for col in range(3):
+        swapped = jac.copy()
+        swapped[:, :, col] = rhs
+        out[:, col] = _det3(swapped) / safe
+    return out, np.asarray(good)
+
+
+_SEEDS_PER_CURVE = 12
+_SEARCHED_ROWS = 48
+_STEPS = 30
+_WANDER_STEP = 10
 
 
 def curve_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, ArrayPose]) -> CurveCandidates:
-    """Every contact of the two splines at every row, with the follower's pose each gives."""
+    """Every contact of the two splines at every row, with the follower's pose each gives: a grid of starts
+    on both curves at a few rows spread over the input, then every row from the roots of the nearest of them."""
     s1, s2 = cam_spline(group.cam), follower_spline(group.cam)
     cam_pose, carried = poses[group.known], _carried(mechanism, group, poses[group.carrier])
     n = len(cam_pose.origin)
+    size = _size(s1, s2)
+    searched = np.unique(np.linspace(0, n - 1, min(n, _SEARCHED_ROWS)).round().astype(np.intp))
     grid_u = s1.period * (np.arange(_SEEDS_PER_CURVE) + 0.5) / _SEEDS_PER_CURVE
     grid_v = s2.period * (np.arange(_SEEDS_PER_CURVE) + 0.5) / _SEEDS_PER_CURVE
-    u = np.broadcast_to(np.repeat(grid_u, _SEEDS_PER_CURVE)[None, :], (n, _SEEDS_PER_CURVE ** 2)).copy()
-    v = np.broadcast_to(np.tile(grid_v, _SEEDS_PER_CURVE)[None, :], u.shape).copy()
-    t1 = cam_pose.rotation[:, None] * s1.derivatives(u)[1]
+    seeds = _SEEDS_PER_CURVE ** 2
+    row = np.repeat(searched, seeds)
+    u = np.tile(np.repeat(grid_u, _SEEDS_PER_CURVE), len(searched))
+    v = np.tile(np.tile(grid_v, _SEEDS_PER_CURVE), len(searched))
+    t1 = cam_pose.rotation[row] * s1.derivatives(u)[1]
     d2 = s2.derivatives(v)[1]
     if carried.revolute:  # turned so that the tangents run opposite
         q = np.angle(-t1 / d2)
     else:
-        origin, rotation, _, _ = carried.pose(np.zeros(u.shape))
-        p1 = cam_pose.origin[:, None] + cam_pose.rotation[:, None] * s1.point(u)
-        q = ((p1 - origin - rotation * s2.point(v)) * np.conj(carried.direction[:, None])).real
-    size = _size(s1, s2)
+        origin, rotation, _, _ = carried.pose(row, np.zeros(len(u)))
+        p1 = cam_pose.origin[row] + cam_pose.rotation[row] * s1.point(u)
+        q = ((p1 - origin - rotation * s2.point(v)) * np.conj(carried.direction[row])).real
+    row, u, v, q = _newton(cam_pose, carried, s1, s2, row, u, v, q, size)
+    if len(searched) < n:  # every row from the roots of its nearest searched row
+        nearest = searched[np.abs(np.arange(n)[:, None] - searched[None, :]).argmin(axis=1)]
+        lanes = [np.flatnonzero(row == at) for at in range(n)]
+        source = np.concatenate([lanes[int(at)] for at in nearest]).astype(np.intp)
+        target = np.concatenate([np.full(len(lanes[int(at)]), k, np.intp) for k, at in enumerate(nearest)])
+        row, u, v, q = _newton(cam_pose, carried, s1, s2, target, u[source], v[source], q[source], size)
+    return _distinct(cam_pose, s1, carried, n, row, u, v, q, size)
+
+
+def _newton(cam_pose: ArrayPose, carried: _Carried, s1: PeriodicSpline, s2: PeriodicSpline, row: Ints, u: Reals,
+            v: Reals, q: Reals, size: float) -> tuple[Ints, Reals, Reals, Reals]:
+    """Newton's method on (u, v, q) from every lane's start; the lanes that reach a contact (the tangents
+    opposite) kept."""
     limit = np.array([s1.period / 8.0, s2.period / 8.0, 0.5 if carried.revolute else size / 4.0])
-    for _ in range(_STEPS):
-        gap, parallel, jac = _residual(cam_pose, carried, s1, s2, u, v, q)
-        rhs = np.stack([gap.real, gap.imag, parallel], axis=-1)
-        det = np.linalg.det(jac)
-        good = np.abs(det) > 0.0
-        step = np.zeros(rhs.shape)
-        step[good] = np.linalg.solve(jac[good], -rhs[good][..., None])[..., 0]
-        step = np.clip(step, -limit, limit)
-        u, v, q = u + step[..., 0], v + step[..., 1], q + step[..., 2]
-    gap, parallel, _ = _residual(cam_pose, carried, s1, s2, u, v, q)
-    t1 = cam_pose.rotation[:, None] * s1.derivatives(u)[1]
-    origin, rotation, _, _ = carried.pose(q)
+    for step_number in range(_STEPS):
+        gap, parallel, jac = _residual(cam_pose, carried, s1, s2, row, u, v, q)
+        if step_number == _WANDER_STEP:  # lanes still far from any root are dropped
+            near = (np.abs(gap) < 1e-2 * size) & np.isfinite(q)
+            row, u, v, q, gap, parallel, jac = (x[near] for x in (row, u, v, q, gap, parallel, jac))
+        step, good = _solve3(jac, -np.stack([gap.real, gap.imag, parallel], axis=-1))
+        step = np.where(good[:, None], np.clip(step, -limit, limit), 0.0)
+        u, v, q = u + step[:, 0], v + step[:, 1], q + step[:, 2]
+    gap, parallel, _ = _residual(cam_pose, carried, s1, s2, row, u, v, q)
+    t1 = cam_pose.rotation[row] * s1.derivatives(u)[1]
+    _, rotation, _, _ = carried.pose(row, q)
     t2 = rotation * s2.derivatives(v)[1]
     converged = ((np.abs(gap) <= 1e-9 * size) & (np.abs(parallel) <= 1e-9 * np.abs(t1) * np.abs(t2))
                  & ((np.conj(t1) * t2).real < 0.0) & np.isfinite(q))
-    return _distinct(cam_pose, s1, carried, u, v, q, converged, size)
+    return row[converged], u[converged], v[converged], q[converged]
 
 
 def _size(s1: PeriodicSpline, s2: PeriodicSpline) -> float:
     return max(s1.period, s2.period)
 
 
-def _distinct(cam_pose: ArrayPose, s1: PeriodicSpline, carried: _Carried, u: Reals, v: Reals, q: Reals,
-              converged: Bools, size: float) -> CurveCandidates:
+def _distinct(cam_pose: ArrayPose, s1: PeriodicSpline, carried: _Carried, n: int, row: Ints, u: Reals, v: Reals,
+              q: Reals, size: float) -> CurveCandidates:
     """Each row's distinct roots side by side (the same contact point and pose counted once), padded."""
-    n = len(u)
-    point = cam_pose.origin[:, None] + cam_pose.rotation[:, None] * s1.point(u)
-    origin, rotation, _, _ = carried.pose(q)
-    kept: list[list[int]] = []
-    for row in range(n):
-        mine: list[int] = []
-        for k in np.flatnonzero(converged[row]):
-            if all(abs(point[row, k] - point[row, j]) > 1e-7 * size
-                   or abs(rotation[row, k] - rotation[row, j]) > 1e-7 for j in mine):
-                mine.append(int(k))
-        kept.append(mine)
+    point = cam_pose.origin[row] + cam_pose.rotation[row] * s1.point(u)
+    origin, rotation, _, _ = carried.pose(row, q)
+    kept: list[list[int]] = [[] for _ in range(n)]
+    order = np.lexsort((np.round(point.real / (1e-6 * size)), row))
+    for lane in order:
+        mine = kept[int(row[lane])]
+        if all(abs(point[lane] - point[j]) > 1e-7 * size or abs(rotation[lane] - rotation[j]) > 1e-7 for j in mine):
+            mine.append(int(lane))
     width = max(1, max((len(m) for m in kept), default=0))
     pick = np.zeros((n, width), np.intp)
     found = np.zeros((n, width), np.bool_)
-    for row, mine in enumerate(kept):
-        pick[row, : len(mine)] = mine
-        found[row, : len(mine)] = True
-    rows = np.arange(n)[:, None]
-    period = s1.period
-    candidates = Candidates(np.asarray(np.mod(u[rows, pick], period)), found, np.asarray(origin[rows, pick]),
-                            np.asarray(rotation[rows, pick]), np.asarray(point[rows, pick]))
-    return CurveCandidates(candidates, np.asarray(v[rows, pick]))
+    for at, mine in enumerate(kept):
+        pick[at, : len(mine)] = mine
+        found[at, : len(mine)] = True
+    if len(row) == 0:
+        empty = np.zeros((n, 1))
+        return CurveCandidates(Candidates(empty, found, empty + 0j, empty + 1 + 0j, empty + 0j), empty)
+    candidates = Candidates(np.asarray(np.mod(u[pick], s1.period)), found, np.asarray(origin[pick]),
+                            np.asarray(rotation[pick]), np.asarray(point[pick]))
+    return CurveCandidates(candidates, np.asarray(v[pick]))
 
 
 @dataclass(frozen=True)
