@@ -189,7 +189,7 @@ def _newton(cam_pose: ArrayPose, carried: _Carried, s1: PeriodicSpline, s2: Peri
         gap, parallel, jac = _residual(cam_pose, carried, s1, s2, row, u, v, q)
         if step_number == _WANDER_STEP:  # lanes still far from any root are dropped
             near = (np.abs(gap) < 1e-2 * size) & np.isfinite(q)
-            row, u, v, q, gap, parallel, jac = (x[near] for x in (row, u, v, q, gap, parallel, jac))
+            row, u, v, q, gap, parallel, jac = row[near], u[near], v[near], q[near], gap[near], parallel[near], jac[near]
         step, good = _solve3(jac, -np.stack([gap.real, gap.imag, parallel], axis=-1))
         step = np.where(good[:, None], np.clip(step, -limit, limit), 0.0)
         u, v, q = u + step[:, 0], v + step[:, 1], q + step[:, 2]
@@ -224,8 +224,8 @@ def _distinct(cam_pose: ArrayPose, s1: PeriodicSpline, carried: _Carried, n: int
         pick[at, : len(mine)] = mine
         found[at, : len(mine)] = True
     if len(row) == 0:
-        empty = np.zeros((n, 1))
-        return CurveCandidates(Candidates(empty, found, empty + 0j, empty + 1 + 0j, empty + 0j), empty)
+        empty, place = np.zeros((n, 1)), np.zeros((n, 1), np.complex128)
+        return CurveCandidates(Candidates(empty, found, place, place + 1.0, place), empty)
     candidates = Candidates(np.asarray(np.mod(u[pick], s1.period)), found, np.asarray(origin[pick]),
                             np.asarray(rotation[pick]), np.asarray(point[pick]))
     return CurveCandidates(candidates, np.asarray(v[pick]))
