@@ -171,6 +171,10 @@ def curve_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, Arr
         p1 = cam_pose.origin[row] + cam_pose.rotation[row] * s1.point(u)
         q = ((p1 - origin - rotation * s2.point(v)) * np.conj(carried.direction[row])).real
     row, u, v, q = _newton(cam_pose, carried, s1, s2, row, u, v, q, size)
+    u, v = np.mod(u, s1.period), np.mod(v, s2.period)
+    _, once = np.unique(np.stack([row, np.round(u / s1.period * 1e6), np.round(v / s2.period * 1e6)]), axis=1,
+                        return_index=True)  # each root once (many starts reach the same)
+    row, u, v, q = row[once], u[once], v[once], q[once]
     if len(searched) < n:  # every row from the roots of its nearest searched row
         nearest = searched[np.abs(np.arange(n)[:, None] - searched[None, :]).argmin(axis=1)]
         lanes = [np.flatnonzero(row == at) for at in range(n)]
