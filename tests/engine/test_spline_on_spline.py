@@ -10,6 +10,7 @@ circle follower_profile solves it); on random ovals; and bad input is named by i
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -50,18 +51,23 @@ def _read(points: list[tuple[float, float]]) -> PeriodicSpline:
     return periodic_spline(points)
 
 
-def _contact(cam: PeriodicSpline, bulb: PeriodicSpline, theta: float, start: tuple[float, float, float]
-             ) -> tuple[float, float, float]:
-    """(u, v, phi): the cam turned by theta about O, the rocker by phi about PIVOT (its frame's origin), the two
-    curves touching: P1(u) = P2(v) and T1(u) x T2(v) = 0, by Newton with a finite-difference Jacobian."""
+def _rocker(phi: float) -> tuple[complex, complex]:
+    """The rocker's frame turned by phi about PIVOT (its frame's origin): (origin, rotation)."""
+    return PIVOT, complex(math.cos(phi), math.sin(phi))
+
+
+def _contact(cam: PeriodicSpline, bulb: PeriodicSpline, theta: float, start: tuple[float, float, float],
+             place: Callable[[float], tuple[complex, complex]] = _rocker) -> tuple[float, float, float]:
+    """(u, v, q): the cam turned by theta about O, the follower placed by ``place(q)`` (its origin and rotation),
+    the two curves touching: P1(u) = P2(v) and T1(u) x T2(v) = 0, by Newton with a finite-difference Jacobian."""
     turn = complex(math.cos(theta), math.sin(theta))
 
     def residual(x: np.ndarray) -> np.ndarray:
-        u, v, phi = x
+        u, v, q = x
         p1, d1, _ = (complex(z[0]) for z in cam.derivatives(np.array([u])))
         p2, d2, _ = (complex(z[0]) for z in bulb.derivatives(np.array([v])))
-        rocker = complex(math.cos(phi), math.sin(phi))
-        gap = turn * p1 - (PIVOT + rocker * p2)
+        origin, rocker = place(q)
+        gap = turn * p1 - (origin + rocker * p2)
         return np.array([gap.real, gap.imag, ((turn * d1).conjugate() * rocker * d2).imag / (abs(d1) * abs(d2))])
 
     x = np.array(start, dtype=float)
@@ -266,3 +272,55 @@ def test_the_follower_points_are_written_back_as_read() -> None:
     again = kinepoly.loads_scene(scene_toml(scene))
     assert again.cams[0].follower_points == scene.cams[0].follower_points
     assert again.cams[0].profile_points == scene.cams[0].profile_points
+
+
+SLIDE = """title = "Oval cam on a translating follower with a round end given by points"
+[links]
+1 = { points = { O = [0, 0], G = [0, 60] } }
+2 = { points = { O = [0, 0] } }
+3 = { points = { B = [0, 0] } }
+[[sliders]]
+guide = "1"
+block = "3"
+point = "B"
+line = { through = [5, 0], angle = 90 }
+[[cams]]
+cam = "2"
+follower = "3"
+profile = { points = CAM }
+follower_profile = { points = BULB }
+[input]
+link = "2"
+angle = 30
+omega = 10
+alpha = 5
+[guess]
+B = [5, 45]
+"""
+
+
+def test_a_translating_follower_against_finite_differences_of_its_contact_solve() -> None:
+    cam_points, bulb_points = _oval(34.0, 28.0, 8.0, 16), _oval(10.0, 7.0, 0.0, 12)
+    text = SLIDE.replace("CAM", _toml_points(cam_points)).replace("BULB", _toml_points(bulb_points))
+    data = kinepoly.to_json(kinepoly.solve(kinepoly.loads_scene(text, "slide.toml")))
+    assert data["check"]["max_rel_error"] < 1e-12
+    y, (vx, vy), (ax, ay) = (data["points"]["B"]["position"][1], data["points"]["B"]["velocity"],
+                             data["points"]["B"]["acceleration"])
+    cam, bulb = _read(cam_points), _read(bulb_points)
+
+    def slid(s: float) -> tuple[complex, complex]:  # the block's frame turned with its slide, 90 degrees
+        return complex(5.0, s), 1j
+
+    theta, h = math.radians(30.0), 1e-4
+    grid_u, grid_v = cam.period * np.arange(400) / 400, bulb.period * np.arange(400) / 400
+    one = np.exp(1j * theta) * cam.point(grid_u)
+    two = complex(5.0, y) + 1j * bulb.point(grid_v)
+    i, k = np.unravel_index(int(np.argmin(np.abs(one[:, None] - two[None, :]))), (400, 400))
+    x = _contact(cam, bulb, theta, (float(grid_u[i]), float(grid_v[k]), y), slid)
+    f = [_contact(cam, bulb, theta + j * h, x, slid)[2] for j in (-2, -1, 0, 1, 2)]
+    first = (f[0] - 8 * f[1] + 8 * f[3] - f[4]) / (12 * h)
+    second = (-f[0] + 16 * f[1] - 30 * f[2] + 16 * f[3] - f[4]) / (12 * h * h)
+    assert y == pytest.approx(x[2], abs=1e-10)
+    assert vx == pytest.approx(0.0, abs=1e-12) and ax == pytest.approx(0.0, abs=1e-10)
+    assert vy == pytest.approx(10.0 * first, rel=1e-8)
+    assert ay == pytest.approx(100.0 * second + 5.0 * first, rel=2e-6)
