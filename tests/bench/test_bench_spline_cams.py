@@ -31,7 +31,7 @@ from kinepoly.cli import main
 from kinepoly.geom.spline import periodic_spline
 from kinepoly.scene.loader import loads_scene
 
-SPLINE_EXAMPLES = ("spline-cam-knife", "spline-cam-roller-rocker", "spline-cam-flat-rocker")
+SPLINE_EXAMPLES = ("spline-cam-knife", "spline-cam-roller-rocker", "spline-cam-flat-rocker", "spline-on-spline")
 KNIFE = EXAMPLES / "spline-cam-knife.toml"
 
 

@@ -204,7 +204,7 @@ def test_the_follower_profile_is_written_back_as_read() -> None:
      r"cams\.1: more than one follower: roller, follower_profile"),
     ('follower_profile = { circle = { center = "C", radius = 20 } }',
      "follower_profile = { points = [[0, 0], [1, 0], [1, 1], [0, 1]] }",
-     r"cams\.1\.follower_profile\.points: a follower profile of points \(two splines in contact\) is not supported"),
+     r"cams\.1\.follower_profile\.points: a follower profile of points touches a cam profile of points"),
     ('center = "C", radius = 20', 'center = "D", radius = 20',
      r'cams\.1\.follower_profile\.circle\.center: no point "D" in link "3" \(the follower\)'),
     ('center = "C", radius = 20', 'center = "C", radius = -2',

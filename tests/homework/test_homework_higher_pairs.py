@@ -25,7 +25,7 @@ from kinepoly.homework.toml_out import scene_toml
 from kinepoly.scene.loader import loads_scene
 
 HIGHER_PAIRS = ("gear-pair", "planetary", "rack-pinion", "eccentric-cam-flat", "cam-roller-rocker", "metu-cam",
-                "curve-on-curve")
+                "curve-on-curve", "spline-on-spline")
 
 
 def _variants(capsys: pytest.CaptureFixture[str], folder: Path, name: str, *options: str) -> list[Path]:

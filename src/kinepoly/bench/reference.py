@@ -83,8 +83,9 @@ class _Equations:
                                                                    start.links[k].theta)]
         self.gears = gear_rows(mp, mechanism, self.start_q, self._world, self._angle)
         self.splines = spline_contacts(mp, mechanism, lambda z: square_root(mp, z))
-        self.poses = len(self.start_q)  # each spline cam's contact parameter follows the poses
-        self.start_q += [c.start(mp, mechanism, self.start_q, self._world, self._angle) for c in self.splines]
+        self.poses = len(self.start_q)  # each spline cam's contact parameter(s) follow the poses
+        for contact in self.splines:
+            self.start_q += contact.starts(mp, mechanism, self.start_q[: self.poses], self._world, self._angle)
 
     def _pose(self, q: list[Any], link: str) -> tuple[Any, Any, Any, Any, Any]:
         mp = self.mp
@@ -112,8 +113,10 @@ class _Equations:
         for name in self.sliders:
             rows += self._slider_rows(q, name, t)
         rows += [cam_row(mp, mech, cam, q, self._world, self._angle) for cam in mech.scene.cams if not cam.is_spline]
-        for n, contact in enumerate(self.splines):
-            rows += contact.rows(mp, mech, q, q[self.poses + n], self._world, self._angle)
+        at = self.poses
+        for contact in self.splines:
+            rows += contact.rows(mp, mech, q, q[at : at + contact.unknowns], self._world, self._angle)
+            at += contact.unknowns
         rows += [gear.value(mp, mech, q, self._world, self._angle) for gear in self.gears]
         for drive, value, rate, accel in self.drives:
             target = value + rate * t + accel * t * t / 2

@@ -24,6 +24,10 @@ A spline cam adds its contact parameter u to the reference's unknowns and two ro
 * a flat face (through T along d, in the follower's frame; the cam on its left): the cam's point S(u) is
   on the face, (S - T) . (J d) = 0, and the profile's tangent runs along it, t(u) . (J d) = 0.
 
+A follower profile of points (a second closed spline S2(v), in the follower's frame) adds both parameters
+u and v and three rows: the world x and y of S(u) - S2(v), and the cross product of both world tangents
+(they are parallel at the contact).
+
 u may carry a complex step (its real part picks the stretch; the cubic is analytic in t), so the
 reference's complex-step Jacobian differentiates these rows exactly as it does the others.
 """
@@ -132,6 +136,13 @@ class SplineContact:
     spline: MpSpline
     norm: Callable[[Any], Any]
     """|v| of a tangent's squared length, analytic under the complex step (the reference's square root)."""
+    follower: MpSpline | None = None
+    """A follower profile of points: its spline, in the follower's frame."""
+
+    @property
+    def unknowns(self) -> int:
+        """The contact's parameters among the reference's unknowns: u, or u and v for two splines."""
+        return 1 if self.follower is None else 2
 
     def _rho(self) -> int | float:
         if self.cam.kind != "roller":
@@ -151,7 +162,26 @@ class SplineContact:
         arm = _rotate(mp, turn, local)
         return (origin[0] + arm[0], origin[1] + arm[1]), _rotate(mp, turn, unit)
 
-    def rows(self, mp: Any, mechanism: Mechanism, q: list[Any], u: Any, world: World, angle: Angle) -> list[Any]:
+    def _pair_rows(self, mp: Any, q: list[Any], u: Any, v: Any, world: World, angle: Angle) -> list[Any]:
+        assert self.follower is not None
+        cam = self.cam
+        rows = []
+        ends = []
+        for link, spline, t in ((cam.cam, self.spline, u), (cam.follower, self.follower, v)):
+            point, tangent = spline.point_and_tangent(mp, t)
+            turn = angle(q, link)
+            origin = world(q, link, (0.0, 0.0))
+            arm = _rotate(mp, turn, point)
+            ends.append(((origin[0] + arm[0], origin[1] + arm[1]), _rotate(mp, turn, tangent)))
+        (p1, t1), (p2, t2) = ends
+        rows = [p1[0] - p2[0], p1[1] - p2[1], (t1[0] * t2[1] - t1[1] * t2[0]) / self.norm(_dot(t1, t1))]
+        return rows
+
+    def rows(self, mp: Any, mechanism: Mechanism, q: list[Any], params: list[Any], world: World,
+             angle: Angle) -> list[Any]:
+        if self.follower is not None:
+            return self._pair_rows(mp, q, params[0], params[1], world, angle)
+        u = params[0]
         at, tangent = self._cam_point(mp, q, u, world, angle)
         cam = self.cam
         if cam.kind == "flat":
@@ -164,13 +194,35 @@ class SplineContact:
         w = world(q, cam.follower, mechanism.local(cam.follower, cam.point))
         return [at[0] - w[0], at[1] - w[1]]
 
+    def starts(self, mp: Any, mechanism: Mechanism, q: list[Any], world: World, angle: Angle) -> list[Any]:
+        """The start of the contact's parameter(s) at the pose ``q`` (Newton refines them)."""
+        if self.follower is None:
+            return [self.start(mp, mechanism, q, world, angle)]
+        return self._pair_start(mp, mechanism, q, world, angle)
+
+    def _pair_start(self, mp: Any, mechanism: Mechanism, q: list[Any], world: World, angle: Angle) -> list[Any]:
+        """The pair of samples (``_START_SAMPLES`` per stretch of each spline) whose points are nearest."""
+        assert self.follower is not None
+        ends = []
+        for link, spline in ((self.cam.cam, self.spline), (self.cam.follower, self.follower)):
+            turn, origin = angle(q, link), world(q, link, (0.0, 0.0))
+            samples = [spline.knots[k] + (spline.knots[k + 1] - spline.knots[k]) * j / _START_SAMPLES
+                       for k in range(len(spline.stretches)) for j in range(_START_SAMPLES)]
+            placed = []
+            for t in samples:
+                arm = _rotate(mp, turn, spline.point_and_tangent(mp, t)[0])
+                placed.append((t, complex(float(origin[0] + arm[0]), float(origin[1] + arm[1]))))
+            ends.append(placed)
+        best = min(((a, b) for a in ends[0] for b in ends[1]), key=lambda pair: abs(pair[0][1] - pair[1][1]))
+        return [best[0][0], best[1][0]]
+
     def start(self, mp: Any, mechanism: Mechanism, q: list[Any], world: World, angle: Angle) -> Any:
         """The sample of the profile that best meets the rows at the pose ``q`` (Newton refines it): the best
         point first, then ``_START_SAMPLES`` along each of the two stretches that meet there."""
         knots, count = self.spline.knots, len(self.spline.stretches)
 
         def miss(u: Any) -> Any:
-            return sum(abs(r) for r in self.rows(mp, mechanism, q, u, world, angle))
+            return sum(abs(r) for r in self.rows(mp, mechanism, q, [u], world, angle))
 
         best = min(range(count), key=lambda k: miss(knots[k]))
         samples = [knots[k] + (knots[k + 1] - knots[k]) * j / _START_SAMPLES
@@ -180,5 +232,6 @@ class SplineContact:
 
 def spline_contacts(mp: Any, mechanism: Mechanism, norm: Callable[[Any], Any]) -> list[SplineContact]:
     """One contact per spline cam of the scene, in the order of ``[[cams]]``."""
-    return [SplineContact(cam, mp_spline(mp, cam.profile_points), norm)
+    return [SplineContact(cam, mp_spline(mp, cam.profile_points), norm,
+                          mp_spline(mp, cam.follower_points) if cam.follower_points else None)
             for cam in mechanism.scene.cams if cam.is_spline]

@@ -185,11 +185,113 @@ class _SplineFace(_LengthRow):
         return np.array([-quadratic])
 
 
-def spline_contacts(mechanism: Mechanism) -> list[_SplineContact | _SplineFace]:
-    """One row per spline cam pair (a knife edge, a roller or a flat face)."""
-    out: list[_SplineContact | _SplineFace] = []
+_PAIR_SAMPLES_PER_PIECE = 16
+_PAIR_STEPS = 40
+
+
+@dataclass(frozen=True)
+class _SplinePair(_LengthRow):
+    """Two splines in contact: the cam's r1(u) and the follower's r2(v) (each in its own link's frame), both
+    counter-clockwise, touching from outside. (u*, v*) is their common normal: the tangents T1 = A_c r1',
+    T2 = A_f r2' parallel and P2 - P1 along the normal n1 = J t1 (t1 = T1 / sigma1),
+
+        T1 x T2 = 0,   T1 . (P2 - P1) = 0        (Newton on u, v from the nearest pair of samples)
+
+    and the row is the gap along it, Phi = n1 . (P2 - P1), P1 = r_c + A_c r1(u*), P2 = r_f + A_f r2(v*).
+
+      Phi_q: by r_f n1, by theta_f n1 . (J A_f r2), by r_c -n1, by theta_c -n1 . (J A_c r1);   nu = 0
+      (u*, v* move the points along the common tangent only, square to n1, while the gap is zero).
+
+    Along the motion the points stay together (t1 . (V2 - V1) = sigma1 u_dot + sigma2 v_dot, V the material
+    velocities) and the tangents turn together (omega_c + kappa1 sigma1 u_dot = omega_f + kappa2 sigma2 v_dot);
+    with n1 . J T2 = -sigma2, n1 . r2'' = -sigma2^2 kappa2 (t2 = -t1) the second derivative of Phi = 0 gives
+
+      gamma = n1 . (-omega_c^2 A_c r1 + omega_f^2 A_f r2) + 2 omega_c sigma1 u_dot + sigma1^2 kappa1 u_dot^2
+              + 2 omega_f sigma2 v_dot + sigma2^2 kappa2 v_dot^2.
+    """
+
+    cam: str
+    follower: str
+    first: PeriodicSpline
+    second: PeriodicSpline
+
+    def _common_normal(self, b: dict[str, Body]) -> tuple[complex, complex, complex, complex, complex, complex]:
+        """(A_c r1, A_c r1', A_c r1'', A_f r2, A_f r2', A_f r2'') at (u*, v*), as complex numbers in the frame."""
+        c, f = b[self.cam], b[self.follower]
+        turn_c, turn_f = complex(c.A[0, 0], c.A[1, 0]), complex(f.A[0, 0], f.A[1, 0])
+        origin_c, origin_f = complex(c.r[0], c.r[1]), complex(f.r[0], f.r[1])
+        grid_u = self.first.period * np.arange(_PAIR_SAMPLES_PER_PIECE * self.first.pieces) / (
+            _PAIR_SAMPLES_PER_PIECE * self.first.pieces)
+        grid_v = self.second.period * np.arange(_PAIR_SAMPLES_PER_PIECE * self.second.pieces) / (
+            _PAIR_SAMPLES_PER_PIECE * self.second.pieces)
+        distance = np.abs((origin_c + turn_c * self.first.point(grid_u))[:, None]
+                          - (origin_f + turn_f * self.second.point(grid_v))[None, :])
+        i, k = np.unravel_index(int(np.argmin(distance)), distance.shape)
+        u, v = float(grid_u[i]), float(grid_v[k])
+        for _ in range(_PAIR_STEPS):
+            p1, d1, e1 = (turn_c * complex(z[0]) for z in self.first.derivatives(np.array([u])))
+            p2, d2, e2 = (turn_f * complex(z[0]) for z in self.second.derivatives(np.array([v])))
+            gap = origin_f + p2 - origin_c - p1
+            f1, f2 = (d1.conjugate() * d2).imag, (d1.conjugate() * gap).real
+            a, bb = (e1.conjugate() * d2).imag, (d1.conjugate() * e2).imag
+            c2, d = (e1.conjugate() * gap).real - abs(d1) ** 2, (d1.conjugate() * d2).real
+            det = a * d - bb * c2
+            if det == 0.0:
+                break
+            du, dv = -(d * f1 - bb * f2) / det, -(-c2 * f1 + a * f2) / det
+            u, v = u + du, v + dv
+            if abs(du) <= 1e-15 * self.first.period and abs(dv) <= 1e-15 * self.second.period:
+                break
+        p1, d1, e1 = (turn_c * complex(z[0]) for z in self.first.derivatives(np.array([u])))
+        p2, d2, e2 = (turn_f * complex(z[0]) for z in self.second.derivatives(np.array([v])))
+        return p1, d1, e1, p2, d2, e2
+
+    def _normal(self, d1: complex) -> np.ndarray:
+        n = 1j * d1 / abs(d1)
+        return _vector(n)
+
+    def phi(self, b: dict[str, Body]) -> np.ndarray:
+        c, f = b[self.cam], b[self.follower]
+        p1, d1, _, p2, _, _ = self._common_normal(b)
+        gap = f.r + _vector(p2) - c.r - _vector(p1)
+        return np.array([float(self._normal(d1) @ gap)])
+
+    def jacobian(self, b: dict[str, Body], layout: Layout) -> np.ndarray:
+        p1, d1, _, p2, _, _ = self._common_normal(b)
+        n1 = self._normal(d1)
+        out = np.zeros((1, layout.n))
+        for link, sign, arm in ((self.follower, 1.0, _vector(p2)), (self.cam, -1.0, _vector(p1))):
+            k = layout.column(link)
+            if k is not None:
+                out[0, k : k + 2] += sign * n1
+                out[0, k + 2] += sign * float(n1 @ (J @ arm))
+        return out
+
+    def gamma(self, b: dict[str, Body]) -> np.ndarray:
+        c, f = b[self.cam], b[self.follower]
+        p1, d1, e1, p2, d2, e2 = self._common_normal(b)
+        sigma1, sigma2 = abs(d1), abs(d2)
+        kappa1 = (d1.conjugate() * e1).imag / sigma1**3
+        kappa2 = (d2.conjugate() * e2).imag / sigma2**3
+        t1, n1 = _vector(d1 / sigma1), self._normal(d1)
+        arm_c, arm_f = _vector(p1), _vector(p2)
+        relative = f.r_dot + f.omega * (J @ arm_f) - c.r_dot - c.omega * (J @ arm_c)
+        along, turning = float(t1 @ relative), f.omega - c.omega
+        a = (kappa2 * along + turning) / (kappa1 + kappa2)  # sigma1 u_dot
+        bb = along - a                                      # sigma2 v_dot
+        quadratic = float(n1 @ (-(c.omega**2) * arm_c + f.omega**2 * arm_f))
+        return np.array([quadratic + 2.0 * c.omega * a + kappa1 * a * a + 2.0 * f.omega * bb + kappa2 * bb * bb])
+
+
+def spline_contacts(mechanism: Mechanism) -> list[_SplineContact | _SplineFace | _SplinePair]:
+    """One row per spline cam pair (a knife edge, a roller, a flat face or a follower profile of points)."""
+    out: list[_SplineContact | _SplineFace | _SplinePair] = []
     for cam in mechanism.scene.cams:
         if not cam.is_spline:
+            continue
+        if cam.follower_points:
+            out.append(_SplinePair(cam.cam, cam.follower, periodic_spline(cam.profile_points),
+                                   periodic_spline(cam.follower_points)))
             continue
         if cam.flat is not None and cam.kind == "flat":
             (x, y), angle = cam.flat

@@ -320,7 +320,7 @@ def record_spline_equivalent(polygon: Polygon, cam: CamSpec) -> None:
     k = centre_label(cam)
     if k not in polygon.positions.marks:
         return
-    w = cam.point or contact_label(cam)
+    w = (f"K2{cam.name}" if cam.is_curve_pair else cam.point) or contact_label(cam)  # K2: engine.cam_curves
     length = magnitude(complex(polygon.world(w)[0]) - complex(polygon.world(k)[0]))
     flat = cam.kind == "flat"
     polygon.step(Step(polygon="velocity", kind="known",

@@ -27,6 +27,7 @@ from kinepoly.engine.cam_contact import (
     face_parameter,
     offset_of,
 )
+from kinepoly.engine.cam_curves import curve_candidates, curve_contact_rows, degenerate_rows, follower_centre_label
 from kinepoly.engine.groups import CamGroup, NewtonGroup
 from kinepoly.engine.inputs import describe_input
 from kinepoly.engine.placement import Failure, Placement
@@ -110,6 +111,9 @@ def _unreachable(group: CamGroup) -> str:
                 "move the pivot or the face toward the cam")
     path = (f"the circle W runs on about the pivot {joint.point}" if isinstance(joint, Revolute)
             else f"the line W slides along on {group.carrier}")
+    if cam.is_curve_pair:
+        return (f"follower {group.link} cannot touch cam {group.known}: held by its joint, its profile cannot be laid "
+                "against the cam's profile from outside; move the follower's joint or its profile toward the cam")
     what = _what(cam)
     offset = _offset_words(cam)
     return (f"follower {group.link} cannot touch cam {group.known}: {path} misses the profile{offset}, so {what} "
@@ -161,7 +165,8 @@ def _undercut(cam: CamSpec, curvature: np.ndarray) -> Bools:
 def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: Policy) -> Placement:
     """The follower of ``group`` placed on its cam at every row, with its contact recorded."""
     cam = group.cam
-    candidates = contact_candidates(mechanism, group, placed.poses)
+    curves = curve_candidates(mechanism, group, placed.poses) if cam.is_curve_pair else None
+    candidates = contact_candidates(mechanism, group, placed.poses) if curves is None else curves.candidates
     ok, failures = placed.ok, placed.failures
     missing = ok & ~candidates.found.any(axis=1)
     if missing.any():
@@ -172,7 +177,26 @@ def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: 
     u = candidates.parameter(choice)
     placed = replace(placed, poses={**placed.poses, group.link: candidates.pose(choice)}, ok=ok, failures=failures,
                      notices=(*placed.notices, *notices))
-    return _recorded(mechanism, group.name, cam, u, placed, policy)
+    placed = _recorded(mechanism, group.name, cam, u, placed, policy)
+    if curves is None:
+        return placed
+    return _curve_recorded(mechanism, group.name, cam, u, curves.follower_parameter(choice), placed, policy)
+
+
+def _curve_recorded(mechanism: Mechanism, group: str, cam: CamSpec, u: Reals, v: Reals, placed: Placement,
+                    policy: Policy) -> Placement:
+    """Two splines in contact: the follower profile's centre of curvature K2 marked, the rows where the
+    curvatures leave no link between both centres raised or marked."""
+    rows = curve_contact_rows(cam, placed.poses[cam.cam], placed.poses[cam.follower], u, v)
+    bad, why = degenerate_rows(cam, rows)
+    ok, failures = placed.ok, placed.failures
+    bad = ok & bad
+    if bad.any():
+        policy.unreachable(_where(mechanism, cam) + why)
+        failures = (*failures, Failure(group, follower_centre_label(cam), bad, lambda _: why))
+        ok = ok & ~bad
+    return replace(placed, ok=ok, failures=failures,
+                   marks={**placed.marks, follower_centre_label(cam): rows.centre})
 
 
 def _recorded(mechanism: Mechanism, group: str, cam: CamSpec, u: Reals, placed: Placement,

@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from kinepoly.engine.cam_contact import centre_label, face_direction
+from kinepoly.engine.cam_curves import follower_centre_label
 from kinepoly.engine.groups import CamGroup
 from kinepoly.engine.lines import (
     known_pairs,
@@ -49,7 +50,10 @@ __all__ = ["acceleration_by_cam", "velocity_by_cam"]
 
 
 def _ends(group: CamGroup) -> tuple[str, str]:
-    """K (the cam's point at the centre of curvature) and W (the follower's point)."""
+    """K (the cam's point at the centre of curvature) and W (the follower's point; where the follower's profile
+    is a spline, its own centre of curvature K2)."""
+    if group.cam.is_curve_pair:
+        return centre_label(group.cam), follower_centre_label(group.cam)
     return centre_label(group.cam), group.cam.point or ""
 
 
@@ -105,18 +109,19 @@ def velocity_by_cam(polygon: Polygon, group: CamGroup, sliding: dict[str, Points
     line1 = revolute_line(polygon, group.known, k, w, None)
     label1 = perpendicular_label(polygon, group.known, k, w)
     joint = group.joint
-    line2, label2, far, direction2 = _own_line(polygon, group, w, group.link, w)
+    tip = polygon.label(group.link, w)  # W itself, or K2@follower for a follower profile of points
+    line2, label2, far, direction2 = _own_line(polygon, group, w, None if group.cam.is_curve_pair else group.link, tip)
     crossing = polygon.cross_lines(line1, line2, w, group.name, (label1, label2))
-    polygon.add_tip(group.link, w, crossing.point)
+    tip = polygon.add_tip(group.link, w, crossing.point)
     equivalent[group.cam.name] = np.asarray(crossing.along_first + 0j)
     k_label = polygon.label(group.known, k)
     if polygon.record:
-        record_intersection(polygon, w, f"v_{w} = v_{k_label} + v_{w}/{k_label} = v_{far} + v_{w}/{far}", line1, line2,
+        record_intersection(polygon, tip, f"v_{tip} = v_{k_label} + v_{tip}/{k_label} = v_{far} + v_{tip}/{far}", line1, line2,
                              (label1, label2), crossing,
-                             known_pairs((f"v_{k_label}", f"v_{w}/{k_label}"), (f"v_{far}", f"v_{w}/{far}")),
-                             (perpendicular(polygon, f"v_{w}/{k_label}", group.known, k, w), direction2))
+                             known_pairs((f"v_{k_label}", f"v_{tip}/{k_label}"), (f"v_{far}", f"v_{tip}/{far}")),
+                             (perpendicular(polygon, f"v_{tip}/{k_label}", group.known, k, w), direction2))
     if isinstance(joint, Revolute):
-        read_rate(polygon, group.link, joint.point, w, crossing.along_second())
+        read_rate(polygon, group.link, joint.point, tip, crossing.along_second())
     else:
         slide_rel(polygon, joint, group.link, w, sliding)
 
@@ -177,12 +182,15 @@ def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
     b: Polygon = ctx.b  # type: ignore[attr-defined]
     k, w = _ends(group)
     omega = np.asarray(ctx.v.equivalent[group.cam.name].real)  # type: ignore[attr-defined]
-    line1, n1, label1 = ctx.normal_line(group.known, k, w, group.link, rigid=False, omega=omega)  # type: ignore[attr-defined]
+    named = b.label(group.link, w)  # W itself, or K2@follower for a follower profile of points
+    line1, n1, label1 = ctx.normal_line(group.known, k, w, group.link, rigid=False, omega=omega,  # type: ignore[attr-defined]
+                                        name=named)
     vectors: list[DrawnVector] = [n1] if n1 else []
     joint = group.joint
     line2: Line
     if isinstance(joint, Revolute):
-        line2, n2, label2 = ctx.normal_line(group.carrier, joint.point, w, group.link)  # type: ignore[attr-defined]
+        line2, n2, label2 = ctx.normal_line(group.carrier, joint.point, w, group.link,  # type: ignore[attr-defined]
+                                            rigid=not group.cam.is_curve_pair, name=named)
         vectors += [n2] if n2 else []
         laid: list[DrawnVector] = []
     else:
@@ -190,17 +198,17 @@ def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
         line2, laid = ctx.slide_line(joint, group.carrier, group.link, w)  # type: ignore[attr-defined]
         label2 = f"sliding term along slider {joint.name}"
     crossing = b.cross_lines(line1, line2, w, group.name, (label1, label2))
-    b.add_tip(group.link, w, crossing.point)
+    tip = b.add_tip(group.link, w, crossing.point)  # W itself, or K2@follower for a follower profile of points
     if b.record:
         k_label = b.label(group.known, k)
         far = joint.point if isinstance(joint, Revolute) else b.label(group.carrier, w)
-        second = (along_normal(ctx, f"a^t_{w}/{far}", group.carrier, far, w, vectors[-1] if len(vectors) > 1 else None)  # type: ignore[arg-type]
-                  if isinstance(joint, Revolute) else along_slide(ctx, f"a_{w}/{far}", joint, group.carrier, w, laid))  # type: ignore[arg-type]
-        record_crossing(ctx, w, f"a_{w} = a_{k_label} + a^n_{w}/{k_label} + a^t_{w}/{k_label} = {_own_side(joint, w, far, laid)}",  # type: ignore[arg-type]
+        second = (along_normal(ctx, f"a^t_{tip}/{far}", group.carrier, far, w, vectors[-1] if len(vectors) > 1 else None)  # type: ignore[arg-type]
+                  if isinstance(joint, Revolute) else along_slide(ctx, f"a_{tip}/{far}", joint, group.carrier, w, laid))  # type: ignore[arg-type]
+        record_crossing(ctx, tip, f"a_{tip} = a_{k_label} + a^n_{tip}/{k_label} + a^t_{tip}/{k_label} = {_own_side(joint, tip, far, laid)}",  # type: ignore[arg-type]
                 line1, line2, (label1, label2), crossing, [*vectors, *laid],
-                (along_normal(ctx, f"a^t_{w}/{k_label}", group.known, k, w, n1), second))  # type: ignore[arg-type]
+                (along_normal(ctx, f"a^t_{tip}/{k_label}", group.known, k, w, n1), second))  # type: ignore[arg-type]
     if isinstance(joint, Revolute):
-        read_rate(b, group.link, joint.point, w, crossing.along_second())
+        read_rate(b, group.link, joint.point, tip, crossing.along_second())
     else:
         ctx.slide_values(joint, group.link, w)  # type: ignore[attr-defined]
 

@@ -139,6 +139,8 @@ def _cam(solution: Solution, say: Catalogue, cam: CamSpec) -> list[Paragraph]:
         key = "problem.follower_circle" if cam.follower_profile else "problem.roller"
         touch = say.say(key + "_inside" if cam.inside else key, follower=follower,
                         point=cam.point, radius=_length(say, cam.roller_radius, unit))
+    elif cam.follower_points:
+        touch = say.say("problem.follower_spline", follower=follower, count=str(len(cam.follower_points)))
     elif cam.kind == "knife":
         touch = say.say("problem.knife", follower=follower, point=cam.point or "")
     else:

@@ -91,6 +91,10 @@ def _cam_toml(scene: Scene, cam: CamSpec) -> list[str]:
     if cam.kind == "roller" and cam.follower_profile:
         out.append(f"follower_profile = {{ circle = {{ center = {json.dumps(cam.point)}, "
                    f"radius = {toml_number(cam.roller_radius)} }} }}")
+    elif cam.follower_points:
+        pairs = [_pair(p) for p in cam.follower_points]
+        rows = [", ".join(pairs[k:k + 4]) + "," for k in range(0, len(pairs), 4)]
+        out.append("follower_profile = { points = [\n" + "\n".join(f"  {row}" for row in rows) + "\n] }")
     elif cam.kind == "roller":
         out.append(f"roller = {{ center = {json.dumps(cam.point)}, radius = {toml_number(cam.roller_radius)} }}")
     elif cam.kind == "knife":

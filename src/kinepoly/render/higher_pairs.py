@@ -12,6 +12,7 @@ import math
 from dataclasses import replace
 
 from kinepoly.geom.profile import outline
+from kinepoly.geom.spline import periodic_spline
 from kinepoly.geom.vec import Vec, add, scale
 from kinepoly.render.labels import Request
 from kinepoly.render.layout import Panel
@@ -57,6 +58,20 @@ def _point(solution: Solution, link: str, name: str) -> Vec:
 
 def _profile(solution: Solution, cam: CamSpec) -> list[Vec]:
     return [_world(solution, cam.cam, p) for p in outline(cam, _PROFILE_POINTS)]
+
+
+def _follower_profile(solution: Solution, cam: CamSpec) -> list[Vec]:
+    """A follower profile of points, placed with the follower (empty for any other follower)."""
+    if not cam.follower_points or cam.follower not in solution.pose.links:
+        return []
+    return [_world(solution, cam.follower, (z.real, z.imag))
+            for z in periodic_spline(cam.follower_points).sample(_PROFILE_POINTS).tolist()]
+
+
+def _follower_centre(solution: Solution, cam: CamSpec) -> Vec | None:
+    """A follower profile of points: its centre of curvature at the contact (the equivalent link's end)."""
+    k = solution.pose.marks.get(f"K2{cam.name}") if cam.follower_points else None
+    return k if k is not None and all(math.isfinite(c) for c in k) else None
 
 
 def _size(cam: CamSpec) -> float:
@@ -113,7 +128,7 @@ def higher_pair_points(solution: Solution) -> list[Vec]:
     for cam in solution.scene.cams:
         if cam.cam not in solution.pose.links:
             continue
-        out += _profile(solution, cam)
+        out += _profile(solution, cam) + _follower_profile(solution, cam)
         if cam.kind == "roller" and cam.point is not None and cam.follower in solution.pose.links:
             out += _circle_points(_point(solution, cam.follower, cam.point), cam.roller_radius)
         elif cam.kind == "flat" and cam.follower in solution.pose.links:
@@ -154,6 +169,10 @@ def _cam_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[Item]:
             items.append(replace(ring, fill=link_color(_link_index(solution, cam.follower)), fill_opacity=0.18))
         else:
             items.append(_ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"roller {cam.name}"))
+    elif cam.follower_points:  # a spline of the follower's own, shaded like the cam's
+        items.append(Path(tuple(panel.paper(p) for p in _follower_profile(solution, cam)), Stroke(follower_ink, _PROFILE),
+                          fill=link_color(_link_index(solution, cam.follower)), fill_opacity=0.18, closed=True,
+                          role=f"follower profile {cam.name}"))
     elif cam.kind == "flat":
         a, b = _flat_face(solution, cam)
         items.append(Path((panel.paper(a), panel.paper(b)), Stroke(follower_ink, 0.6), role=f"flat face {cam.name}"))
@@ -169,6 +188,9 @@ def _equivalent_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[It
         return []
     k = panel.paper(centre)
     name = cam.equivalent or f"K{cam.name}{cam.point or ''}"
+    if cam.follower_points:
+        other = _follower_centre(solution, cam)
+        return [] if other is None else [Path((k, panel.paper(other)), _EQUIVALENT, role=f"equivalent link {name}K2{cam.name}")]
     if cam.kind != "flat":
         assert cam.point is not None
         w = panel.paper(_point(solution, cam.follower, cam.point))
@@ -209,6 +231,7 @@ def _normal_ends(solution: Solution, pair: str, at: Vec, n: Vec) -> tuple[float,
             centre = _centre(solution, cam)
             ends += [centre] if centre is not None else []
             ends += [_point(solution, cam.follower, cam.point)] if cam.point is not None else []
+            ends += [other] if (other := _follower_centre(solution, cam)) is not None else []
             size = _size(cam)
     for gear in solution.scene.gears:
         if gear.name == pair:
@@ -238,6 +261,8 @@ def higher_pair_items(solution: Solution, panel: Panel) -> tuple[list[Item], lis
     marked = [("contact", contact_label(solution, pair), contact.point) for pair, contact in solution.contacts.items()]
     marked += [("centre of curvature", f"K{cam.name}", centre) for cam in solution.scene.cams
                if cam.is_spline and cam.follower in solution.pose.links and (centre := _centre(solution, cam)) is not None]
+    marked += [("centre of curvature", f"K2{cam.name}", other) for cam in solution.scene.cams
+               if (other := _follower_centre(solution, cam)) is not None]
     for kind, name, where in marked:
         at = panel.paper(where)
         items.append(Circle(at, 0.7, Stroke(_NORMAL.color, 0.3), fill=_NORMAL.color, role=f"{kind} {name}"))

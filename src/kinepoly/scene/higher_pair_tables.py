@@ -194,7 +194,8 @@ class HigherPairTables(ReaderState):
         if len(kinds) != 1:
             self.report.add(path, f"{'no follower' if not kinds else 'more than one follower: ' + ', '.join(kinds)}; "
                             'expected one of roller = { center = "W", radius = r }, flat = { through = [x, y], '
-                            'angle = a }, knife = "W", follower_profile = { circle = { center = "C", radius = r } }')
+                            'angle = a }, knife = "W", follower_profile = { circle = { center = "C", radius = r } } '
+                            'or follower_profile = { points = [[x, y], ...] }')
             return None
         if cam is None or follower is None or circle is None:
             return None
@@ -210,6 +211,10 @@ class HigherPairTables(ReaderState):
         if kind == "knife":
             point = self._follower_point(key, table["knife"], follower)
             return None if point is None else _with(base, kind="knife", point=point)
+        own_table = table[kind] if kind == "follower_profile" else None
+        if isinstance(own_table, dict) and "points" in own_table and "circle" not in own_table:
+            check_keys(self.report, key, own_table, ("circle", "points"))
+            return self._follower_points(key, own_table["points"], base)
         if kind in ("roller", "follower_profile"):
             own = kind == "follower_profile"
             circle_table = self._follower_circle(key, table[kind]) if own else table[kind]
@@ -244,17 +249,34 @@ class HigherPairTables(ReaderState):
         return None if found is None else _with(base, kind="flat", flat=found)
 
     def _follower_circle(self, path: KeyPath, value: object) -> object | None:
-        """The ``circle`` table of a ``follower_profile``; a ``points`` follower profile is refused by name."""
-        table = read_table(self.report, path, value, '{ circle = { center = "C", radius = r } }')
+        """The ``circle`` table of a ``follower_profile`` (None for a ``points`` one, read apart)."""
+        table = read_table(self.report, path, value,
+                           '{ circle = { center = "C", radius = r } } or { points = [[x, y], ...] }')
         if table is None:
             return None
-        if "points" in table:
-            self.report.add(path + ("points",), "a follower profile of points (two splines in contact) is not "
-                            'supported; expected circle = { center = "C", radius = r }, a circle of the follower')
+        check_keys(self.report, path, table, ("circle", "points"))
+        if "points" in table and "circle" in table:
+            self.report.add(path, "a follower profile is a circle or points; expected one of them")
             return None
-        check_keys(self.report, path, table, ("circle",))
         return require(self.report, path, table, "circle",
                        'circle = { center = "C", radius = r }, C a point of the follower')
+
+    def _follower_points(self, path: KeyPath, value: object, base: CamSpec) -> CamSpec | None:
+        """A ``follower_profile = { points = [...] }``: a closed spline in the follower's frame, touching a
+        ``points`` cam from outside."""
+        points = read_profile_points(self.report, path + ("points",), value, self.kinds.length)
+        if points is None:
+            return None
+        if not base.is_spline:
+            self.report.add(path + ("points",), "a follower profile of points touches a cam profile of points; "
+                            'expected profile = { points = [...] } on the cam, or follower_profile = { circle = '
+                            '{ center = "C", radius = r } } for a circle cam')
+            return None
+        if base.inside:
+            self.report.add(path[:-1] + ("contact",), 'two profiles of points touch from outside only; expected '
+                            'contact = "outside"')
+            return None
+        return _with(base, kind="knife", point=None, follower_points=points)
 
     def read_profile(self, path: KeyPath, value: object) -> tuple[Vector, float, tuple[Vector, ...]] | None:
         """A circle's (centre, radius, ()), or a ``points`` profile's ((0, 0), 0, points)."""

@@ -150,11 +150,20 @@ class CamSpec:
     """Whether the follower touches by a circular profile of its own (``follower_profile``), centred on
     ``point`` with radius ``roller_radius``, rather than by a roller turning on a pin at ``point``: the same
     motion (a roller's spin moves nothing else), so the pair is read as a roller (``kind`` "roller")."""
+    follower_points: tuple[Vector, ...] = ()
+    """A follower profile of points (``follower_profile = { points = [...] }``): the points its closed spline
+    runs through, counter-clockwise, in the follower's frame. The two splines touch (``kind`` "knife",
+    ``point`` None): the pair is replaced by the link joining both centres of curvature."""
 
     @property
     def is_spline(self) -> bool:
         """Whether the profile is a closed spline through ``profile_points`` rather than a circle."""
         return bool(self.profile_points)
+
+    @property
+    def is_curve_pair(self) -> bool:
+        """Whether the follower touches by a spline profile of points of its own (two splines in contact)."""
+        return bool(self.follower_points)
 
 
 @dataclass(frozen=True)

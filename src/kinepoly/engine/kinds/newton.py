@@ -33,6 +33,12 @@ def find(mechanism: Mechanism, known: set[str]) -> NewtonGroup | None:
                 f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the cam {cam.cam} is not known before its "
                 f"follower {cam.follower} (the follower drives the cam); this version solves a points profile only "
                 "on a cam placed first: drive the cam or join it to the frame")
+        if cam.is_curve_pair:
+            raise SceneError(
+                f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the follower {cam.follower} with a profile of "
+                "points floats (it is not held by one pin or one slider to a link placed before it); this version "
+                "solves two profiles of points in contact only for a follower on a pivot or a slide: hold the "
+                "follower by one joint, or give it a circle follower_profile")
         floating.append(cam)
     if not rest:
         return None
