@@ -39,6 +39,7 @@ from kinepoly.engine.steps import Step
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline, roots_by_row
+from kinepoly.geom.tolerances import LAST_BITS_REL, PARALLEL_SIN
 from kinepoly.geom.vec import magnitude
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
@@ -222,7 +223,7 @@ def _flat_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, Arr
         frame = spline.frame(u)
         ok &= (frame.tangent * along_cam[:, None].conjugate()).real > 0.0  # the same sense: the cam on the left
         across = along_local.conjugate().imag  # Im(conj(d) e), e the block's x-axis along the slide
-        if abs(across) < 1e-12:
+        if abs(across) < PARALLEL_SIN:
             raise SceneError(f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the flat face runs along the "
                              f"slide of {joint.name}, so the cam cannot move the follower; expected a face across the slide")
         zero = np.zeros((n, 1))
@@ -286,7 +287,7 @@ def face_parameter(cam: CamSpec, along: complex, through: complex) -> float:
             break
         step = (first * along.conjugate()).imag / slope
         u -= step
-        if abs(step) <= 1e-15 * spline.period:
+        if abs(step) <= LAST_BITS_REL * spline.period:
             break
     return u % spline.period
 

@@ -34,14 +34,12 @@ from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.placement import Placement
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Reals
+from kinepoly.geom.tolerances import ROUNDING_REL, SAME_REL
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import GearSpec, PitchCircle
 
 __all__ = ["Planet", "place_planet", "planet_of"]
-
-_COAXIAL_TOL = 1e-9
-"""How far (times the mechanism's size) a known gear's pitch centre may lie from the arm's pivot."""
 
 
 @dataclass(frozen=True)
@@ -130,11 +128,11 @@ def place_planet(mechanism: Mechanism, group: NewtonGroup, placed: Placement) ->
     for gear in found.meshes:
         known = gear.links[1 - gear.links.index(found.planet)]
         centre = poses[known].world(mechanism.local(known, _curve(gear, known).center))
-        if np.max(np.abs(centre - pivot)) > _COAXIAL_TOL * size:
+        if np.max(np.abs(centre - pivot)) > SAME_REL * size:
             raise _not_built(mechanism, group, f"the pitch centre {_curve(gear, known).center} of gear {known} is not on "
                                                f"the arm's pivot {found.pivot.point}")
     one, two = (_mesh_terms(g, found.planet) for g in found.meshes)
-    if math.isclose(one.ratio, two.ratio, rel_tol=1e-12):
+    if math.isclose(one.ratio, two.ratio, rel_tol=ROUNDING_REL):
         raise _not_built(mechanism, group, "its two meshes have the same ratio, so they do not fix the arm")
     theta_one = free_delta(mechanism, np.angle(poses[one.known].rotation), placed.values)
     theta_two = free_delta(mechanism, np.angle(poses[two.known].rotation), placed.values)

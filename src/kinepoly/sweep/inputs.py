@@ -33,12 +33,11 @@ import numpy as np
 
 from kinepoly.engine.assembly import Continuity
 from kinepoly.engine.centrode import mechanism_size
-from kinepoly.engine.newton import CLOSED_REL
 from kinepoly.engine.plan import NewtonGroup, PositionPlan
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals
-from kinepoly.geom.tolerances import ANGLE_SAME_RAD, ROUNDING_REL, SAME_REL
+from kinepoly.geom.tolerances import ANGLE_SAME_RAD, NEWTON_CLOSED_REL, ROUNDING_REL, SAME_REL
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
@@ -245,15 +244,15 @@ def _cycle(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: in
 def _newton_margin(mechanism: Mechanism, size: float) -> float:
     """How far inside the last input where a Newton group closes a range's end is put, in the input's unit.
 
-    Beyond a dead point by less than about ``CLOSED_REL`` radians (or ``CLOSED_REL`` times the mechanism's
-    size for a slider), Newton's method still meets its tolerance from a start close enough: the
+    Beyond a dead point by less than about ``NEWTON_CLOSED_REL`` radians (or ``NEWTON_CLOSED_REL`` times the
+    mechanism's size for a slider), Newton's method still meets its tolerance from a start close enough: the
     subdivision's last input may lie there, where a sweep's rows, walked from a whole step away, do
     not close. ``_NEWTON_EDGE`` times that is well inside, and still far below a printed digit.
     """
     if isinstance(mechanism.scene.input, LinkInput):
-        radians = _NEWTON_EDGE * CLOSED_REL
+        radians = _NEWTON_EDGE * NEWTON_CLOSED_REL
         return math.degrees(radians) if mechanism.scene.units.angle == "deg" else radians
-    return _NEWTON_EDGE * CLOSED_REL * size
+    return _NEWTON_EDGE * NEWTON_CLOSED_REL * size
 
 
 def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: float,
