@@ -86,7 +86,7 @@ def merged_pages(pages: Sequence[Sequence[Item]]) -> list[tuple[Item, list[int]]
     order: list[tuple[Item, list[int]]] = []
     kept: dict[int, list[tuple[Item, list[int]]]] = {}  # by the item's id, its entries in ``order``
     for number, items in enumerate(pages, 1):
-        position = dict(zip(map(id, order), range(len(order))))  # by the entry's id (this page's new ones: none)
+        position = dict(zip(map(id, order), range(len(order)), strict=True))  # by the entry's id (this page's new ones: none)
         merged: list[tuple[Item, list[int]]] = []
         start = 0
         for item in items:

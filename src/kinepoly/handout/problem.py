@@ -165,7 +165,7 @@ def _gears(solution: Solution, say: Catalogue, gear: GearSpec) -> Paragraph:
     """A gear pair: each pitch circle's centre and radius (a rack's pitch line) and how they mesh."""
     unit = solution.scene.units.length
     curves = []
-    for link, pitch in zip(gear.links, gear.pitch):
+    for link, pitch in zip(gear.links, gear.pitch, strict=True):
         if isinstance(pitch, PitchCircle):
             curves.append(say.say("problem.pitch_circle", link=link, centre=pitch.center,
                                   radius=_length(say, pitch.radius, unit)))
@@ -182,7 +182,7 @@ def _gear_angles(solution: Solution, say: Catalogue) -> list[Paragraph]:
     translates: its angle says nothing)."""
     ground = solution.mechanism.ground or ""
     inp = solution.scene.input
-    driven = dict.fromkeys(link for gear in solution.scene.gears for link, pitch in zip(gear.links, gear.pitch)
+    driven = dict.fromkeys(link for gear in solution.scene.gears for link, pitch in zip(gear.links, gear.pitch, strict=True)
                            if isinstance(pitch, PitchCircle) and link != ground and link in solution.pose.links
                            and not (isinstance(inp, LinkInput) and inp.link == link))
     if not driven:

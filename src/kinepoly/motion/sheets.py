@@ -247,7 +247,7 @@ def _functions(frames: Frames, k: int, rect: tuple[float, float, float, float]) 
     for j, v in enumerate(chosen):
         ink = Stroke(link_label_color(j + 1), 0.3)
         run: list[tuple[float, float]] = []
-        for x, y, ok in zip(xs, v.values, v.valid):
+        for x, y, ok in zip(xs, v.values, v.valid, strict=True):
             if ok and math.isfinite(float(y)):
                 run.append(at(float(x), float(y)))
                 continue

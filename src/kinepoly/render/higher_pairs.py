@@ -119,7 +119,7 @@ def higher_pair_points(solution: Solution) -> list[Vec]:
         elif cam.kind == "flat" and cam.follower in solution.pose.links:
             out += list(_flat_face(solution, cam))
     for gear in solution.scene.gears:
-        for side, (link, curve) in enumerate(zip(gear.links, gear.pitch)):
+        for side, (link, curve) in enumerate(zip(gear.links, gear.pitch, strict=True)):
             if isinstance(curve, PitchCircle):
                 out += _circle_points(_point(solution, link, curve.center), curve.radius)
             elif gear.name in solution.contacts:
@@ -184,7 +184,7 @@ def _equivalent_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[It
 
 def _gear_items(solution: Solution, gear: GearSpec, panel: Panel) -> list[Item]:
     items: list[Item] = []
-    for side, (link, curve) in enumerate(zip(gear.links, gear.pitch)):
+    for side, (link, curve) in enumerate(zip(gear.links, gear.pitch, strict=True)):
         if link != solution.mechanism.ground and link not in solution.pose.links:
             continue
         ink = link_label_color(_link_index(solution, link))
@@ -212,7 +212,7 @@ def _normal_ends(solution: Solution, pair: str, at: Vec, n: Vec) -> tuple[float,
             size = _size(cam)
     for gear in solution.scene.gears:
         if gear.name == pair:
-            ends += [_point(solution, link, c.center) for link, c in zip(gear.links, gear.pitch)
+            ends += [_point(solution, link, c.center) for link, c in zip(gear.links, gear.pitch, strict=True)
                      if isinstance(c, PitchCircle)]
             size = max(c.radius for c in gear.pitch if isinstance(c, PitchCircle))
     along = [(e[0] - at[0]) * n[0] + (e[1] - at[1]) * n[1] for e in ends] + [0.0]

@@ -173,7 +173,7 @@ def _geared_links(mechanism: Mechanism) -> set[str]:
     out: set[str] = set()
     for gear in mechanism.scene.gears:
         out.update(gear.links)
-        for link, curve in zip(gear.links, gear.pitch, strict=True):
+        for curve in gear.pitch:
             if isinstance(curve, PitchCircle):
                 out.update(x for x in mechanism.links_of_point(curve.center))
     return out
