@@ -42,7 +42,8 @@ def options_table() -> str:
             default = action.default
             shown = "" if default is None or default is False else " ".join(map(str, default)) \
                 if isinstance(default, (list, tuple)) else str(default)
-            rows.append(f"| `{name}` | `{_cell(flags)}` | {_cell((action.help or '').replace('%%', '%'))} | {_cell(shown)} |")
+            rows.append(f"| `{name}` | `{_cell(flags)}` | "
+                        f"{_cell((action.help or '').replace('%%', '%'))} | {_cell(shown)} |")
     return "\n".join(rows)
 
 

@@ -69,7 +69,8 @@ def test_bad_input_gets_a_clear_message_and_its_exit_code(capsys: pytest.Capture
     assert "Traceback" not in err
     assert err.startswith("kinepoly: error: ")
     assert fragment in err
-    if code == 2 and name not in {"wrong mobility", "mobility two", "non-rigid given", "compound hinge over-constrains"}:
+    if code == 2 and name not in {"wrong mobility", "mobility two", "non-rigid given",
+                                  "compound hinge over-constrains"}:
         assert f"{path}:" in err  # FILE:LINE: names the file
 
 

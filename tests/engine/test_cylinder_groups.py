@@ -325,7 +325,8 @@ def test_a_motor_in_a_leg_is_a_driven_leg_too() -> None:
     still a triad, and P's velocity and acceleration equal central differences of P's place solved with both
     inputs moving at their rates (s = 400 + 50 t - 10 t^2, theta47 = 10 deg + 0.3 t - 0.1 t^2 rad)."""
     text = OWN_FRAMES.replace("4 = { points = { B0 = [0, 0], B = [250, 0] } }",
-                              "4 = { points = { B0 = [0, 0], M = [125, 0] } }\n7 = { points = { M = [0, 0], B = [125, 0] } }")
+                              "4 = { points = { B0 = [0, 0], M = [125, 0] } }\n"
+                              "7 = { points = { M = [0, 0], B = [125, 0] } }")
     text = text.replace("[input]\nslider", "[[input]]\nslider").replace(
         "s_ddot = -20\n", "s_ddot = -20\n\n[[input]]\nlink = \"7\"\nrelative_to = \"4\"\nangle = ANGLE\nomega = 0.3\n"
         "alpha = -0.2\n").replace("B = [396, 250]", "B = [380, 250]\nM = [400, 125]")

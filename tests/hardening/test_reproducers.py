@@ -183,7 +183,8 @@ def test_ctrl_c_in_a_process(tmp_path: Path) -> None:
     (tmp_path / "s.toml").write_text(BASE)
     script = ("import signal, kinepoly.solution as s\n"
               "def slow(*a, **k):\n    signal.raise_signal(signal.SIGINT)\n"
-              f"s.solve = slow\nfrom kinepoly.cli import main\nraise SystemExit(main(['solve', {str(tmp_path / 's.toml')!r}]))\n")
+              "s.solve = slow\nfrom kinepoly.cli import main\nraise SystemExit(main(['solve', "
+              f"{str(tmp_path / 's.toml')!r}]))\n")
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120, check=False,
                           env={**os.environ, "PYTHONWARNINGS": "ignore"})
     assert done.returncode == EXIT_INTERRUPTED and "Traceback" not in done.stderr

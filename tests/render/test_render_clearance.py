@@ -62,7 +62,8 @@ def test_the_measure_sees_a_label_on_an_arrow_a_label_a_block_and_the_page_edge(
 
 
 def test_the_measure_fails_on_a_real_sheet_whose_labels_are_placed_blindly(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Every label at its first candidate place, free or not: the shaper's sheet then has overlaps, and they are seen."""
+    """Every label at its first candidate place, free or not: the shaper's sheet then has overlaps, and they are
+    seen."""
     monkeypatch.setattr(labels.Placer, "_free_of", lambda self, boxes, avoid_fill: (self._inside(b) for b in boxes))
     found = conflicts(_sheet(EXAMPLES / "shaper.toml"))
     assert len(found) >= 5

@@ -435,7 +435,8 @@ def test_binary_garbage(tmp_path: Path) -> None:
     path.write_bytes(b"title = 1\n\x89PNG\x1a\x00\x00\x00\rIHDR")
     with pytest.raises(SceneError) as caught:
         load_scene(path)
-    assert caught.value.problems == [f"{path}:2: (file): binary data (a NUL byte); expected a scene .toml file in UTF-8 text"]
+    assert caught.value.problems == [f"{path}:2: (file): binary data (a NUL byte); expected a scene "
+                                     ".toml file in UTF-8 text"]
 
 
 def test_not_utf8(tmp_path: Path) -> None:

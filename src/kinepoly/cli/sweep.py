@@ -62,7 +62,8 @@ class _ProgressBar:
         self.last = now
         width = 30
         filled = int(width * done / max(total, 1))
-        self.stream.write(f"\rkinepoly sweep [{'#' * filled}{'.' * (width - filled)}] {100 * done // max(total, 1):3d}%")
+        self.stream.write(f"\rkinepoly sweep [{'#' * filled}{'.' * (width - filled)}] "
+                          f"{100 * done // max(total, 1):3d}%")
         self.stream.flush()
         self.drawn = True
 

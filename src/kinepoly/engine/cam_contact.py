@@ -17,8 +17,8 @@ A flat face touches where the profile's tangent runs along the face, the cam on 
 translating face keeps its direction (tangent(u) parallel to it), a rocker's face keeps its distance h from
 the pivot Q (the tangent line at P(u) passes h from Q), the follower then turned to the tangent.
 
-Each row has every root (``geom.spline.roots_by_row``, all rows at once); the assembly policy keeps one per row (nearest the
-``[guess]`` for a solve, followed by continuity in a sweep). The centre of curvature K = P + n / kappa (the
+Each row has every root (``geom.spline.roots_by_row``, all rows at once); the assembly policy keeps one per row
+(nearest the ``[guess]`` for a solve, followed by continuity in a sweep). The centre of curvature K = P + n / kappa (the
 same for the offset curve) is a point of the cam at that instant: the equivalent link K W replaces the pair
 for the polygons (``engine.cam_polygons``).
 """
@@ -225,7 +225,8 @@ def _flat_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, Arr
         across = along_local.conjugate().imag  # Im(conj(d) e), e the block's x-axis along the slide
         if abs(across) < PARALLEL_SIN:
             raise SceneError(f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the flat face runs along the "
-                             f"slide of {joint.name}, so the cam cannot move the follower; expected a face across the slide")
+                             f"slide of {joint.name}, so the cam cannot move the follower; expected a "
+                             "face across the slide")
         zero = np.zeros((n, 1))
         start_origin, start_rotation = _slid(mechanism, group, carrier_pose, zero)
         face_world = start_origin + start_rotation * face_local

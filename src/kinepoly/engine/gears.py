@@ -82,7 +82,8 @@ def _distance_error(mechanism: Mechanism, gear: GearSpec, actual: Reals, expecte
     unit = mechanism.scene.units.length
     raise SceneError(f"{mechanism.scene.source}:{gear.line}: gears.{gear.name}: {what} are {float(actual[k]):.10g} "
                      f"{unit} apart at {_where(mechanism)}{'' if len(actual) == 1 else f' (row {k})'}; expected "
-                     f"{expected:.10g} {unit}, or the pitch curves do not touch (move the centres, or change the radii)")
+                     f"{expected:.10g} {unit}, or the pitch curves do not touch (move the centres, "
+                     "or change the radii)")
 
 
 def mesh(mechanism: Mechanism, gear: GearSpec, poses: dict[str, ArrayPose]) -> Mesh:

@@ -87,8 +87,8 @@ def _curve(gear: GearSpec, link: str) -> PitchCircle:
 def _not_built(mechanism: Mechanism, group: NewtonGroup, why: str) -> SceneError:
     pairs = ", ".join(g.name for g in group.gears)
     return SceneError(f"{mechanism.scene.source}:{group.gears[0].line}: gears.{group.gears[0].name}: links "
-                      f"{', '.join(group.links)} hold gears ({pairs}) in a group that no dyad and no single pair places; "
-                      f"{why}. This version places such a group only as a planet on an arm: the arm pinned to a "
+                      f"{', '.join(group.links)} hold gears ({pairs}) in a group that no dyad and no single pair "
+                      f"places; {why}. This version places such a group only as a planet on an arm: the arm pinned to a "
                       "known link, the planet pinned to the arm at its pitch centre, meshing two known gears centred "
                       "on the arm's pivot (drive the arm, or another link of the group, otherwise)")
 
@@ -129,8 +129,8 @@ def place_planet(mechanism: Mechanism, group: NewtonGroup, placed: Placement) ->
         known = gear.links[1 - gear.links.index(found.planet)]
         centre = poses[known].world(mechanism.local(known, _curve(gear, known).center))
         if np.max(np.abs(centre - pivot)) > SAME_REL * size:
-            raise _not_built(mechanism, group, f"the pitch centre {_curve(gear, known).center} of gear {known} is not on "
-                                               f"the arm's pivot {found.pivot.point}")
+            raise _not_built(mechanism, group, f"the pitch centre {_curve(gear, known).center} of gear {known} "
+                                               f"is not on the arm's pivot {found.pivot.point}")
     one, two = (_mesh_terms(g, found.planet) for g in found.meshes)
     if math.isclose(one.ratio, two.ratio, rel_tol=ROUNDING_REL):
         raise _not_built(mechanism, group, "its two meshes have the same ratio, so they do not fix the arm")

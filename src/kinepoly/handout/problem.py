@@ -1,8 +1,9 @@
 """The first page of a handout: the problem as a student gets it.
 
 What is given (the input, the frame's points, the higher pairs as a textbook states them, the slides,
-every link's dimensions; an equivalent link is the construction's, not the problem's), what is to be found (the scene's ``[find]``), and the scales to draw at; the drawing beside it shows the
-mechanism and the polygon panels empty but for their poles and scale bars.
+every link's dimensions; an equivalent link is the construction's, not the problem's), what is to be found (the scene's
+``[find]``), and the scales to draw at; the drawing beside it shows the mechanism and the polygon panels empty but for
+their poles and scale bars.
 """
 
 from __future__ import annotations

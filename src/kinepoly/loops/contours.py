@@ -100,7 +100,8 @@ def uncovered(mechanism: Mechanism) -> str | None:
 
 
 def _point_on(mechanism: Mechanism, pose: Pose, link: str, joint: Joint) -> tuple[str, complex]:
-    """Where a loop crossing ``joint`` enters or leaves ``link``: the pin, the block's point or the guide's line point."""
+    """Where a loop crossing ``joint`` enters or leaves ``link``: the pin, the block's point or the guide's line
+    point."""
     if isinstance(joint, Revolute):
         x, y = pose.world(mechanism.local(link, joint.point), link)
         return joint.point, complex(x, y)

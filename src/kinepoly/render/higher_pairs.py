@@ -150,7 +150,8 @@ def _cam_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[Item]:
     if cam.kind == "roller" and cam.point is not None:
         w = panel.paper(_point(solution, cam.follower, cam.point))
         if cam.follower_profile:  # a curve of the follower's own, shaded like the cam's
-            ring = _ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"follower profile {cam.name}")
+            ring = _ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE),
+                         f"follower profile {cam.name}")
             items.append(replace(ring, fill=link_color(_link_index(solution, cam.follower)), fill_opacity=0.18))
         else:
             items.append(_ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"roller {cam.name}"))

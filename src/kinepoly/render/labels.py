@@ -696,8 +696,8 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
     """Place every request in its region (by priority, then in the given order); items per layer.
 
     A region's labels avoid the drawn items near the region (not the highlight under a step's new
-    elements: a label may lie on it, as on the background, so that it need not move when the step is done) (nothing further can touch a label
-    inside it) and the labels placed before them. With ``cache`` shared by the sheets of one
+    elements: a label may lie on it, as on the background, so that it need not move when the step is done) (nothing
+    further can touch a label inside it) and the labels placed before them. With ``cache`` shared by the sheets of one
     layout, a region whose requests and nearby drawing are as on an earlier sheet gets that
     sheet's labels again, and a region that grew keeps the labels nothing new touches: each
     sheet places only what it adds (``LabelCache``).

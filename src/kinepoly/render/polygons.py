@@ -2,8 +2,8 @@
 
 ``polygon_figure`` reads the construction steps (physical units, pole at 0) and says what the
 polygon shows and at which step each element appears; ``FigureDrawing`` draws that to a panel's
-scale once and gives each sheet what it shows up to its step, the step's new elements under a highlight. Every vector's drawn end
-is exactly ``pole + k * vector``.
+scale once and gives each sheet what it shows up to its step, the step's new elements under a highlight. Every vector's
+drawn end is exactly ``pole + k * vector``.
 """
 
 from __future__ import annotations

@@ -167,7 +167,8 @@ class MechanismTables(ReaderState):
         if name is not None and block in links:
             known = links[block].point_names
             if name not in known:
-                self.report.add(path, lambda: f'no point "{name}" in link "{block}" (the block); {suggest(name, known)}')
+                self.report.add(path, lambda: f'no point "{name}" in link "{block}" (the block); '
+                                              f'{suggest(name, known)}')
         return name
 
     def read_slider_line(self, path: KeyPath, value: object) -> tuple[Vector, float]:
