@@ -246,7 +246,8 @@ class Continuity:
         dyad, joint, row = closure.dyad, closure.joint, self.seed_row
         if dyad.kind not in ("RRR", "RRP") or joint not in self.guess or not closure.ok[row]:
             return None
-        if any(p.name in self.guess and p.name != joint for link in dyad.links for p in mechanism.scene.link(link).points):
+        if any(p.name in self.guess and p.name != joint
+               for link in dyad.links for p in mechanism.scene.link(link).points):
             return None
         g = complex(*self.guess[joint])
         tells = [complex(t[row]) for t in closure.telling]

@@ -121,7 +121,8 @@ def _what(cam: CamSpec) -> str:
     """The follower's point that runs on the (offset) profile, in words."""
     if cam.kind != "roller":
         return f"the knife edge {cam.point}"
-    return f"the centre {cam.point} of the follower's arc" if cam.follower_profile else f"the roller's centre {cam.point}"
+    return (f"the centre {cam.point} of the follower's arc" if cam.follower_profile
+            else f"the roller's centre {cam.point}")
 
 
 def _offset_words(cam: CamSpec) -> str:

@@ -37,7 +37,8 @@ class Centrodes:
 
 def mechanism_size(mechanism: Mechanism, poses: Mapping[str, LinkPose]) -> float:
     """The largest distance between two points of the posed links (1.0 when there is none)."""
-    return diameter([pose.world(p.local) for link, pose in poses.items() for p in mechanism.scene.link(link).points]) or 1.0
+    return diameter([pose.world(p.local) for link, pose in poses.items()
+                     for p in mechanism.scene.link(link).points]) or 1.0
 
 
 def frame_centrodes(velocity: VelocityResult, link: str, size_row: int = 0) -> Centrodes:

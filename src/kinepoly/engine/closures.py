@@ -314,7 +314,8 @@ def _two_slides(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Clo
 _KINDS = {"RRP": _rrp, "RPR": _rpr, "PRP": _two_slides, "RPP": _two_slides}
 
 
-def close_dyad(mechanism: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...] = ()) -> Closure:
+def close_dyad(mechanism: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad,
+               values: tuple[Reals, ...] = ()) -> Closure:
     """Every assembly of ``dyad`` at every row, its known links placed by ``poses`` (``values``: each
     input's value at every row, for a carried dyad)."""
     if dyad.kind == "RRR":

@@ -88,9 +88,9 @@ def _not_built(mechanism: Mechanism, group: NewtonGroup, why: str) -> SceneError
     pairs = ", ".join(g.name for g in group.gears)
     return SceneError(f"{mechanism.scene.source}:{group.gears[0].line}: gears.{group.gears[0].name}: links "
                       f"{', '.join(group.links)} hold gears ({pairs}) in a group that no dyad and no single pair "
-                      f"places; {why}. This version places such a group only as a planet on an arm: the arm pinned to a "
-                      "known link, the planet pinned to the arm at its pitch centre, meshing two known gears centred "
-                      "on the arm's pivot (drive the arm, or another link of the group, otherwise)")
+                      f"places; {why}. This version places such a group only as a planet on an arm: the arm pinned "
+                      "to a known link, the planet pinned to the arm at its pitch centre, meshing two known gears "
+                      "centred on the arm's pivot (drive the arm, or another link of the group, otherwise)")
 
 
 @dataclass(frozen=True)
@@ -151,7 +151,8 @@ def place_planet(mechanism: Mechanism, group: NewtonGroup, placed: Placement) ->
     delta_one, _ = deltas(turns)
     phi = delta_one - one.alpha + theta_one
     theta_planet = phi + one.beta - one.ratio * delta_one
-    lever = complex(*mechanism.local(found.arm, found.pin.point)) - complex(*mechanism.local(found.arm, found.pivot.point))
+    lever = (complex(*mechanism.local(found.arm, found.pin.point))
+             - complex(*mechanism.local(found.arm, found.pivot.point)))
     arm_rotation = np.exp(1j * (phi - np.angle(lever)))
     arm = ArrayPose(np.asarray(pivot - arm_rotation * complex(*mechanism.local(found.arm, found.pivot.point))),
                     np.asarray(arm_rotation))

@@ -70,7 +70,8 @@ def _frame(solution: Solution, say: Catalogue) -> list[Paragraph]:
     if ground is None:
         return []
     points = [f"{p.name} {say.pair(*solution.position(p.name))}" for p in solution.scene.link(ground).points]
-    return [Paragraph(say.say("problem.frame", link=ground, points=", ".join(points), unit=solution.scene.units.length))]
+    return [Paragraph(say.say("problem.frame", link=ground, points=", ".join(points),
+                              unit=solution.scene.units.length))]
 
 
 def _slides(solution: Solution, say: Catalogue) -> list[Table]:
@@ -183,7 +184,8 @@ def _gear_angles(solution: Solution, say: Catalogue) -> list[Paragraph]:
     translates: its angle says nothing)."""
     ground = solution.mechanism.ground or ""
     inp = solution.scene.input
-    driven = dict.fromkeys(link for gear in solution.scene.gears for link, pitch in zip(gear.links, gear.pitch, strict=True)
+    driven = dict.fromkeys(link for gear in solution.scene.gears
+                           for link, pitch in zip(gear.links, gear.pitch, strict=True)
                            if isinstance(pitch, PitchCircle) and link != ground and link in solution.pose.links
                            and not (isinstance(inp, LinkInput) and inp.link == link))
     if not driven:

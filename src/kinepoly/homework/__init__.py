@@ -32,7 +32,8 @@ if TYPE_CHECKING:
 _HOME = {
     "Answers": "answers", "Tolerance": "answers", "load_answers": "answers", "loads_answers": "answers",
     "CheckResult": "checking", "Checker": "checking", "Verdict": "checking", "check": "checking",
-    "make_checker": "checking", "Diagnosis": "diagnose", "class_csv": "report", "result_json": "report", "result_text": "report",
+    "make_checker": "checking", "Diagnosis": "diagnose", "class_csv": "report", "result_json": "report",
+    "result_text": "report",
     "Variant": "variants", "make_variants": "variants", "Ranges": "vary", "default_ranges": "vary",
     "read_vary": "vary",
 }

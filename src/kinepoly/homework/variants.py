@@ -111,7 +111,8 @@ def _between(start: _Numbers, end: _Numbers, t: float, turn: float) -> _Numbers:
         return end
     inputs = tuple((name, a + t * (turn if name == "angle_rad" else b - a))
                    for (name, a), (_, b) in zip(start.inputs, end.inputs, strict=True))
-    return _Numbers(tuple(tuple(_mix(p, q, t) for p, q in zip(ps, qs, strict=True)) for ps, qs in zip(start.points, end.points, strict=True)),
+    return _Numbers(tuple(tuple(_mix(p, q, t) for p, q in zip(ps, qs, strict=True))
+                          for ps, qs in zip(start.points, end.points, strict=True)),
                     tuple(_mix(p, q, t) for p, q in zip(start.through, end.through, strict=True)), inputs,
                     tuple(a + t * (b - a) for a, b in zip(start.pairs, end.pairs, strict=True)))
 
@@ -354,7 +355,8 @@ def _written(base: Scene, name: str, index: int, numbers: _Numbers, reached: _So
             again, reached, _size(scene)):
         return None
     answers = _key(again)
-    key_header = f"Answer key of {name}.toml (canonical forms; check with: kinepoly check {name}.toml {name}.answers.toml)"
+    key_header = (f"Answer key of {name}.toml (canonical forms; check with: kinepoly check {name}.toml "
+                  f"{name}.answers.toml)")
     return Variant(name, text, answers_toml(answers, scene.units, key_header), scene, answers,
                    again.min_transmission_deg)
 

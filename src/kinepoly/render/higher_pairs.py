@@ -154,7 +154,8 @@ def _cam_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[Item]:
                          f"follower profile {cam.name}")
             items.append(replace(ring, fill=link_color(_link_index(solution, cam.follower)), fill_opacity=0.18))
         else:
-            items.append(_ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"roller {cam.name}"))
+            items.append(_ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE),
+                               f"roller {cam.name}"))
     elif cam.kind == "flat":
         a, b = _flat_face(solution, cam)
         items.append(Path((panel.paper(a), panel.paper(b)), Stroke(follower_ink, 0.6), role=f"flat face {cam.name}"))
@@ -238,7 +239,8 @@ def higher_pair_items(solution: Solution, panel: Panel) -> tuple[list[Item], lis
         items.append(Path((panel.paper(ends[0]), panel.paper(ends[1])), _NORMAL, role=f"common normal {pair}"))
     marked = [("contact", contact_label(solution, pair), contact.point) for pair, contact in solution.contacts.items()]
     marked += [("centre of curvature", f"K{cam.name}", centre) for cam in solution.scene.cams
-               if cam.is_spline and cam.follower in solution.pose.links and (centre := _centre(solution, cam)) is not None]
+               if cam.is_spline and cam.follower in solution.pose.links
+               and (centre := _centre(solution, cam)) is not None]
     for kind, name, where in marked:
         at = panel.paper(where)
         items.append(Circle(at, 0.7, Stroke(_NORMAL.color, 0.3), fill=_NORMAL.color, role=f"{kind} {name}"))

@@ -43,7 +43,8 @@ from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, PitchCircle, SliderInput
 
-__all__ = ["CYCLE_TURNS", "FULL_TURN_CHECK_ROWS", "MAX_STEPS", "InputGrid", "full_turn_grid", "input_grid", "input_name"]
+__all__ = ["CYCLE_TURNS", "FULL_TURN_CHECK_ROWS", "MAX_STEPS", "InputGrid", "full_turn_grid", "input_grid",
+           "input_name"]
 
 MAX_STEPS = 2_000_000
 """The most rows a sweep takes (memory grows with rows times quantities)."""
@@ -235,7 +236,8 @@ def _cycle(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: in
                           "on); the sweep covers one turn (its curves do not close)")]
     if turns == 1:
         return 1, []
-    ratios = ", ".join(f"link {link} {Fraction(r).limit_denominator(CYCLE_TURNS)}" for link, r in sorted(per_turn.items())
+    ratios = ", ".join(f"link {link} {Fraction(r).limit_denominator(CYCLE_TURNS)}"
+                       for link, r in sorted(per_turn.items())
                        if Fraction(r).limit_denominator(CYCLE_TURNS).denominator > 1)
     return turns, [Notice("cycle", f"the gears bring the mechanism back after {turns} turns of the input (turns per "
                           f"turn of the input: {ratios}); the sweep covers them all, its whole cycle")]
@@ -349,7 +351,8 @@ def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
     if full is None:
         return None
     _check_steps(steps)
-    grid = np.arange(steps, dtype=np.float64) * (full / steps)  # np.linspace(0, full, steps, endpoint=False), without its Python
+    # np.linspace(0, full, steps, endpoint=False), without its Python
+    grid = np.arange(steps, dtype=np.float64) * (full / steps)
     values, mask, seed_row = _with_seed(grid, _seed_value(mechanism), True, full)
     return InputGrid(values, _internal(mechanism, values), mask, seed_row, True)
 
