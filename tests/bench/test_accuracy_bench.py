@@ -101,7 +101,8 @@ alpha = ["4"]
         solution = kinepoly.solve(scene)
         den = l1 * l1 + 2 * l0 * l1 * math.sin(phi) + l0 * l0
         omega3 = w1 * l1 * (l1 + l0 * math.sin(phi)) / den
-        eps3 = e1 * l1 * (l1 + l0 * math.sin(phi)) / den - w1 * w1 * l0 * l1 * (l1 * l1 - l0 * l0) * math.cos(phi) / den**2
+        eps3 = (e1 * l1 * (l1 + l0 * math.sin(phi)) / den
+                - w1 * w1 * l0 * l1 * (l1 * l1 - l0 * l0) * math.cos(phi) / den**2)
         assert solution.velocity is not None and solution.acceleration is not None
         assert solution.velocity.omega["4"] == pytest.approx(omega3, rel=1e-13)
         assert solution.acceleration.alpha["4"] == pytest.approx(eps3, rel=1e-12, abs=1e-12 * w1 * w1)
@@ -130,7 +131,8 @@ def test_the_series_drops_exactly_the_binomial_tail(offset: float, ahead: bool) 
         sign = 1.0 if ahead else -1.0
         z = abs(offset / coupler - r / coupler * math.sin(math.radians(float(theta))))
         drop = sign * (exact.s - float(got["sliders.14.s"][0]))  # type: ignore[index]
-        assert -coupler * z**4 / (8 * (1 - z * z)) * (1 + 1e-9) - 1e-12 <= drop <= -coupler * z**4 / 8 * (1 - 1e-9) + 1e-12
+        assert (-coupler * z**4 / (8 * (1 - z * z)) * (1 + 1e-9) - 1e-12
+                <= drop <= -coupler * z**4 / 8 * (1 - 1e-9) + 1e-12)
 
 
 def test_the_reference_agrees_with_the_construction_on_every_example() -> None:

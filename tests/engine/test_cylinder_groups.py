@@ -201,7 +201,8 @@ def _stroke_ends() -> tuple[mp.mpf, mp.mpf]:
     """The crank angles of the least and the greatest stroke over a turn (ds/dtheta2 = 0)."""
     scan = np.radians(np.arange(0.0, 360.0, 1.0))
     strokes = np.array([float(_cylinder(mp.mpf(t))) for t in scan])
-    low, high = (mp.findroot(lambda t: mp.diff(_cylinder, t), mp.mpf(scan[k])) for k in (strokes.argmin(), strokes.argmax()))
+    low, high = (mp.findroot(lambda t: mp.diff(_cylinder, t), mp.mpf(scan[k]))
+                 for k in (strokes.argmin(), strokes.argmax()))
     return low, high
 
 
@@ -211,8 +212,8 @@ SHORTEST, LONGEST = _stroke_ends()
 def _configurations(stroke: float) -> tuple[mp.mpf, mp.mpf]:
     """The crank angle at the stroke in each configuration: the stroke growing with theta2 (from the shortest
     to the longest) and shrinking (from the longest round to the shortest)."""
-    grow = mp.findroot(lambda t: _cylinder(t) - stroke, (SHORTEST - 2 * mp.pi + mp.mpf("1e-9"), LONGEST - mp.mpf("1e-9")),
-                       solver="anderson")
+    grow = mp.findroot(lambda t: _cylinder(t) - stroke,
+                       (SHORTEST - 2 * mp.pi + mp.mpf("1e-9"), LONGEST - mp.mpf("1e-9")), solver="anderson")
     shrink = mp.findroot(lambda t: _cylinder(t) - stroke, (LONGEST + mp.mpf("1e-9"), SHORTEST - mp.mpf("1e-9")),
                          solver="anderson")
     return grow, shrink

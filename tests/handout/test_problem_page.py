@@ -104,7 +104,8 @@ def _needed(solution: Solution, say: Catalogue) -> list[tuple[str, list[str]]]:
             else:
                 out.append((f"rack {link}'s pitch line", [say.pair(*pitch.through)]))
         for link, pitch in zip(gear.links, gear.pitch, strict=True):
-            if isinstance(pitch, PitchCircle) and link != ground and not (isinstance(inp, LinkInput) and inp.link == link):
+            if (isinstance(pitch, PitchCircle) and link != ground
+                    and not (isinstance(inp, LinkInput) and inp.link == link)):
                 out.append((f"gear {link}'s angle", [f"θ{ground}{link} = {n(math.degrees(solution.angle(link)))}"]))
     return out
 

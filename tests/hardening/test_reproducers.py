@@ -156,7 +156,8 @@ def test_a_failed_draw_makes_no_folder(capsys: pytest.CaptureFixture[str], tmp_p
 
 
 def test_sweep_and_draw_write_the_same_file_mode(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
-    assert run_on(capsys, tmp_path, BASE, "sweep", "--steps", "24", "-o", "{tmp}/x.csv", "--plot", "{tmp}/x.png")[0] == 0
+    assert run_on(capsys, tmp_path, BASE, "sweep", "--steps", "24", "-o", "{tmp}/x.csv",
+                  "--plot", "{tmp}/x.png")[0] == 0
     assert run_on(capsys, tmp_path, BASE, "draw", "-o", "{tmp}/d.svg")[0] == 0
     modes = {p.name: stat.S_IMODE(p.stat().st_mode) for p in tmp_path.iterdir() if p.name != "s.toml"}
     umask = os.umask(0o022)

@@ -152,8 +152,8 @@ def _flat_acceleration(ctx: object, group: CamGroup) -> None:
         vectors = [*laid, DrawnVector(term, b.vec(on_cam), b.vec(start), "coriolis")]
         own = (along_normal(ctx, f"a^t_{tip}/{far}", group.carrier, far, k, laid[-1] if laid else None)  # type: ignore[arg-type]
                if isinstance(joint, Revolute) else along_slide(ctx, f"a_{tip}/{far}", joint, group.carrier, k, laid))  # type: ignore[arg-type]
-        record_crossing(ctx, tip, f"a_{tip} = {_own_side(joint, tip, far, laid)} = a_{k_label} + "
-                                  f"{term} + a_{tip}/{k_label}",  # type: ignore[arg-type]
+        record_crossing(ctx, tip, f"a_{tip} = {_own_side(joint, tip, far, laid)} = a_{k_label} + "  # type: ignore[arg-type]
+                                  f"{term} + a_{tip}/{k_label}",
                 line1, along_face, (label1, label2), crossing, vectors,
                 (own, Direction(f"a_{tip}/{k_label}", "face", group.link, k_label.lower(), after=term)))
     if isinstance(joint, Revolute):
@@ -197,8 +197,8 @@ def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
         far = joint.point if isinstance(joint, Revolute) else b.label(group.carrier, w)
         second = (along_normal(ctx, f"a^t_{w}/{far}", group.carrier, far, w, vectors[-1] if len(vectors) > 1 else None)  # type: ignore[arg-type]
                   if isinstance(joint, Revolute) else along_slide(ctx, f"a_{w}/{far}", joint, group.carrier, w, laid))  # type: ignore[arg-type]
-        record_crossing(ctx, w, f"a_{w} = a_{k_label} + a^n_{w}/{k_label} + a^t_{w}/{k_label} = "
-                                f"{_own_side(joint, w, far, laid)}",  # type: ignore[arg-type]
+        record_crossing(ctx, w, f"a_{w} = a_{k_label} + a^n_{w}/{k_label} + a^t_{w}/{k_label} = "  # type: ignore[arg-type]
+                                f"{_own_side(joint, w, far, laid)}",
                 line1, line2, (label1, label2), crossing, [*vectors, *laid],
                 (along_normal(ctx, f"a^t_{w}/{k_label}", group.known, k, w, n1), second))  # type: ignore[arg-type]
     if isinstance(joint, Revolute):
