@@ -10,6 +10,7 @@ __all__ = [
     "ANGLE_SAME_DEG",
     "ANGLE_SAME_RAD",
     "ASSEMBLY_REL_TOL",
+    "AT_INFINITY_REL",
     "BOX_FLOOR",
     "COINCIDENT_REL",
     "COINCIDENT_SIN",
@@ -19,6 +20,7 @@ __all__ = [
     "LAST_BITS_REL",
     "LOOP_SINGULAR_DET",
     "LOUD_ERROR",
+    "NEAR_SINGULAR_CONDITION",
     "NEAR_SINGULAR_ERROR",
     "NEAR_SINGULAR_SIN",
     "NEWTON_CLOSED_REL",
@@ -35,6 +37,7 @@ __all__ = [
     "RIGID_REL_TOL",
     "ROUNDING_REL",
     "SAME_REL",
+    "SINGULAR_CONDITION",
     "SIZE_FLOOR",
     "STRAIGHT_CURVATURE",
     "TINY_POSITIVE",
@@ -96,6 +99,9 @@ COINCIDENT_REL = 1e-12
 """Two points closer than this times the mechanism's (the polygon's) size are one point: a scene's
 points given twice, a tip at the pole, a contact on the cam's centre."""
 
+AT_INFINITY_REL = 1e9
+"""An instant center farther than this many times the mechanism's size is taken to be at infinity."""
+
 ASSEMBLY_REL_TOL = 1e-12
 """Relative slack allowed when a circle just touches another circle or a line (a dead point)."""
 
@@ -139,6 +145,13 @@ NEWTON_LEAST_STEP = 1e-6
 LOOP_SINGULAR_DET = 1e-10
 """A loop's linear system whose matrix, divided by its largest entry, has a determinant below this is
 singular."""
+
+SINGULAR_CONDITION = 1e12
+"""Above this condition number the joint equations of a group are singular (a change point)."""
+
+NEAR_SINGULAR_CONDITION = 1e8
+"""Above this a row is near-singular (relative error about condition x u). A sound triad's
+scaled joint equations have condition numbers near 1e4."""
 
 PHASE_TOLERANCE = 1e-7
 """How far (relative to the radii) the construction's rolled arcs may be from the phase rule's."""
