@@ -119,7 +119,8 @@ def _figures(timings: list[dict[str, Any]]) -> dict[str, Any]:
     server = [sum(t["server"].values()) for t in timings]
     return {
         "count": len(total), "median": statistics.median(total), "p95": _percentile(total, 0.95),
-        "parts": {key: statistics.median(t["server"][key] for t in timings) for key in ("solve", "layout", "labels", "svg")},
+        "parts": {key: statistics.median(t["server"][key] for t in timings)
+                  for key in ("solve", "layout", "labels", "svg")},
         "server": statistics.median(server),
         "transport": statistics.median(t["received"] - s for t, s in zip(timings, server, strict=True)),
         "browser": statistics.median(t["ms"] - t["received"] for t in timings),

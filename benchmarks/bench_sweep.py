@@ -252,7 +252,8 @@ def main() -> int:
             print(f"{name}")
             continue
         agree_text = "-" if agree is None else f"{agree:.1e}"
-        print(f"{name:62s} {seconds * 1e3:8.3f} ms {seconds / t_closed:9.2f} {seconds / t_sweep:9.2f} {agree_text:>10s}")
+        print(f"{name:62s} {seconds * 1e3:8.3f} ms {seconds / t_closed:9.2f} "
+              f"{seconds / t_sweep:9.2f} {agree_text:>10s}")
     print(f"target: sweep / closed form <= 1.3; measured {ratio_sweep:.2f} (all in), {ratio_run:.2f} (prepared plan); "
           f"the sweep's own split: {result.timing}")
     print(f"over {LONG} positions: sweep {t_sweep_long * 1e3:.3f} ms, closed form {t_closed_long * 1e3:.3f} ms, "

@@ -11,8 +11,9 @@ For each chain length N (2N + 2 links) it times, in-process and best of a few ru
   ``handout-html`` each of the two alone;
 
 then fits time = c N^p by least squares on log-log (load, solve and sweep over the lengths of at least
-10 loops, draw and handout over all) and prints each growth exponent p (1 is linear). The issue's targets: the solve of 400 loops under
-2 s and at most 6 times that of 100; the 10-loop handout (PDF and HTML, together and each) at most 14 times the 1-loop one.
+10 loops, draw and handout over all) and prints each growth exponent p (1 is linear). The issue's targets: the solve
+of 400 loops under 2 s and at most 6 times that of 100; the 10-loop handout (PDF and HTML, together and each) at most
+14 times the 1-loop one.
 
     python benchmarks/scaling.py [--quick] [--sizes 1,10,100,400,800] [--draw-max 40] [--handout-max 10]
                                  [--tasks load,solve,sweep,draw,handout,handout-pdf,handout-html]
@@ -124,7 +125,8 @@ def main() -> None:
         ([1, 10, 100, 400] if args.quick else [1, 3, 10, 30, 100, 200, 400, 800])
     repeat = 1 if args.quick else 3
     tasks: list[tuple[str, Callable[[int], Callable[[], object]], int]] = [
-        ("load", _load, max(sizes)), ("solve", _solve, max(sizes)), ("sweep", _sweep, max(sizes)), ("draw", _draw, args.draw_max),
+        ("load", _load, max(sizes)), ("solve", _solve, max(sizes)), ("sweep", _sweep, max(sizes)),
+        ("draw", _draw, args.draw_max),
         ("handout", _handout, args.handout_max), ("handout-pdf", _handout_pdf, args.handout_max),
         ("handout-html", _handout_html, args.handout_max)]
     results: dict[str, tuple[list[int], list[float]]] = {}

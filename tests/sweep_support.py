@@ -28,7 +28,8 @@ def ask_everything(text: str) -> str:
                                 for p in link.points))
     links = [n for n in mech.link_names if not mech.turns_with_ground(n)]
     return (text + f"\n[find]\nvelocity = {_quoted(points)}\nacceleration = {_quoted(points)}\n"
-            f"omega = {_quoted(links)}\nalpha = {_quoted(links)}\nsliders = {_quoted([s.name for s in mech.sliders])}\n")
+            f"omega = {_quoted(links)}\nalpha = {_quoted(links)}\nsliders = "
+            f"{_quoted([s.name for s in mech.sliders])}\n")
 
 
 def row_scene(text: str, result: SweepResult, row: int) -> str:

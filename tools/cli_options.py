@@ -34,7 +34,8 @@ def options_table() -> str:
     rows = ["| command | option | what it does | default |", "| --- | --- | --- | --- |"]
     for name, command in _commands(parser()).items():
         for action in command._actions:
-            if not action.option_strings or action.help == argparse.SUPPRESS or isinstance(action, argparse._HelpAction):
+            if (not action.option_strings or action.help == argparse.SUPPRESS
+                    or isinstance(action, argparse._HelpAction)):
                 continue
             flags = ", ".join(action.option_strings)
             if action.metavar is not None or action.nargs != 0:
@@ -42,7 +43,8 @@ def options_table() -> str:
             default = action.default
             shown = "" if default is None or default is False else " ".join(map(str, default)) \
                 if isinstance(default, (list, tuple)) else str(default)
-            rows.append(f"| `{name}` | `{_cell(flags)}` | {_cell((action.help or '').replace('%%', '%'))} | {_cell(shown)} |")
+            rows.append(f"| `{name}` | `{_cell(flags)}` | "
+                        f"{_cell((action.help or '').replace('%%', '%'))} | {_cell(shown)} |")
     return "\n".join(rows)
 
 

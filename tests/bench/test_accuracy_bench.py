@@ -101,7 +101,8 @@ alpha = ["4"]
         solution = kinepoly.solve(scene)
         den = l1 * l1 + 2 * l0 * l1 * math.sin(phi) + l0 * l0
         omega3 = w1 * l1 * (l1 + l0 * math.sin(phi)) / den
-        eps3 = e1 * l1 * (l1 + l0 * math.sin(phi)) / den - w1 * w1 * l0 * l1 * (l1 * l1 - l0 * l0) * math.cos(phi) / den**2
+        eps3 = (e1 * l1 * (l1 + l0 * math.sin(phi)) / den
+                - w1 * w1 * l0 * l1 * (l1 * l1 - l0 * l0) * math.cos(phi) / den**2)
         assert solution.velocity is not None and solution.acceleration is not None
         assert solution.velocity.omega["4"] == pytest.approx(omega3, rel=1e-13)
         assert solution.acceleration.alpha["4"] == pytest.approx(eps3, rel=1e-12, abs=1e-12 * w1 * w1)
@@ -118,9 +119,9 @@ alpha = ["4"]
 def test_the_series_drops_exactly_the_binomial_tail(offset: float, ahead: bool) -> None:
     """x_exact - x_series = -l (z^4/8 + z^6/16 + ...), z = k + lambda sin phi: between l z^4 / 8 and
     l z^4 / (8 (1 - z^2)). The course text's sign convention (line at y = -e) is the scene's offset reversed."""
-    r, l, w = 40.0, 120.0, 10.0
+    r, coupler, w = 40.0, 120.0, 10.0
     for theta in np.linspace(0.0, 350.0, 8):
-        solution = kinepoly.solve(slider_crank(r, l, offset, float(theta), w, 0.0, ahead=ahead))
+        solution = kinepoly.solve(slider_crank(r, coupler, offset, float(theta), w, 0.0, ahead=ahead))
         assert solution.inside is not None
         keys = ["sliders.14.s", "sliders.14.s_dot"]
         series = slider_crank_series(solution.inside.mechanism, solution.inside.pose, keys)
@@ -128,9 +129,10 @@ def test_the_series_drops_exactly_the_binomial_tail(offset: float, ahead: bool) 
         got = series.values(np.array([math.radians(float(theta))]))
         exact = solution.slider("14")
         sign = 1.0 if ahead else -1.0
-        z = abs(offset / l - r / l * math.sin(math.radians(float(theta))))
+        z = abs(offset / coupler - r / coupler * math.sin(math.radians(float(theta))))
         drop = sign * (exact.s - float(got["sliders.14.s"][0]))  # type: ignore[index]
-        assert -l * z**4 / (8 * (1 - z * z)) * (1 + 1e-9) - 1e-12 <= drop <= -l * z**4 / 8 * (1 - 1e-9) + 1e-12
+        assert (-coupler * z**4 / (8 * (1 - z * z)) * (1 + 1e-9) - 1e-12
+                <= drop <= -coupler * z**4 / 8 * (1 - 1e-9) + 1e-12)
 
 
 def test_the_reference_agrees_with_the_construction_on_every_example() -> None:

@@ -69,7 +69,8 @@ def test_bad_input_gets_a_clear_message_and_its_exit_code(capsys: pytest.Capture
     assert "Traceback" not in err
     assert err.startswith("kinepoly: error: ")
     assert fragment in err
-    if code == 2 and name not in {"wrong mobility", "mobility two", "non-rigid given", "compound hinge over-constrains"}:
+    if code == 2 and name not in {"wrong mobility", "mobility two", "non-rigid given",
+                                  "compound hinge over-constrains"}:
         assert f"{path}:" in err  # FILE:LINE: names the file
 
 
@@ -141,7 +142,8 @@ def test_no_coriolis_where_no_block_slides_on_a_turning_guide() -> None:
     assert sum(step.kind == "coriolis" for step in shaper.steps) == 1  # block 3 on lever 4, not ram 6 on the frame
 
 
-def test_default_assembly_is_taken_and_named_without_a_guess(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+def test_default_assembly_is_taken_and_named_without_a_guess(capsys: pytest.CaptureFixture[str],
+                                                             tmp_path: Path) -> None:
     text = FOUR_BAR.replace("[guess]\nB = [110, 80]", "")
     code, out, _ = run(capsys, "solve", write(tmp_path, text), "--json")
     data = json.loads(out)

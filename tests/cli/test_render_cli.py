@@ -30,7 +30,8 @@ def test_the_format_follows_the_extension(capsys: pytest.CaptureFixture[str], tm
 def test_a_folder_gets_all_four_and_steps_one_svg_per_step(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     code, _, err = run(capsys, "draw", FOUR_BAR, "-o", f"{tmp_path}/out/", "--steps", str(tmp_path / "steps"))
     assert code == 0, err
-    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [f"four-bar.{e}" for e in ("dxf", "pdf", "png", "svg")]
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [f"four-bar.{e}"
+                                                                    for e in ("dxf", "pdf", "png", "svg")]
     steps = sorted((tmp_path / "steps").iterdir())
     solution = kinepoly.solve(kinepoly.load_scene(FOUR_BAR))
     assert [p.name for p in steps] == [f"step-{n:02d}.svg" for n in range(1, len(solution.steps) + 1)]

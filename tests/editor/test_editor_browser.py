@@ -183,7 +183,8 @@ def test_the_other_assembly_is_taken_by_dragging_the_guess_across(browser: Any,
     assert _state(browser)["handles"]["guess"]["B"] == pytest.approx(list(b), abs=0.01)
     other = _mirror(b, handle(browser, "A"), handle(browser, "B0"))
     ring = 3.2 / _state(browser)["view"]["scale"]  # the ring's radius on the paper, in the scene
-    drag(browser, (b[0] + ring, b[1]), [((b[0] + other[0]) / 2 + ring, (b[1] + other[1]) / 2), (other[0] + ring, other[1])])
+    drag(browser, (b[0] + ring, b[1]),
+         [((b[0] + other[0]) / 2 + ring, (b[1] + other[1]) / 2), (other[0] + ring, other[1])])
     assert handle(browser, "B") == pytest.approx(other, abs=0.5)
     assert _state(browser)["ok"] and browser.errors == []
 

@@ -33,7 +33,8 @@ def _solve_json(capsys: pytest.CaptureFixture[str], path: Path) -> dict[str, obj
 
 def test_replace_answers_the_solve_json_of_that_text(served: Served, four_bar: Path,
                                                      capsys: pytest.CaptureFixture[str]) -> None:
-    text = four_bar.read_text(encoding="utf-8").replace("angle = 60", "angle = 137.5").replace("omega = 10", "omega = -7")
+    text = (four_bar.read_text(encoding="utf-8").replace("angle = 60", "angle = 137.5")
+            .replace("omega = 10", "omega = -7"))
     answer = httpx.put(served.url + "api/scene", json={"text": text})
     assert answer.status_code == 200
     four_bar.write_text(text, encoding="utf-8")  # the same text where the command line reads it
@@ -173,7 +174,8 @@ def test_the_drawing_and_a_step_sheet_are_the_draw_commands(served: Served, four
     code, _, err = run(capsys, "draw", str(four_bar), "-o", str(tmp_path / "out.svg"), "--steps", str(tmp_path / "s"))
     assert code == 0, err
     assert drawing.text == (tmp_path / "out.svg").read_text(encoding="utf-8")  # A4 holds the four-bar as drawn
-    assert httpx.get(served.url + "api/steps/3.svg").text == (tmp_path / "s" / "step-03.svg").read_text(encoding="utf-8")
+    assert (httpx.get(served.url + "api/steps/3.svg").text
+            == (tmp_path / "s" / "step-03.svg").read_text(encoding="utf-8"))
     assert httpx.get(served.url + "api/steps/99.svg").status_code == 404
 
 
@@ -226,8 +228,8 @@ def test_the_edit_command_refuses_what_it_cannot_do(argv: list[str], message: st
     assert code == 2 and message in err and "Traceback" not in err
 
 
-def test_a_cam_is_driven_by_its_profile_centre_which_cannot_be_moved_as_a_point(tmp_path: Path,
-                                                                              capsys: pytest.CaptureFixture[str]) -> None:
+def test_a_cam_is_driven_by_its_profile_centre_which_cannot_be_moved_as_a_point(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     from tests.editor.server import serving
 
     from kinepoly.editor.document import Document
@@ -246,7 +248,8 @@ def test_a_cam_is_driven_by_its_profile_centre_which_cannot_be_moved_as_a_point(
     assert _without_timing(driven["result"]) == _solve_json(capsys, path)  # type: ignore[arg-type]
 
 
-def test_the_answers_are_those_of_solve_on_the_editors_paper(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_the_answers_are_those_of_solve_on_the_editors_paper(tmp_path: Path,
+                                                             capsys: pytest.CaptureFixture[str]) -> None:
     from tests.editor.server import serving
 
     from kinepoly.editor.document import Document

@@ -5,7 +5,8 @@ Derived apart from it here: the analytic check (``check.analytic``, which shares
 engine) gives every link's omega and the velocity of its frame origin o; the center of links i and
 j is the point P that has one velocity as a point of either,
 
-    v_i + omega_i i (P - o_i) = v_j + omega_j i (P - o_j)   =>   P = (v_j - v_i + i (omega_i o_i - omega_j o_j)) / (i (omega_i - omega_j)),
+    v_i + omega_i i (P - o_i) = v_j + omega_j i (P - o_j)
+      =>   P = (v_j - v_i + i (omega_i o_i - omega_j o_j)) / (i (omega_i - omega_j)),
 
 and where omega_i = omega_j the relative motion is a translation by v_j - v_i: the center is at infinity,
 perpendicular to it. Every cam example is checked at its input and at random cam angles over a turn
@@ -168,7 +169,8 @@ def test_the_steps_name_the_common_normal_in_every_language() -> None:
     solution = kinepoly.solve(loads_scene(_text("metu-cam")))
     assert solution.centers is not None
     [step] = solution.centers.steps
-    for lang, words in (("en", "common normal n(C23) through C23"), ("tr", "C23 noktasından geçen n(C23) ortak normali"),
+    for lang, words in (("en", "common normal n(C23) through C23"),
+                        ("tr", "C23 noktasından geçen n(C23) ortak normali"),
                         ("ro", "normala comună n(C23) prin C23")):
         text = kennedy_sentence(step, load_catalogue(lang), Context(solution, {}))
         assert words in text and "I12 I13" in text, (lang, text)

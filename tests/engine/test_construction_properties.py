@@ -77,7 +77,9 @@ def test_four_bar_construction_equals_analytic_and_closes(a1, a2, a3, a4, th, w,
        st.floats(min_value=-0.5, max_value=0.5), angles, speeds, accels)
 def test_slider_crank_construction_equals_analytic(a2, ratio, offset, th, w, al) -> None:  # type: ignore[no-untyped-def]
     a3 = ratio * a2
-    sol = solve_text(slider_crank(a2, a3, offset * a2, th, w, al, find='[find]\nsliders = ["14"]\nvelocity = ["B", "C"]\nacceleration = ["B", "C"]\nomega = ["3"]\nalpha = ["3"]'))
+    sol = solve_text(slider_crank(a2, a3, offset * a2, th, w, al,
+                                  find='[find]\nsliders = ["14"]\nvelocity = ["B", "C"]\n'
+                                       'acceleration = ["B", "C"]\nomega = ["3"]\nalpha = ["3"]'))
     assert sol.check.max_rel_error < 1e-10
     assert sol.acceleration is not None
     assert sol.acceleration.coriolis["14"] == (0.0, 0.0)

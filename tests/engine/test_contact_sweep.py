@@ -27,7 +27,8 @@ def _batch(name: str, steps: int):  # type: ignore[no-untyped-def]
     mech = prepared.mechanism
     moving = polygon_velocity(mech, velocity.polygon)
     speed = max(float(np.max(np.abs(tip))) for tip in velocity.tips.values())
-    return text, result, mech, moving, contacts_over_rows(mech, result.positions.poses, moving, result.positions.contact_parameters), speed
+    return (text, result, mech, moving,
+            contacts_over_rows(mech, result.positions.poses, moving, result.positions.contact_parameters), speed)
 
 
 @pytest.mark.parametrize("name", PAIRS)

@@ -239,7 +239,8 @@ def test_an_arc_that_cannot_reach_a_spline_cam_is_named_as_the_arc(tmp_path: Pat
                                                                   capsys: pytest.CaptureFixture[str]) -> None:
     points = ", ".join(f"[{12 + 30 * math.cos(2 * math.pi * j / 36)!r}, {30 * math.sin(2 * math.pi * j / 36)!r}]"
                        for j in range(36))
-    far = (TEXT.replace("profile = { circle = { center = [12, 0], radius = 30 } }", f"profile = {{ points = [{points}] }}")
+    far = (TEXT.replace("profile = { circle = { center = [12, 0], radius = 30 } }",
+                        f"profile = {{ points = [{points}] }}")
            .replace("P = [70, 45]", "P = [170, 45]"))
     scene = tmp_path / "far.toml"
     scene.write_text(far, encoding="utf-8")

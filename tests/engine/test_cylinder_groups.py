@@ -201,7 +201,8 @@ def _stroke_ends() -> tuple[mp.mpf, mp.mpf]:
     """The crank angles of the least and the greatest stroke over a turn (ds/dtheta2 = 0)."""
     scan = np.radians(np.arange(0.0, 360.0, 1.0))
     strokes = np.array([float(_cylinder(mp.mpf(t))) for t in scan])
-    low, high = (mp.findroot(lambda t: mp.diff(_cylinder, t), mp.mpf(scan[k])) for k in (strokes.argmin(), strokes.argmax()))
+    low, high = (mp.findroot(lambda t: mp.diff(_cylinder, t), mp.mpf(scan[k]))
+                 for k in (strokes.argmin(), strokes.argmax()))
     return low, high
 
 
@@ -211,8 +212,8 @@ SHORTEST, LONGEST = _stroke_ends()
 def _configurations(stroke: float) -> tuple[mp.mpf, mp.mpf]:
     """The crank angle at the stroke in each configuration: the stroke growing with theta2 (from the shortest
     to the longest) and shrinking (from the longest round to the shortest)."""
-    grow = mp.findroot(lambda t: _cylinder(t) - stroke, (SHORTEST - 2 * mp.pi + mp.mpf("1e-9"), LONGEST - mp.mpf("1e-9")),
-                       solver="anderson")
+    grow = mp.findroot(lambda t: _cylinder(t) - stroke,
+                       (SHORTEST - 2 * mp.pi + mp.mpf("1e-9"), LONGEST - mp.mpf("1e-9")), solver="anderson")
     shrink = mp.findroot(lambda t: _cylinder(t) - stroke, (LONGEST + mp.mpf("1e-9"), SHORTEST - mp.mpf("1e-9")),
                          solver="anderson")
     return grow, shrink
@@ -325,7 +326,8 @@ def test_a_motor_in_a_leg_is_a_driven_leg_too() -> None:
     still a triad, and P's velocity and acceleration equal central differences of P's place solved with both
     inputs moving at their rates (s = 400 + 50 t - 10 t^2, theta47 = 10 deg + 0.3 t - 0.1 t^2 rad)."""
     text = OWN_FRAMES.replace("4 = { points = { B0 = [0, 0], B = [250, 0] } }",
-                              "4 = { points = { B0 = [0, 0], M = [125, 0] } }\n7 = { points = { M = [0, 0], B = [125, 0] } }")
+                              "4 = { points = { B0 = [0, 0], M = [125, 0] } }\n"
+                              "7 = { points = { M = [0, 0], B = [125, 0] } }")
     text = text.replace("[input]\nslider", "[[input]]\nslider").replace(
         "s_ddot = -20\n", "s_ddot = -20\n\n[[input]]\nlink = \"7\"\nrelative_to = \"4\"\nangle = ANGLE\nomega = 0.3\n"
         "alpha = -0.2\n").replace("B = [396, 250]", "B = [380, 250]\nM = [400, 125]")

@@ -95,7 +95,8 @@ def test_random_triad_tips_lie_on_their_lines(name: str, turn: float, omega: flo
     text = (EXAMPLES / f"{name}.toml").read_text()
     angle, w, al = {"triad": (60, 5, 2), "kc0-six-bar": (60, 10, -4)}[name]
     text = text.replace(f"angle = {angle}\n", f"angle = {angle + turn!r}\n", 1)
-    text = text.replace(f"omega = {w}\n", f"omega = {omega!r}\n", 1).replace(f"alpha = {al}\n", f"alpha = {alpha!r}\n", 1)
+    text = (text.replace(f"omega = {w}\n", f"omega = {omega!r}\n", 1)
+            .replace(f"alpha = {al}\n", f"alpha = {alpha!r}\n", 1))
     try:
         solution = kinepoly.solve(kinepoly.loads_scene(text))
     except kinepoly.KinepolyError:

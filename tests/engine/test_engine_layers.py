@@ -76,7 +76,8 @@ def test_kinds_and_shared_pieces_import_no_driver(module: str) -> None:
     assert not up, f"engine.{module} imports the driver(s) {up}"
 
 
-@pytest.mark.parametrize("module", sorted(m for m in MODULES if not m.startswith("kinds") and m not in DRIVERS | READERS))
+@pytest.mark.parametrize("module", sorted(m for m in MODULES
+                                          if not m.startswith("kinds") and m not in DRIVERS | READERS))
 def test_shared_pieces_import_no_kind(module: str) -> None:
     up = sorted(t for t in GRAPH[module] if t.startswith("kinds"))
     assert not up, f"engine.{module} imports the kind(s) {up}"

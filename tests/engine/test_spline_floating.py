@@ -97,7 +97,8 @@ def _normal_residual(data: dict[str, object], omega_cam: float) -> float:
     return abs(((on_follower - on_cam) * n.conjugate()).real) / abs(on_cam)
 
 
-ROCKERS = {TRIAD: (("B", "4", -90 + 45j, 67.6), ("C", "5", -5 + 50j, 61.2)), SLEEVE: (("B", "4", -150 + 120.5j, 163.3),)}
+ROCKERS = {TRIAD: (("B", "4", -90 + 45j, 67.6), ("C", "5", -5 + 50j, 61.2)),
+           SLEEVE: (("B", "4", -150 + 120.5j, 163.3),)}
 """The guessed points on the rockers: (point, rocker, pivot, length)."""
 
 

@@ -4,8 +4,8 @@ The coupler of a four-bar rests its flat face on the cam; the follower reaches t
 rockers. The references are derived apart from the spline's path through the engine, as for the floating
 roller (``test_spline_floating``): the same mechanism with the circle the profile's points were sampled
 from, solved exactly (a circle cam's flat face is a permanent slider at the circle's centre); finite
-differences of the positions over the input (``test_spline_floating``); the analytic check (``check/``, its own face constraint);
-and the contact's velocity condition.
+differences of the positions over the input (``test_spline_floating``); the analytic check (``check/``, its own face
+constraint); and the contact's velocity condition.
 """
 
 from __future__ import annotations

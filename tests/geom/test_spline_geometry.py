@@ -112,7 +112,8 @@ def test_the_error_shrinks_at_the_order_of_a_cubic_spline() -> None:
 
 def test_a_circle_through_its_points_has_its_centre_of_curvature_at_the_centre() -> None:
     radius, centre = 40.0, 12.0 - 5.0j
-    points = [(centre.real + radius * math.cos(2 * math.pi * k / 48), centre.imag + radius * math.sin(2 * math.pi * k / 48))
+    points = [(centre.real + radius * math.cos(2 * math.pi * k / 48),
+               centre.imag + radius * math.sin(2 * math.pi * k / 48))
               for k in range(48)]
     spline = periodic_spline(points)
     frame = spline.frame(np.linspace(0.0, spline.period, 997))
@@ -141,8 +142,8 @@ def test_roots_along_find_where_a_line_crosses_the_curve(fraction: float) -> Non
     assert len(roots) == 2
     found = spline.point(roots)
     assert np.max(np.abs(found.real - c)) <= 1e-12 * A
-    assert sorted(found.imag.tolist()) == pytest.approx([-B * math.sqrt(1 - (c / A) ** 2), B * math.sqrt(1 - (c / A) ** 2)],
-                                                         abs=1e-5 * A)
+    assert sorted(found.imag.tolist()) == pytest.approx(
+        [-B * math.sqrt(1 - (c / A) ** 2), B * math.sqrt(1 - (c / A) ** 2)], abs=1e-5 * A)
     assert np.all((roots >= 0.0) & (roots < spline.period))
 
 

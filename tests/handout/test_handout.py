@@ -152,7 +152,8 @@ def test_each_direction_line_is_what_its_data_says(name: str) -> None:
 
 # -- the pages -------------------------------------------------------------------------------------
 @pytest.mark.parametrize("lang", LANGUAGES)
-def test_a_page_for_the_problem_each_step_and_the_answers(four_bar: Solution, sheets: dict[str, tuple[object, list[Sheet]]],
+def test_a_page_for_the_problem_each_step_and_the_answers(four_bar: Solution,
+                                                          sheets: dict[str, tuple[object, list[Sheet]]],
                                                           lang: str) -> None:
     _handout, pages = sheets[lang]
     assert len(pages) == 1 + len(four_bar.steps) + 1 == 15

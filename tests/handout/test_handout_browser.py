@@ -74,7 +74,8 @@ def test_each_section_shows_its_drawing_and_its_equation(browser: Any, page: Pat
     _go(browser, page.as_uri() + "#page-11")
     shown = browser.evaluate("(() => { const s = document.querySelector('section.page:not([hidden])');"
                              " const r = s.querySelector('svg').getBoundingClientRect();"
-                             " return [s.dataset.equation, s.querySelector('.equation').textContent, r.width, r.height];"
+                             " return [s.dataset.equation, "
+                             "s.querySelector('.equation').textContent, r.width, r.height];"
                              " })()")
     equation, written, width, height = shown
     assert equation.startswith("a_B = a_A + a^n_B/A") and written.replace(" ", "") == \

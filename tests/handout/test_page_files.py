@@ -56,8 +56,8 @@ def test_an_installed_package_reads_the_pages_files_through_importlib_resources(
         "        sys.stdout.write(f'{package} {name} {len(a.static_text(package, name))}\\n')\n"
     )
     env = {**os.environ, "PYTHONPATH": str(archive)}
-    done = subprocess.run([sys.executable, "-c", probe], check=False, env=env, capture_output=True, text=True, timeout=120,
-                          cwd=tmp_path)
+    done = subprocess.run([sys.executable, "-c", probe], check=False, env=env, capture_output=True, text=True,
+                          timeout=120, cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     read = {tuple(line.split()[:2]): int(line.split()[2]) for line in done.stdout.splitlines()}
     expected = {(package, name): len((SOURCE.joinpath(*package.split("."), "static", name)).read_text("utf-8"))

@@ -98,13 +98,14 @@ def _needed(solution: Solution, say: Catalogue) -> list[tuple[str, list[str]]]:
             out.append((f"cam {cam.name}'s face offset", offsets))
             out.append((f"cam {cam.name}'s face angle", [f"{n(math.degrees(angle) % 180.0)}°"]))
     for gear in scene.gears:
-        for link, pitch in zip(gear.links, gear.pitch):
+        for link, pitch in zip(gear.links, gear.pitch, strict=True):
             if isinstance(pitch, PitchCircle):
                 out.append((f"gear {link}'s pitch radius", [n(pitch.radius)]))
             else:
                 out.append((f"rack {link}'s pitch line", [say.pair(*pitch.through)]))
-        for link, pitch in zip(gear.links, gear.pitch):
-            if isinstance(pitch, PitchCircle) and link != ground and not (isinstance(inp, LinkInput) and inp.link == link):
+        for link, pitch in zip(gear.links, gear.pitch, strict=True):
+            if (isinstance(pitch, PitchCircle) and link != ground
+                    and not (isinstance(inp, LinkInput) and inp.link == link)):
                 out.append((f"gear {link}'s angle", [f"θ{ground}{link} = {n(math.degrees(solution.angle(link)))}"]))
     return out
 

@@ -33,7 +33,8 @@ def edit(old: str = "", new: str = "", *, before: str = "", after: str = "") -> 
 
 
 def run_on(capsys: pytest.CaptureFixture[str], tmp_path: Path, text: str, *argv: str) -> tuple[int, str, str]:
-    """Write ``text`` to tmp_path/s.toml and run ``kinepoly ARGV[0] s.toml ARGV[1:]`` (``{tmp}`` in argv is tmp_path)."""
+    """Write ``text`` to tmp_path/s.toml and run ``kinepoly ARGV[0] s.toml ARGV[1:]`` (``{tmp}`` in argv is
+    tmp_path)."""
     scene = tmp_path / "s.toml"
     scene.write_text(text, encoding="utf-8")
     command, *rest = argv

@@ -62,7 +62,8 @@ def test_kinepoly_handout_of_a_long_chain_on_a4_exits_0_and_reports_the_paper(
 @pytest.mark.parametrize("name", ["centers-six-bar", "slider-crank"])
 def test_labels_placed_once_per_handout_are_those_placed_anew_on_each_page(name: str) -> None:
     """The shared cache changes nothing on the fixed parts (the mechanism, the circle diagram): every page's as
-    with a cache of its own. (A polygon's labels are kept from the page before: tests/render/test_render_labels_once.py.)"""
+    with a cache of its own. (A polygon's labels are kept from the page before:
+    tests/render/test_render_labels_once.py.)"""
     solution = solve(load_scene(EXAMPLES / f"{name}.toml"))
     say = load_catalogue("en")
     frame = band_frame(solution, paper_size("A4"), 20.0)

@@ -156,7 +156,8 @@ def test_a_failed_draw_makes_no_folder(capsys: pytest.CaptureFixture[str], tmp_p
 
 
 def test_sweep_and_draw_write_the_same_file_mode(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
-    assert run_on(capsys, tmp_path, BASE, "sweep", "--steps", "24", "-o", "{tmp}/x.csv", "--plot", "{tmp}/x.png")[0] == 0
+    assert run_on(capsys, tmp_path, BASE, "sweep", "--steps", "24", "-o", "{tmp}/x.csv",
+                  "--plot", "{tmp}/x.png")[0] == 0
     assert run_on(capsys, tmp_path, BASE, "draw", "-o", "{tmp}/d.svg")[0] == 0
     modes = {p.name: stat.S_IMODE(p.stat().st_mode) for p in tmp_path.iterdir() if p.name != "s.toml"}
     umask = os.umask(0o022)
@@ -183,7 +184,8 @@ def test_ctrl_c_in_a_process(tmp_path: Path) -> None:
     (tmp_path / "s.toml").write_text(BASE)
     script = ("import signal, kinepoly.solution as s\n"
               "def slow(*a, **k):\n    signal.raise_signal(signal.SIGINT)\n"
-              f"s.solve = slow\nfrom kinepoly.cli import main\nraise SystemExit(main(['solve', {str(tmp_path / 's.toml')!r}]))\n")
+              "s.solve = slow\nfrom kinepoly.cli import main\nraise SystemExit(main(['solve', "
+              f"{str(tmp_path / 's.toml')!r}]))\n")
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120, check=False,
                           env={**os.environ, "PYTHONWARNINGS": "ignore"})
     assert done.returncode == EXIT_INTERRUPTED and "Traceback" not in done.stderr

@@ -196,7 +196,8 @@ def test_a_full_disk_under_sweep_is_a_message(capsys: pytest.CaptureFixture[str]
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
 
     monkeypatch.setattr(os, "fsync", full)
-    for command in (["sweep", "--steps", "12", "-o", "{tmp}/x.csv"], ["sweep", "--steps", "12", "--plot", "{tmp}/x.png"]):
+    for command in (["sweep", "--steps", "12", "-o", "{tmp}/x.csv"],
+                    ["sweep", "--steps", "12", "--plot", "{tmp}/x.png"]):
         code, _, err = run_on(capsys, tmp_path, BASE, *command)
         assert code == 2, err
         assert "cannot write" in err and "No space left on device" in err

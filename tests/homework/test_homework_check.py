@@ -221,7 +221,10 @@ def test_numbers_within_two_percent() -> None:
 def test_vectors_by_magnitude_and_direction() -> None:
     a = right_answers(solved(FOUR_BAR))["a_C"]
     assert isinstance(a, complex)
-    turn = lambda deg: a * complex(math.cos(math.radians(deg)), math.sin(math.radians(deg)))
+
+    def turn(deg: float) -> complex:
+        return a * complex(math.cos(math.radians(deg)), math.sin(math.radians(deg)))
+
     assert one(FOUR_BAR, "a_C", toml_value(turn(1.99))) and one(FOUR_BAR, "a_C", toml_value(turn(-1.99)))
     assert not one(FOUR_BAR, "a_C", toml_value(turn(2.01)))
     assert one(FOUR_BAR, "a_C", toml_value(a * 1.0199)) and not one(FOUR_BAR, "a_C", toml_value(a * 1.0201))

@@ -194,7 +194,8 @@ def test_variants_that_cannot_be_made(capsys: pytest.CaptureFixture[str], tmp_pa
     code, _, err = run(capsys, "variants", str(EXAMPLES / "image-point.toml"), "-o", out)
     assert code == 2 and "[given] scene" in err
     short = tmp_path / "short.toml"  # coupler 12 and rocker 8 cannot span the 60 to 140 mm from A to B0
-    short.write_text((EXAMPLES / "four-bar.toml").read_text() + '[vary]\nlinks = { "3" = [0.1, 0.1], "4" = [0.1, 0.1] }\n')
+    short.write_text((EXAMPLES / "four-bar.toml").read_text()
+                     + '[vary]\nlinks = { "3" = [0.1, 0.1], "4" = [0.1, 0.1] }\n')
     code, _, err = run(capsys, "variants", str(short), "-o", out, "--n", "2")
     assert code == 3 and "only 0 of 2 variants in 120 draws" in err
     for bad in (["--angle", "x"], ["--angle", "5,1"], ["--n", "0"], ["--min-transmission", "95"]):

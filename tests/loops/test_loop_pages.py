@@ -44,7 +44,8 @@ def test_a_page_per_loop_after_the_answers(code: str) -> None:
 
 def test_the_handout_command_adds_the_pages(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     out = tmp_path / "h.pdf"
-    code, printed, _ = run(capsys, "handout", str(EXAMPLES / "four-bar.toml"), "--loops", "-o", str(out), "--lang", "tr")
+    code, printed, _ = run(capsys, "handout", str(EXAMPLES / "four-bar.toml"), "--loops", "-o", str(out),
+                           "--lang", "tr")
     assert code == 0 and out.stat().st_size > 0
     _, plain, _ = run(capsys, "handout", str(EXAMPLES / "four-bar.toml"), "-o", str(tmp_path / "p.pdf"), "--lang", "tr")
 

@@ -101,7 +101,8 @@ def test_check_recognises_a_polygon_length_not_divided_by_that_kv_or_ka(name: st
     text = (EXAMPLES / f"{name}.toml").read_text(encoding="utf-8")
     scene = loads_scene(text, f"{name}.toml")
     tried = 0
-    for level, symbol, code in (("velocity", "velocity", "kv-not-divided"), ("acceleration", "acceleration", "ka-not-divided")):
+    for level, symbol, code in (("velocity", "velocity", "kv-not-divided"),
+                                ("acceleration", "acceleration", "ka-not-divided")):
         if symbol not in data.get("polygons", {}):
             continue
         found = _first(data, level)
@@ -148,7 +149,8 @@ def _extent(solution: Solution, kind: str) -> tuple[float, float]:
     assert polygon is not None
     points = [(0.0, 0.0), *polygon.tips.values()]
     points += [p for s in solution.steps if s.polygon == kind for v in s.vectors for p in (v.start, v.end)]
-    return (max(p[0] for p in points) - min(p[0] for p in points), max(p[1] for p in points) - min(p[1] for p in points))
+    return (max(p[0] for p in points) - min(p[0] for p in points),
+            max(p[1] for p in points) - min(p[1] for p in points))
 
 
 @pytest.mark.parametrize("paper", [A4, (420.0, 297.0), (160.0, 140.0), (120.0, 100.0)])
@@ -176,5 +178,5 @@ def test_draw_kv_and_ka_fix_the_scales() -> None:
     auto = decide_scales(_solution())
     solution = _solution()
     assert solution.velocity is not None
-    assert auto.get("velocity") == nice_scale(max(math.dist(p, q) for p in [(0.0, 0.0), *solution.velocity.tips.values()]
-                                                  for q in [(0.0, 0.0), *solution.velocity.tips.values()]))
+    tips = [(0.0, 0.0), *solution.velocity.tips.values()]
+    assert auto.get("velocity") == nice_scale(max(math.dist(p, q) for p in tips for q in tips))

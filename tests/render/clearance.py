@@ -5,8 +5,8 @@ the ink of everything drawn: strokes at their width (dashes taken as solid), arr
 heads, circles as discs, opaque symbols (a pivot's triangle, a slider's block) as areas. Only
 background may lie under a label: light shading (plates, image triangles: fill opacity below 1)
 and the highlight under a step's new elements (role ``highlight``; the line it highlights is
-measured itself); and a label's own leader and ring may touch it. Texts must lie on the page. The geometry is made here from the
-primitives, not taken from ``kinepoly.render.labels``, so a blind spot of the placer is not one
+measured itself); and a label's own leader and ring may touch it. Texts must lie on the page. The geometry is made here
+from the primitives, not taken from ``kinepoly.render.labels``, so a blind spot of the placer is not one
 of the measure.
 """
 

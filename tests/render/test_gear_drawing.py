@@ -35,7 +35,8 @@ def _circle(item: object) -> tuple[complex, float]:
     ("gear-pair", {"pitch circle 23 2": ((0.0, 0.0), 40.0), "pitch circle 23 3": ((100.0, 0.0), 60.0)}),
     ("planetary", {"pitch circle 13 1": ((0.0, 0.0), 30.0), "pitch circle 34 4": ((0.0, 0.0), 70.0)}),
 ])
-def test_pitch_circles_at_the_centres_and_radii(name: str, circles: dict[str, tuple[tuple[float, float], float]]) -> None:
+def test_pitch_circles_at_the_centres_and_radii(name: str,
+                                                circles: dict[str, tuple[tuple[float, float], float]]) -> None:
     solution, items, panel = _layer(name)
     for role, (center, radius) in circles.items():
         at, r = _circle(items[role])

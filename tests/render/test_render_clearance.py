@@ -53,7 +53,8 @@ def test_the_measure_sees_a_label_on_an_arrow_a_label_a_block_and_the_page_edge(
     assert [c.other for c in on_arrow] == ["Arrow 'vector v_A'"]
     on_label = conflicts(_one_layer(_label(20.0, 40.0, "a"), _label(21.0, 40.5, "b")))
     assert len(on_label) == 1 and "text 'b'" in on_label[0].other
-    inside_block = conflicts(_one_layer(block, _label(62.0, 52.0, "4")))  # inside the block's outline, touching no stroke
+    # inside the block's outline, touching no stroke
+    inside_block = conflicts(_one_layer(block, _label(62.0, 52.0, "4")))
     assert [c.other for c in inside_block] == ["Path 'block 4'"]
     off_page = conflicts(_one_layer(_label(98.0, 40.0, "long label")))
     assert [c.other for c in off_page] == ["the page's edge"]
@@ -62,7 +63,8 @@ def test_the_measure_sees_a_label_on_an_arrow_a_label_a_block_and_the_page_edge(
 
 
 def test_the_measure_fails_on_a_real_sheet_whose_labels_are_placed_blindly(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Every label at its first candidate place, free or not: the shaper's sheet then has overlaps, and they are seen."""
+    """Every label at its first candidate place, free or not: the shaper's sheet then has overlaps, and they are
+    seen."""
     monkeypatch.setattr(labels.Placer, "_free_of", lambda self, boxes, avoid_fill: (self._inside(b) for b in boxes))
     found = conflicts(_sheet(EXAMPLES / "shaper.toml"))
     assert len(found) >= 5

@@ -108,7 +108,8 @@ def test_pieces_cover_what_the_item_covers(points: list[tuple[float, float]], wi
 
     ring = [*points, points[0], points[1]]
     assume(all(math.dist(a, b) > 0.05 for a, b in pairwise(ring)))  # no stroke of no length
-    assume(all(_turn_cosine(a, b, c) > -0.99 for a, b, c in zip(ring, ring[1:], ring[2:])))  # nor a hairpin
+    # nor a hairpin
+    assume(all(_turn_cosine(a, b, c) > -0.99 for a, b, c in zip(ring, ring[1:], ring[2:], strict=False)))
     start, end = points[0], points[1]
     if arrow and math.dist(start, end) > 3.0:
         item: Arrow | Path = Arrow(start, end, "#000000", width, 2.0, 0.6)

@@ -435,7 +435,8 @@ def test_binary_garbage(tmp_path: Path) -> None:
     path.write_bytes(b"title = 1\n\x89PNG\x1a\x00\x00\x00\rIHDR")
     with pytest.raises(SceneError) as caught:
         load_scene(path)
-    assert caught.value.problems == [f"{path}:2: (file): binary data (a NUL byte); expected a scene .toml file in UTF-8 text"]
+    assert caught.value.problems == [f"{path}:2: (file): binary data (a NUL byte); expected a scene "
+                                     ".toml file in UTF-8 text"]
 
 
 def test_not_utf8(tmp_path: Path) -> None:
@@ -499,7 +500,8 @@ def test_point_coordinates_round_trip(px: float, py: float, qx: float, qy: float
     text = edit(BASE, "A = [40, 0] }", f"A = [40, 0], P = [{px!r}, {py!r}] }}")
     text = edit(text, "A = [120, 0] }", f"A = [120, 0], Q = [{qx!r}, {qy!r}] }}")
     scene = loads_scene(text)
-    for got, want in zip(scene.link("2").point("P").local + scene.link("3").point("Q").local, (px, py, qx, qy)):
+    for got, want in zip(scene.link("2").point("P").local + scene.link("3").point("Q").local, (px, py, qx, qy),
+                         strict=True):
         assert math.isclose(got, want, rel_tol=1e-12, abs_tol=0.0)
 
 

@@ -60,7 +60,8 @@ def test_bad_points_are_named(points: str, expected: str) -> None:
 
 def test_a_spline_that_crosses_itself_is_refused() -> None:
     # a pentagram: the points of a regular pentagon taken every second one (positive area, but two turns)
-    star = [[round(40 * math.cos(math.pi / 2 + 4 * math.pi * k / 5), 9), round(40 * math.sin(math.pi / 2 + 4 * math.pi * k / 5), 9)]
+    star = [[round(40 * math.cos(math.pi / 2 + 4 * math.pi * k / 5), 9),
+             round(40 * math.sin(math.pi / 2 + 4 * math.pi * k / 5), 9)]
             for k in range(5)]
     assert "the spline through these points turns 2 times round instead of once" in _problems(str(star))
 

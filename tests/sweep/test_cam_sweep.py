@@ -202,7 +202,8 @@ def test_plot_draws_the_s_v_a_diagram_and_the_pressure_angle() -> None:
             name = ax.get_ylabel().split("\n")[0]
             assert np.array_equal(np.asarray(x), result.input.values)
             assert np.array_equal(np.asarray(y), shown[name])
-            assert np.allclose(shown[name], result.column(name).values, rtol=1e-9, atol=1e-9 * np.abs(shown[name]).max())
+            assert np.allclose(shown[name], result.column(name).values, rtol=1e-9,
+                               atol=1e-9 * np.abs(shown[name]).max())
         pressure = next(ax for title, ax in by_title.items() if title.startswith("pressure angles"))
         # a flat face square to its guide: the pressure angle is 0 (the column's 3.5e-15 deg is rounding noise)
         assert np.array_equal(np.asarray(pressure.lines[0].get_ydata()), shown["pressure_angle_23"])

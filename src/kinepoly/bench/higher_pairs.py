@@ -80,7 +80,8 @@ def _left(a: Pair) -> Pair:
 
 
 def cam_row(mp: Any, mechanism: Mechanism, cam: CamSpec, q: list[Any], world: World, angle: Angle) -> Any:
-    """The contact of ``cam``'s circle with its follower: zero when they touch (a spline cam: ``bench.spline_pairs``)."""
+    """The contact of ``cam``'s circle with its follower: zero when they touch (a spline cam:
+    ``bench.spline_pairs``)."""
     k = world(q, cam.cam, mechanism.local(cam.cam, cam.center_point))
     if cam.kind == "flat":
         assert cam.flat is not None

@@ -199,9 +199,11 @@ def solve_analytic(mechanism: Mechanism, start: dict[str, LinkPose], *, with_acc
     moving = tuple(name for name in mechanism.link_names if name != ground)
     layout = IndexedLayout(moving, ground, mechanism_size(mechanism))
     poses0 = complete_start(mechanism, start) if mechanism.scene.gears else {}
-    q0 = np.array([v for link in moving for v in (poses0[link].x, poses0[link].y, poses0[link].theta)]) if poses0 else None
+    q0 = (np.array([v for link in moving for v in (poses0[link].x, poses0[link].y, poses0[link].theta)])
+          if poses0 else None)
     rolling = rolling_constraints(mechanism, bodies(layout, q0)) if q0 is not None else []
-    system = System((*constraints_of(mechanism), *rolling, *spline_contacts(mechanism)), layout, _where(mechanism), mechanism.scene.source)
+    system = System((*constraints_of(mechanism), *rolling, *spline_contacts(mechanism)), layout, _where(mechanism),
+                    mechanism.scene.source)
     if len(system.row_scale) != layout.n:
         raise SceneError(
             f"{system.source}: links: {len(system.row_scale)} constraint equations for {layout.n} body "

@@ -68,7 +68,8 @@ def _scale(quantities: tuple[Quantity, ...], kind: str, natural: dict[str, float
     return largest if largest > 0.0 else 1.0
 
 
-def compare(quantities: list[Quantity], condition_number: float, natural: dict[str, float] | None = None) -> CheckReport:
+def compare(quantities: list[Quantity], condition_number: float,
+            natural: dict[str, float] | None = None) -> CheckReport:
     """The report; ``natural`` gives each kind's size in the scene beyond the asked quantities."""
     kinds = sorted({q.kind for q in quantities})
     frozen = tuple(quantities)

@@ -131,7 +131,8 @@ def _check_rigid_velocity(
             raise SceneError(
                 f"{_at(source, p)}given.{p.name}.velocity: the velocities of {a.name} and {p.name} differ by "
                 f"{abs(along):.6g} {unit}/s along {a.name}{p.name}; a rigid body allows none (make the component "
-                f"of given.{p.name}.velocity along {a.name}{p.name} equal that of {a.name}: {float(v[0] @ u):.6g} {unit}/s)"
+                f"of given.{p.name}.velocity along {a.name}{p.name} equal that of {a.name}: "
+                f"{float(v[0] @ u):.6g} {unit}/s)"
             )
 
 

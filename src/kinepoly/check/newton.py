@@ -159,8 +159,8 @@ def _links_of(constraint: Constraint, moving: dict[str, int]) -> tuple[str, ...]
 def condition_number(matrix: np.ndarray | SparseMatrix) -> float:
     """2-norm condition number by SVD (inf when singular); a sparse matrix is judged block by block.
 
-    A ``SparseMatrix`` (the Jacobian) of more than WINDOW unknowns is put in block triangular form (``check.blocks``) and the
-    largest condition number of its diagonal blocks is returned: the matrix is singular exactly
+    A ``SparseMatrix`` (the Jacobian) of more than WINDOW unknowns is put in block triangular form (``check.blocks``)
+    and the largest condition number of its diagonal blocks is returned: the matrix is singular exactly
     when one of them is, and each group's conditioning is judged on its own, in time linear in
     the number of groups, instead of by one dense SVD whose condition also grows with the length
     of a chain of healthy loops.

@@ -69,7 +69,8 @@ class _Circles:
     def value(self, bd: dict[str, Body]) -> float:
         d = self._d(bd)
         phi = self.phi0 + math.remainder(math.atan2(d[1], d[0]) - self.phi0, math.tau)
-        return (self.r_a - self.sign * self.r_b) * phi - self.r_a * bd[self.a].theta + self.sign * self.r_b * bd[self.b].theta
+        return ((self.r_a - self.sign * self.r_b) * phi - self.r_a * bd[self.a].theta
+                + self.sign * self.r_b * bd[self.b].theta)
 
     def phi(self, b: dict[str, Body]) -> np.ndarray:
         return np.array([self.value(b) - self.g0])

@@ -104,8 +104,8 @@ def _usage_exit(message: str) -> int:
 
 
 _EXIT_STATUS = ("exit status: 0 solved; 1 an answer was wrong (check); 2 the scene or the command is wrong; 3 the "
-                "mechanism cannot be assembled or is singular at that input; 70 an internal error; 130 interrupted; 143 "
-                "terminated")
+                "mechanism cannot be assembled or is singular at that input; 70 an internal error; 130 interrupted; "
+                "143 terminated")
 
 
 def parser() -> argparse.ArgumentParser:

@@ -33,7 +33,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         "or your wording; see 'Handouts' in the README); overrides --lang")
     parser.add_argument("--paper", default="A4", help="A0..A5, letter, legal, tabloid (landscape; add -portrait), "
                         "or WIDTHxHEIGHT in mm (default A4)")
-    parser.add_argument("--loops", action="store_true", help="add to the PDF and the web page a page per loop of the loop-closure "
+    parser.add_argument("--loops", action="store_true",
+                        help="add to the PDF and the web page a page per loop of the loop-closure "
                         "method (each loop's equation in complex numbers, its derivatives, Cramer's rule); gears and "
                         "cams are not covered: exit 2")
 

@@ -62,7 +62,8 @@ class _ProgressBar:
         self.last = now
         width = 30
         filled = int(width * done / max(total, 1))
-        self.stream.write(f"\rkinepoly sweep [{'#' * filled}{'.' * (width - filled)}] {100 * done // max(total, 1):3d}%")
+        self.stream.write(f"\rkinepoly sweep [{'#' * filled}{'.' * (width - filled)}] "
+                          f"{100 * done // max(total, 1):3d}%")
         self.stream.flush()
         self.drawn = True
 
@@ -164,7 +165,8 @@ def _pole(args: argparse.Namespace, scene: Any, result: Any) -> None:
     where = (f"({pole.pole.real:.6g}, {pole.pole.imag:.6g}) {unit}" if pole.pole is not None else
              "at infinity (the link is translated, not turned)")
     centre = found.instant_center
-    limit = f"; the instant center at {name} = {args.pole[0]:g} is ({centre.real:.6g}, {centre.imag:.6g})" if centre else ""
+    limit = (f"; the instant center at {name} = {args.pole[0]:g} is ({centre.real:.6g}, {centre.imag:.6g})"
+             if centre else "")
     print(f"kinepoly: finite-rotation pole P12 of link {args.centrode} from {name} = {args.pole[0]:g} to "
           f"{args.pole[1]:g}: {where}, the link turning {math.degrees(pole.turn):.6g} deg{limit}", file=sys.stderr)
     if args.pole_plot:

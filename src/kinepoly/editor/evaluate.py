@@ -41,7 +41,8 @@ class Evaluation:
     layout: Layout | None = field(default=None, compare=False, repr=False)
     timing_ms: dict[str, float] = field(default_factory=dict)
     draft: bool = False
-    """Whether ``svg`` is a draft: its labels at their first places, not searched clear (``render.labels.draft_place``)."""
+    """Whether ``svg`` is a draft: its labels at their first places, not searched clear
+    (``render.labels.draft_place``)."""
 
     @property
     def ok(self) -> bool:

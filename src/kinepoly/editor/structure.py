@@ -194,7 +194,8 @@ def remove_link(doc: TOMLDocument, solution: Solution, link: object) -> None:
         tables = doc.get(key)
         if isinstance(tables, AoT):
             keep = [t for t in tables if not _named_in(t, link)]
-            removed_sliders |= {s.name for s in scene.sliders if link in (s.block, s.guide)} if key == "sliders" else set()
+            removed_sliders |= ({s.name for s in scene.sliders if link in (s.block, s.guide)} if key == "sliders"
+                                else set())
             if len(keep) != len(tables):
                 if keep:
                     new = tomlkit.aot()

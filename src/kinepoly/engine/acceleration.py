@@ -24,6 +24,7 @@ from kinepoly.engine.steps import DrawnVector, Step
 from kinepoly.engine.table import kind_of
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import cross_lines
+from kinepoly.geom.tolerances import RIGID_REL_TOL, TINY_POSITIVE
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 
 __all__ = ["RIGHT", "AccelerationResult", "Rules", "construct_acceleration"]
@@ -76,7 +77,7 @@ def _given(ctx: AccelerationContext, given: GivenInput) -> None:
     rel = a_second - a_first
     along = r / abs(r)
     misfit = ((rel - normal) * along.conjugate()).real
-    if abs(misfit) > 1e-9 * max(abs(a_first), abs(a_second), abs(normal), 1e-300):
+    if abs(misfit) > RIGID_REL_TOL * max(abs(a_first), abs(a_second), abs(normal), TINY_POSITIVE):
         raise SceneError(f"{b.mechanism.scene.source}: given.{second.name}.acceleration: along "
                          f"{first.name}{second.name} the given accelerations differ by "
                          f"{(rel * along.conjugate()).real:.6g} {b.unit}, but a rigid body turning at omega = "

@@ -32,6 +32,7 @@ from kinepoly.engine.newton_walk import Walk, known_points
 from kinepoly.engine.position import Failure, Placement, Positions, describe_input, input_values, solve_positions
 from kinepoly.errors import AssemblyError, SingularityError
 from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.geom.tolerances import ROUNDING_REL, SAME_REL
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
@@ -90,7 +91,7 @@ class NearestGuess:
         own = [self._score(mechanism, closure.place(k)) for k in range(2)]
         tells = [complex(t[0]) for t in closure.telling]
         size = max(abs(t - tells[0]) for t in tells) + max(max(abs(t.real), abs(t.imag)) for t in tells)
-        if max(own) - min(own) > 1e-12 * size * size:
+        if max(own) - min(own) > ROUNDING_REL * size * size:
             return own.index(min(own))
         outcomes: list[tuple[float, Placement | None]] = []
         failure: AssemblyError | None = None
@@ -103,7 +104,7 @@ class NearestGuess:
                 outcomes.append((math.inf, None))
         scores = [o[0] for o in outcomes]
         finite = [x for x in scores if math.isfinite(x)]
-        if len(finite) == 2 and max(scores) - min(scores) > 1e-12 * size * size:
+        if len(finite) == 2 and max(scores) - min(scores) > ROUNDING_REL * size * size:
             best = outcomes[scores.index(min(scores))][1]
             assert best is not None
             return best
@@ -208,7 +209,7 @@ def _telling_point(mechanism: Mechanism, closure: Closure, pick: int) -> tuple[s
     for link, pose in chosen.items():
         for p in mechanism.scene.link(link).points:
             a, b = complex(pose.world(p.local)[0]), complex(other[link].world(p.local)[0])
-            if abs(a - b) > gap * (1 + 1e-9):
+            if abs(a - b) > gap * (1 + SAME_REL):
                 best, gap = (p.name, a, b), abs(a - b)
     return best
 
@@ -245,13 +246,14 @@ class Continuity:
         dyad, joint, row = closure.dyad, closure.joint, self.seed_row
         if dyad.kind not in ("RRR", "RRP") or joint not in self.guess or not closure.ok[row]:
             return None
-        if any(p.name in self.guess and p.name != joint for link in dyad.links for p in mechanism.scene.link(link).points):
+        if any(p.name in self.guess and p.name != joint
+               for link in dyad.links for p in mechanism.scene.link(link).points):
             return None
         g = complex(*self.guess[joint])
         tells = [complex(t[row]) for t in closure.telling]
         own = [abs(t - g) * abs(t - g) for t in tells]  # inf, not OverflowError, for a guess far out
         size = abs(tells[1] - tells[0]) + max(max(abs(t.real), abs(t.imag)) for t in tells)
-        return own.index(min(own)) if abs(own[0] - own[1]) > 1e-12 * size * size else None
+        return own.index(min(own)) if abs(own[0] - own[1]) > ROUNDING_REL * size * size else None
 
     def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
         """Rows that do not close are marked by the executor; nothing to raise."""

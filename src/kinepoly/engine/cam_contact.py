@@ -17,8 +17,8 @@ A flat face touches where the profile's tangent runs along the face, the cam on 
 translating face keeps its direction (tangent(u) parallel to it), a rocker's face keeps its distance h from
 the pivot Q (the tangent line at P(u) passes h from Q), the follower then turned to the tangent.
 
-Each row has every root (``geom.spline.roots_by_row``, all rows at once); the assembly policy keeps one per row (nearest the
-``[guess]`` for a solve, followed by continuity in a sweep). The centre of curvature K = P + n / kappa (the
+Each row has every root (``geom.spline.roots_by_row``, all rows at once); the assembly policy keeps one per row
+(nearest the ``[guess]`` for a solve, followed by continuity in a sweep). The centre of curvature K = P + n / kappa (the
 same for the offset curve) is a point of the cam at that instant: the equivalent link K W replaces the pair
 for the polygons (``engine.cam_polygons``).
 """
@@ -39,6 +39,7 @@ from kinepoly.engine.steps import Step
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline, roots_by_row
+from kinepoly.geom.tolerances import LAST_BITS_REL, PARALLEL_SIN
 from kinepoly.geom.vec import magnitude
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
@@ -222,9 +223,10 @@ def _flat_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, Arr
         frame = spline.frame(u)
         ok &= (frame.tangent * along_cam[:, None].conjugate()).real > 0.0  # the same sense: the cam on the left
         across = along_local.conjugate().imag  # Im(conj(d) e), e the block's x-axis along the slide
-        if abs(across) < 1e-12:
+        if abs(across) < PARALLEL_SIN:
             raise SceneError(f"{mechanism.scene.source}:{cam.line}: cams.{cam.name}: the flat face runs along the "
-                             f"slide of {joint.name}, so the cam cannot move the follower; expected a face across the slide")
+                             f"slide of {joint.name}, so the cam cannot move the follower; expected a "
+                             "face across the slide")
         zero = np.zeros((n, 1))
         start_origin, start_rotation = _slid(mechanism, group, carrier_pose, zero)
         face_world = start_origin + start_rotation * face_local
@@ -286,7 +288,7 @@ def face_parameter(cam: CamSpec, along: complex, through: complex) -> float:
             break
         step = (first * along.conjugate()).imag / slope
         u -= step
-        if abs(step) <= 1e-15 * spline.period:
+        if abs(step) <= LAST_BITS_REL * spline.period:
             break
     return u % spline.period
 

@@ -32,6 +32,13 @@ from kinepoly.engine.cam_contact import Candidates, Ints, cam_spline
 from kinepoly.engine.groups import CamGroup
 from kinepoly.geom.arrays import Bools, Points, Reals, turn
 from kinepoly.geom.spline import PeriodicSpline, periodic_spline
+from kinepoly.geom.tolerances import (
+    CONTACT_DISTINCT_REL,
+    CURVES_CONFORMING,
+    CURVES_STRAIGHT,
+    NEWTON_CLOSED_REL,
+    TINY_POSITIVE,
+)
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import CamSpec, SliderSpec, Vector
@@ -132,7 +139,7 @@ def _det3(m: np.ndarray) -> Reals:
 def _solve3(jac: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, Bools]:
     """jac x = rhs for every lane by Cramer's rule, with the lanes where jac is singular."""
     det = _det3(jac)
-    good = np.abs(det) > 1e-300
+    good = np.abs(det) > TINY_POSITIVE
     safe = np.where(good, det, 1.0)
     out = np.empty(rhs.shape)
     for col in range(3):
@@ -146,6 +153,11 @@ _SEEDS_PER_CURVE = 12
 _SEARCHED_ROWS = 48
 _STEPS = 30
 _WANDER_STEP = 10
+_WANDER_REL = 1e-2
+"""At that step, lanes whose contact gap is still above this times the profiles' size are dropped (a search
+heuristic, not a tolerance)."""
+_BIN_REL = 1e-6
+"""Roots are sorted by their contact point rounded to this times the size, so that equal ones come together."""
 
 
 def curve_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, ArrayPose]) -> CurveCandidates:
@@ -192,8 +204,9 @@ def _newton(cam_pose: ArrayPose, carried: _Carried, s1: PeriodicSpline, s2: Peri
     for step_number in range(_STEPS):
         gap, parallel, jac = _residual(cam_pose, carried, s1, s2, row, u, v, q)
         if step_number == _WANDER_STEP:  # lanes still far from any root are dropped
-            near = (np.abs(gap) < 1e-2 * size) & np.isfinite(q)
-            row, u, v, q, gap, parallel, jac = row[near], u[near], v[near], q[near], gap[near], parallel[near], jac[near]
+            near = (np.abs(gap) < _WANDER_REL * size) & np.isfinite(q)
+            row, u, v, q = row[near], u[near], v[near], q[near]
+            gap, parallel, jac = gap[near], parallel[near], jac[near]
         step, good = _solve3(jac, -np.stack([gap.real, gap.imag, parallel], axis=-1))
         step = np.where(good[:, None], np.clip(step, -limit, limit), 0.0)
         u, v, q = u + step[:, 0], v + step[:, 1], q + step[:, 2]
@@ -201,7 +214,8 @@ def _newton(cam_pose: ArrayPose, carried: _Carried, s1: PeriodicSpline, s2: Peri
     t1 = cam_pose.rotation[row] * s1.derivatives(u)[1]
     _, rotation, _, _ = carried.pose(row, q)
     t2 = rotation * s2.derivatives(v)[1]
-    converged = ((np.abs(gap) <= 1e-9 * size) & (np.abs(parallel) <= 1e-9 * np.abs(t1) * np.abs(t2))
+    converged = ((np.abs(gap) <= NEWTON_CLOSED_REL * size)
+                 & (np.abs(parallel) <= NEWTON_CLOSED_REL * np.abs(t1) * np.abs(t2))
                  & ((np.conj(t1) * t2).real < 0.0) & np.isfinite(q))
     return row[converged], u[converged], v[converged], q[converged]
 
@@ -216,10 +230,11 @@ def _distinct(cam_pose: ArrayPose, s1: PeriodicSpline, carried: _Carried, n: int
     point = cam_pose.origin[row] + cam_pose.rotation[row] * s1.point(u)
     origin, rotation, _, _ = carried.pose(row, q)
     kept: list[list[int]] = [[] for _ in range(n)]
-    order = np.lexsort((np.round(point.real / (1e-6 * size)), row))
+    order = np.lexsort((np.round(point.real / (_BIN_REL * size)), row))
     for lane in order:
         mine = kept[int(row[lane])]
-        if all(abs(point[lane] - point[j]) > 1e-7 * size or abs(rotation[lane] - rotation[j]) > 1e-7 for j in mine):
+        if all(abs(point[lane] - point[j]) > CONTACT_DISTINCT_REL * size
+               or abs(rotation[lane] - rotation[j]) > CONTACT_DISTINCT_REL for j in mine):
             mine.append(int(lane))
     width = max(1, max((len(m) for m in kept), default=0))
     pick = np.zeros((n, width), np.intp)
@@ -259,8 +274,8 @@ def degenerate_rows(cam: CamSpec, rows: CurveContactRows) -> tuple[Bools, str]:
     infinity), with the reason at the first of them."""
     scale = max(cam_spline(cam).period, follower_spline(cam).period)
     k1, k2 = rows.cam_curvature, rows.curvature
-    straight = (np.abs(k1) * scale <= 1e-9) | (np.abs(k2) * scale <= 1e-9)
-    conforming = (k1 + k2) * scale <= 1e-6
+    straight = (np.abs(k1) * scale <= CURVES_STRAIGHT) | (np.abs(k2) * scale <= CURVES_STRAIGHT)
+    conforming = (k1 + k2) * scale <= CURVES_CONFORMING
     bad = np.asarray(straight | conforming)
     if not bad.any():
         return bad, ""
@@ -270,7 +285,8 @@ def degenerate_rows(cam: CamSpec, rows: CurveContactRows) -> tuple[Bools, str]:
         why = (f"a profile is straight at the contact (curvatures {a:.6g} and {b:.6g}): its centre of curvature is at "
                "infinity, so no link joins the two centres; make both profiles curved there")
     else:
-        why = (f"the two profiles {'conform' if abs(a + b) * scale <= 1e-6 else 'cut into each other'} at the contact "
+        how = "conform" if abs(a + b) * scale <= CURVES_CONFORMING else "cut into each other"
+        why = (f"the two profiles {how} at the contact "
                f"(curvatures {a:.6g} and {b:.6g}, 1/rho1 + 1/rho2 = {a + b:.6g}, not positive): the link joining "
                "both centres of curvature has no length or turns inside out; make the follower's profile more "
                "convex than the cam's hollow there")

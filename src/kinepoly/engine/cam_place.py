@@ -65,7 +65,8 @@ def guessed_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidate
                        for z, ok in zip(candidates.w[0], found[0], strict=True) if ok and complex(z) != w)
     return choice, (Notice("default-assembly", f"follower {link}: no [guess] tells its contacts with the cam apart, so "
                            f"the first along the profile was taken, which puts {name} at ({w.real:.6g}, {w.imag:.6g}); "
-                           f"the others put it at {others} (give [guess] positions of the follower's points near the ones you mean)"),)
+                           f"the others put it at {others} (give [guess] positions of the follower's points "
+                           "near the ones you mean)"),)
 
 
 def follow_contact(candidates: Candidates, seed_row: int, seed_choice: int) -> Ints:
@@ -124,7 +125,8 @@ def _what(cam: CamSpec) -> str:
     """The follower's point that runs on the (offset) profile, in words."""
     if cam.kind != "roller":
         return f"the knife edge {cam.point}"
-    return f"the centre {cam.point} of the follower's arc" if cam.follower_profile else f"the roller's centre {cam.point}"
+    return (f"the centre {cam.point} of the follower's arc" if cam.follower_profile
+            else f"the roller's centre {cam.point}")
 
 
 def _offset_words(cam: CamSpec) -> str:

@@ -116,7 +116,8 @@ def velocity_by_cam(polygon: Polygon, group: CamGroup, sliding: dict[str, Points
     equivalent[group.cam.name] = np.asarray(crossing.along_first + 0j)
     k_label = polygon.label(group.known, k)
     if polygon.record:
-        record_intersection(polygon, tip, f"v_{tip} = v_{k_label} + v_{tip}/{k_label} = v_{far} + v_{tip}/{far}", line1, line2,
+        record_intersection(polygon, tip, f"v_{tip} = v_{k_label} + v_{tip}/{k_label} = v_{far} + v_{tip}/{far}",
+                            line1, line2,
                              (label1, label2), crossing,
                              known_pairs((f"v_{k_label}", f"v_{tip}/{k_label}"), (f"v_{far}", f"v_{tip}/{far}")),
                              (perpendicular(polygon, f"v_{tip}/{k_label}", group.known, k, w), direction2))
@@ -157,7 +158,8 @@ def _flat_acceleration(ctx: object, group: CamGroup) -> None:
         vectors = [*laid, DrawnVector(term, b.vec(on_cam), b.vec(start), "coriolis")]
         own = (along_normal(ctx, f"a^t_{tip}/{far}", group.carrier, far, k, laid[-1] if laid else None)  # type: ignore[arg-type]
                if isinstance(joint, Revolute) else along_slide(ctx, f"a_{tip}/{far}", joint, group.carrier, k, laid))  # type: ignore[arg-type]
-        record_crossing(ctx, tip, f"a_{tip} = {_own_side(joint, tip, far, laid)} = a_{k_label} + {term} + a_{tip}/{k_label}",  # type: ignore[arg-type]
+        record_crossing(ctx, tip, f"a_{tip} = {_own_side(joint, tip, far, laid)} = a_{k_label} + "  # type: ignore[arg-type]
+                                  f"{term} + a_{tip}/{k_label}",
                 line1, along_face, (label1, label2), crossing, vectors,
                 (own, Direction(f"a_{tip}/{k_label}", "face", group.link, k_label.lower(), after=term)))
     if isinstance(joint, Revolute):
@@ -202,9 +204,11 @@ def acceleration_by_cam(ctx: object, group: CamGroup) -> None:
     if b.record:
         k_label = b.label(group.known, k)
         far = joint.point if isinstance(joint, Revolute) else b.label(group.carrier, w)
-        second = (along_normal(ctx, f"a^t_{tip}/{far}", group.carrier, far, w, vectors[-1] if len(vectors) > 1 else None)  # type: ignore[arg-type]
+        second = (along_normal(ctx, f"a^t_{tip}/{far}", group.carrier, far, w,  # type: ignore[arg-type]
+                               vectors[-1] if len(vectors) > 1 else None)
                   if isinstance(joint, Revolute) else along_slide(ctx, f"a_{tip}/{far}", joint, group.carrier, w, laid))  # type: ignore[arg-type]
-        record_crossing(ctx, tip, f"a_{tip} = a_{k_label} + a^n_{tip}/{k_label} + a^t_{tip}/{k_label} = {_own_side(joint, tip, far, laid)}",  # type: ignore[arg-type]
+        record_crossing(ctx, tip, f"a_{tip} = a_{k_label} + a^n_{tip}/{k_label} + a^t_{tip}/{k_label} = "  # type: ignore[arg-type]
+                                  f"{_own_side(joint, tip, far, laid)}",
                 line1, line2, (label1, label2), crossing, [*vectors, *laid],
                 (along_normal(ctx, f"a^t_{tip}/{k_label}", group.known, k, w, n1), second))  # type: ignore[arg-type]
     if isinstance(joint, Revolute):

@@ -15,7 +15,8 @@ from kinepoly.model.mechanism import Joint
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import CamSpec, GearSpec
 
-__all__ = ["CenterOmega", "CenterPlan", "How", "InstantCenter", "InstantCenters", "KennedyLine", "KennedyStep", "Motion"]
+__all__ = ["CenterOmega", "CenterPlan", "How", "InstantCenter", "InstantCenters", "KennedyLine", "KennedyStep",
+           "Motion"]
 
 
 @dataclass(frozen=True)

@@ -16,13 +16,11 @@ import numpy as np
 from kinepoly.engine.velocity import VelocityResult
 from kinepoly.geom.arrays import Bools, Points
 from kinepoly.geom.hull import diameter
+from kinepoly.geom.tolerances import AT_INFINITY_REL
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 
 __all__ = ["Centrodes", "frame_centrodes", "mechanism_size"]
-
-_FAR = 1e9
-"""A center farther than this many times the mechanism's size is taken to be at infinity."""
 
 
 @dataclass(frozen=True)
@@ -37,7 +35,8 @@ class Centrodes:
 
 def mechanism_size(mechanism: Mechanism, poses: Mapping[str, LinkPose]) -> float:
     """The largest distance between two points of the posed links (1.0 when there is none)."""
-    return diameter([pose.world(p.local) for link, pose in poses.items() for p in mechanism.scene.link(link).points]) or 1.0
+    return diameter([pose.world(p.local) for link, pose in poses.items()
+                     for p in mechanism.scene.link(link).points]) or 1.0
 
 
 def frame_centrodes(velocity: VelocityResult, link: str, size_row: int = 0) -> Centrodes:
@@ -50,6 +49,6 @@ def frame_centrodes(velocity: VelocityResult, link: str, size_row: int = 0) -> C
     omega = polygon.rate_of(link)
     assert omega is not None
     size = mechanism_size(positions.mechanism, positions.row(size_row))
-    finite = np.abs(omega) * _FAR * size > np.abs(v)
+    finite = np.abs(omega) * AT_INFINITY_REL * size > np.abs(v)
     center = positions.point(point) + (1j * v) / np.where(finite, omega, 1.0)
     return Centrodes(center, positions.poses[link].to_local(center), finite)

@@ -27,7 +27,7 @@ import numpy as np
 from kinepoly.engine.carry import carried_local, relative_turn
 from kinepoly.engine.groups import Dyad
 from kinepoly.geom.arrays import Bools, Points, Reals, circle_circle, circle_line, cross_lines, length, turn
-from kinepoly.geom.tolerances import ASSEMBLY_REL_TOL, NEAR_SINGULAR_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
+from kinepoly.geom.tolerances import ASSEMBLY_REL_TOL, NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
 from kinepoly.model.array_pose import ArrayPose, pose_from_point, pose_from_two_points
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
@@ -225,7 +225,8 @@ def _rpr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
     r = length(span)
     ahead, behind, slack, _ = circle_line(pg_local, r, _c(slider.through) + offset, slide)
     # where pb lies on the guide's pivot the guide may take any angle: a change point
-    singular = np.asarray(~(r > ASSEMBLY_REL_TOL * (np.abs(wg) + np.abs(wb) + abs(pg_local) + abs(offset) + 1e-300)))
+    singular = np.asarray(~(r > ASSEMBLY_REL_TOL
+                            * (np.abs(wg) + np.abs(wb) + abs(pg_local) + abs(offset) + TINY_POSITIVE)))
     ok = _closes(slack, r) & ~singular
     unit_span = span / r
 
@@ -256,7 +257,7 @@ def _rpr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
     if close.any():
         near = (close, lambda k: (
             f"near-singular: {pb} is {float(r[k]):.3g} from {pg}, the pivot of the guide {guide}, so the guide's "
-            f"angle is uncertain by about {UNIT_ROUNDOFF * size / max(float(r[k]), 1e-300):.1g} rad"))
+            f"angle is uncertain by about {UNIT_ROUNDOFF * size / max(float(r[k]), TINY_POSITIVE):.1g} rad"))
     labels = (f"{pb} ahead along slider {slider.name}", f"{pb} behind along slider {slider.name}")
     # both assemblies put pb at wb; they differ in the guide's turn, told by wg + r e^(i theta_guide)
     def telling_at(scalar: dict[str, LinkPose]) -> complex:
@@ -313,7 +314,8 @@ def _two_slides(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Clo
 _KINDS = {"RRP": _rrp, "RPR": _rpr, "PRP": _two_slides, "RPP": _two_slides}
 
 
-def close_dyad(mechanism: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...] = ()) -> Closure:
+def close_dyad(mechanism: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad,
+               values: tuple[Reals, ...] = ()) -> Closure:
     """Every assembly of ``dyad`` at every row, its known links placed by ``poses`` (``values``: each
     input's value at every row, for a carried dyad)."""
     if dyad.kind == "RRR":

@@ -211,7 +211,8 @@ def record_equivalent_links(polygon: Polygon) -> None:
             (x, y) = mechanism.local(cam.equivalent, point)
             length = math.hypot(x, y)
         polygon.step(Step(polygon="velocity", kind="known",
-                          equation=(f"cam {cam.name}: equivalent block at {cam.center_point} on the face of {cam.follower}"
+                          equation=(f"cam {cam.name}: equivalent block at {cam.center_point} on the "
+                                    f"face of {cam.follower}"
                                     if cam.kind == "flat" else
                                     f"cam {cam.name}: equivalent link {cam.center_point}{point}"),
                           result=cam.equivalent, topic="equivalent-link",

@@ -10,12 +10,11 @@ from __future__ import annotations
 import cmath
 from dataclasses import dataclass
 
+from kinepoly.geom.tolerances import COINCIDENT_REL, PARALLEL_SIN
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 
 __all__ = ["FinitePole", "bisectors_crossing", "finite_pole"]
-
-_PARALLEL = 1e-12
 
 
 def bisectors_crossing(a1: complex, a2: complex, b1: complex, b2: complex) -> complex | None:
@@ -23,14 +22,14 @@ def bisectors_crossing(a1: complex, a2: complex, b1: complex, b2: complex) -> co
     itself; None where the bisectors are parallel (a translation: the pole is at infinity) or nothing moved."""
     da, db = a2 - a1, b2 - b1
     size = max(abs(a1), abs(a2), abs(b1), abs(b2), 1.0)
-    still_a, still_b = abs(da) <= _PARALLEL * size, abs(db) <= _PARALLEL * size
+    still_a, still_b = abs(da) <= COINCIDENT_REL * size, abs(db) <= COINCIDENT_REL * size
     if still_a or still_b:
         return None if still_a and still_b else (a1 if still_a else b1)
     ma, mb = (a1 + a2) / 2, (b1 + b2) / 2
     # z on the bisector of a1a2: Re((z - ma) conj(da)) = 0, i.e. x da.x + y da.y = ma . da
     det = da.real * db.imag - da.imag * db.real
     scale = abs(da) * abs(db)
-    if scale == 0.0 or abs(det) <= _PARALLEL * scale:
+    if scale == 0.0 or abs(det) <= PARALLEL_SIN * scale:
         return None
     ca = ma.real * da.real + ma.imag * da.imag
     cb = mb.real * db.real + mb.imag * db.imag

@@ -23,13 +23,12 @@ import numpy as np
 from kinepoly.engine.inputs import describe_input
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Points, Reals, turn
+from kinepoly.geom.tolerances import PARALLEL_SIN, ROUNDING_REL, SAME_REL, TINY_POSITIVE
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import GearSpec, PitchCircle, PitchLine
 
 __all__ = ["Mesh", "Rolled", "anchor_row", "free_delta", "mesh", "pitch_label", "place_rolling"]
-
-_DISTANCE_TOL = 1e-9
 
 
 @dataclass(frozen=True)
@@ -76,14 +75,15 @@ def _where(mechanism: Mechanism) -> str:
 
 
 def _distance_error(mechanism: Mechanism, gear: GearSpec, actual: Reals, expected: float, what: str) -> None:
-    bad = np.flatnonzero(~(np.abs(actual - expected) <= _DISTANCE_TOL * max(expected, 1e-300) * 10.0 + 1e-12))
+    bad = np.flatnonzero(~(np.abs(actual - expected) <= SAME_REL * max(expected, TINY_POSITIVE) * 10.0 + ROUNDING_REL))
     if len(bad) == 0:
         return
     k = int(bad[0])
     unit = mechanism.scene.units.length
     raise SceneError(f"{mechanism.scene.source}:{gear.line}: gears.{gear.name}: {what} are {float(actual[k]):.10g} "
                      f"{unit} apart at {_where(mechanism)}{'' if len(actual) == 1 else f' (row {k})'}; expected "
-                     f"{expected:.10g} {unit}, or the pitch curves do not touch (move the centres, or change the radii)")
+                     f"{expected:.10g} {unit}, or the pitch curves do not touch (move the centres, "
+                     "or change the radii)")
 
 
 def mesh(mechanism: Mechanism, gear: GearSpec, poses: dict[str, ArrayPose]) -> Mesh:
@@ -194,7 +194,7 @@ def place_rolling(mechanism: Mechanism, gear: GearSpec, link: str, joint: Revolu
     through, d = _line(curve, trial)  # at s = 0
     along = ((the_mesh.point - through) * np.conj(d)).real
     e_dot_d = (trial.rotation * np.conj(d)).real  # the slide's direction is the block's x-axis
-    if np.any(np.abs(e_dot_d) < 1e-12):
+    if np.any(np.abs(e_dot_d) < PARALLEL_SIN):
         raise SceneError(f"{mechanism.scene.source}:{gear.line}: gears.{gear.name}: the rack {link} slides square to "
                          "its pitch line; expected the slide along the pitch line")
     s = np.asarray((along - (sigma + gear.phase[side])) / e_dot_d)

@@ -34,17 +34,12 @@ from kinepoly.engine.results import AccelerationContext
 from kinepoly.engine.steps import DrawnVector, Step
 from kinepoly.errors import SingularityError
 from kinepoly.geom.arrays import Points, Reals, turn
+from kinepoly.geom.tolerances import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
 from kinepoly.model.mechanism import Revolute
 from kinepoly.scene.spec import CamSpec, SliderSpec
 
 __all__ = ["NEAR_SINGULAR_CONDITION", "SINGULAR_CONDITION", "acceleration_by_linear_solve", "assur_class",
            "velocity_by_linear_solve"]
-
-SINGULAR_CONDITION = 1e12
-"""Above this condition number the joint equations of a group are singular (a change point)."""
-NEAR_SINGULAR_CONDITION = 1e8
-"""Above this a row is near-singular (relative error about condition x u). A sound triad's
-scaled joint equations have condition numbers near 1e4."""
 
 
 def _joint_links(joint: Revolute | SliderSpec) -> tuple[str, str]:

@@ -231,7 +231,8 @@ class _Finder:
             meet = wedge(first.join.value, _line_value(second))
             if meet.value is None:
                 trouble.append(f"the Kennedy line {self.line_label(first)} is the common normal at "
-                               f"{second.contact} itself, so they meet in no single point" if isinstance(second, _Normal)
+                               f"{second.contact} itself, so they meet in no single point"
+                               if isinstance(second, _Normal)
                                else f"the Kennedy lines {self.line_label(first)} and {self.line_label(second)} are "
                                "one line (all four centers lie on it), so they meet in no single point")
                 continue
@@ -302,10 +303,12 @@ class _Finder:
                     (_join_sin(candidate.second), f"the centers {self.line_label(candidate.second)} almost coincide"),
                     (candidate.meet.sin, f"the Kennedy lines {lines[0].label} and {lines[1].label} almost coincide"))
         if worst[0] < NEAR_SINGULAR_SIN:
-            return f"instant center {center.label} {self.where()}: {worst[1]} (conditioning sine {worst[0]:.2g}); " + tail
+            return (f"instant center {center.label} {self.where()}: {worst[1]} "
+                    f"(conditioning sine {worst[0]:.2g}); " + tail)
         assert center.position is not None  # a far crossing of two lines that are nearly parallel
         distance = norm(sub(center.position, add(self.frame.offset, self.frame.origin)))
-        angle = "" if sin_angle is None else f" (they meet at {math.degrees(math.asin(min(1.0, abs(sin_angle)))):.3g} deg)"
+        angle = ("" if sin_angle is None
+                 else f" (they meet at {math.degrees(math.asin(min(1.0, abs(sin_angle)))):.3g} deg)")
         return (f"instant center {center.label} {self.where()}: the Kennedy lines {lines[0].label} and "
                 f"{lines[1].label} are nearly parallel{angle}, so {center.label} lies far away, {distance:.3g} "
                 f"{self.mechanism.scene.units.length} from the mechanism ({distance / self.frame.size:.2g} times its "

@@ -50,7 +50,8 @@ def read_rate(polygon: Polygon, link: str, first: str, second: str, along: Reals
     symbol = "omega" if polygon.kind == "velocity" else "alpha"
     term = f"v_{second}/{first}" if polygon.kind == "velocity" else f"a^t_{second}/{first}"
     ground = polygon.ground_name()
-    polygon.step(Step(polygon=polygon.kind, kind="read", equation=f"{symbol}{ground}{link} = |{term}| / |{first}{second}|",
+    polygon.step(Step(polygon=polygon.kind, kind="read", equation=f"{symbol}{ground}{link} = "
+                                                                  f"|{term}| / |{first}{second}|",
                       result=f"{symbol}{ground}{link}", value=(value,), topic="read",
                       params=(("link", link), ("ground", ground), ("term", term), ("first", first),
                               ("second", second), ("magnitude", abs(value) * length), ("length", length),

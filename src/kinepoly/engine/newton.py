@@ -25,15 +25,14 @@ from kinepoly.engine.cam_contact import cam_spline, face_parameter, offset_of
 from kinepoly.engine.groups import NewtonGroup
 from kinepoly.geom.arrays import Reals
 from kinepoly.geom.spline import nearest_parameter
+from kinepoly.geom.tolerances import NEWTON_CLOSED_REL, NEWTON_LEAST_STEP
 from kinepoly.geom.vec import phase
 from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import CamSpec, SliderSpec
 
-__all__ = ["CLOSED_REL", "RowClosure", "group_reach", "group_size", "newton_row", "start_poses"]
+__all__ = ["RowClosure", "group_reach", "group_size", "newton_row", "start_poses"]
 
-CLOSED_REL = 1e-9
-"""A group is closed when its joint residual is at most this times the group's size."""
 _MAX_STEPS = 100
 
 
@@ -342,13 +341,13 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
     norm_r = float(np.linalg.norm(r))
     stalled = 0
     for _ in range(_MAX_STEPS):
-        if not norm_r > 0.0 or (stalled >= 3 and norm_r > CLOSED_REL * size):
+        if not norm_r > 0.0 or (stalled >= 3 and norm_r > NEWTON_CLOSED_REL * size):
             break
         step = np.linalg.lstsq(jac, -r, rcond=None)[0]
         cut = _cut(np.asarray(step, np.float64), len(group.links), reach)
         step = step * cut
         t = 1.0
-        while t > 1e-6:
+        while t > NEWTON_LEAST_STEP:
             trial = system.residual(q + t * step)
             norm_trial = float(np.linalg.norm(trial))
             if norm_trial < norm_r:
@@ -360,7 +359,7 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
             t /= 2
         else:
             break
-    if not norm_r <= CLOSED_REL * size:
+    if not norm_r <= NEWTON_CLOSED_REL * size:
         return RowClosure(None, norm_r, 0)
     sign = int(np.sign(np.linalg.det(jac))) if jac.shape[0] == jac.shape[1] else 0
     return RowClosure({link: LinkPose(float(q[3 * k]), float(q[3 * k + 1]), float(q[3 * k + 2]))

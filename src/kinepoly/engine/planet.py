@@ -34,14 +34,12 @@ from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.placement import Placement
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Reals
+from kinepoly.geom.tolerances import ROUNDING_REL, SAME_REL
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import GearSpec, PitchCircle
 
 __all__ = ["Planet", "place_planet", "planet_of"]
-
-_COAXIAL_TOL = 1e-9
-"""How far (times the mechanism's size) a known gear's pitch centre may lie from the arm's pivot."""
 
 
 @dataclass(frozen=True)
@@ -89,10 +87,10 @@ def _curve(gear: GearSpec, link: str) -> PitchCircle:
 def _not_built(mechanism: Mechanism, group: NewtonGroup, why: str) -> SceneError:
     pairs = ", ".join(g.name for g in group.gears)
     return SceneError(f"{mechanism.scene.source}:{group.gears[0].line}: gears.{group.gears[0].name}: links "
-                      f"{', '.join(group.links)} hold gears ({pairs}) in a group that no dyad and no single pair places; "
-                      f"{why}. This version places such a group only as a planet on an arm: the arm pinned to a "
-                      "known link, the planet pinned to the arm at its pitch centre, meshing two known gears centred "
-                      "on the arm's pivot (drive the arm, or another link of the group, otherwise)")
+                      f"{', '.join(group.links)} hold gears ({pairs}) in a group that no dyad and no single pair "
+                      f"places; {why}. This version places such a group only as a planet on an arm: the arm pinned "
+                      "to a known link, the planet pinned to the arm at its pitch centre, meshing two known gears "
+                      "centred on the arm's pivot (drive the arm, or another link of the group, otherwise)")
 
 
 @dataclass(frozen=True)
@@ -130,11 +128,11 @@ def place_planet(mechanism: Mechanism, group: NewtonGroup, placed: Placement) ->
     for gear in found.meshes:
         known = gear.links[1 - gear.links.index(found.planet)]
         centre = poses[known].world(mechanism.local(known, _curve(gear, known).center))
-        if np.max(np.abs(centre - pivot)) > _COAXIAL_TOL * size:
-            raise _not_built(mechanism, group, f"the pitch centre {_curve(gear, known).center} of gear {known} is not on "
-                                               f"the arm's pivot {found.pivot.point}")
+        if np.max(np.abs(centre - pivot)) > SAME_REL * size:
+            raise _not_built(mechanism, group, f"the pitch centre {_curve(gear, known).center} of gear {known} "
+                                               f"is not on the arm's pivot {found.pivot.point}")
     one, two = (_mesh_terms(g, found.planet) for g in found.meshes)
-    if math.isclose(one.ratio, two.ratio, rel_tol=1e-12):
+    if math.isclose(one.ratio, two.ratio, rel_tol=ROUNDING_REL):
         raise _not_built(mechanism, group, "its two meshes have the same ratio, so they do not fix the arm")
     theta_one = free_delta(mechanism, np.angle(poses[one.known].rotation), placed.values)
     theta_two = free_delta(mechanism, np.angle(poses[two.known].rotation), placed.values)
@@ -153,7 +151,8 @@ def place_planet(mechanism: Mechanism, group: NewtonGroup, placed: Placement) ->
     delta_one, _ = deltas(turns)
     phi = delta_one - one.alpha + theta_one
     theta_planet = phi + one.beta - one.ratio * delta_one
-    lever = complex(*mechanism.local(found.arm, found.pin.point)) - complex(*mechanism.local(found.arm, found.pivot.point))
+    lever = (complex(*mechanism.local(found.arm, found.pin.point))
+             - complex(*mechanism.local(found.arm, found.pivot.point)))
     arm_rotation = np.exp(1j * (phi - np.angle(lever)))
     arm = ArrayPose(np.asarray(pivot - arm_rotation * complex(*mechanism.local(found.arm, found.pivot.point))),
                     np.asarray(arm_rotation))

@@ -22,7 +22,8 @@ from kinepoly.model.array_pose import ArrayPose, pose_from_point, still_pose
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 
-__all__ = ["Failure", "Placement", "Policy", "Positions", "describe_input", "driver_poses", "input_values", "place_groups", "solve_positions"]
+__all__ = ["Failure", "Placement", "Policy", "Positions", "describe_input", "driver_poses", "input_values",
+           "place_groups", "solve_positions"]
 
 
 def driver_poses(mechanism: Mechanism, values: tuple[Reals, ...]) -> dict[str, ArrayPose]:

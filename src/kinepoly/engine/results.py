@@ -19,8 +19,8 @@ from kinepoly.geom.arrays import Crossing, Points, Reals
 from kinepoly.geom.vec import magnitude
 from kinepoly.scene.spec import SliderSpec
 
-__all__ = ["RIGHT", "AccelerationContext", "AccelerationResult", "Rules", "VelocityContext", "VelocityResult", "along_normal",
-           "along_slide", "normals_step", "record_crossing", "slide_label"]
+__all__ = ["RIGHT", "AccelerationContext", "AccelerationResult", "Rules", "VelocityContext", "VelocityResult",
+           "along_normal", "along_slide", "normals_step", "record_crossing", "slide_label"]
 
 
 @dataclass(frozen=True)
@@ -166,7 +166,8 @@ class AccelerationContext:
         self.sliding[slider.name] = np.asarray(a_block - a_guide - coriolis)
 
 
-def record_crossing(ctx: AccelerationContext, label: str, equation: str, first: Line, second: Line, labels: tuple[str, str],
+def record_crossing(ctx: AccelerationContext, label: str, equation: str, first: Line, second: Line,
+                    labels: tuple[str, str],
             crossing: Crossing, vectors: list[DrawnVector], directions: tuple[Direction, Direction]) -> None:
     b = ctx.b
     known = tuple((v.label, "magnitude and direction") for v in vectors)

@@ -63,7 +63,8 @@ def _record(polygon: Polygon, group: GearGroup, tip: str, known_tip: str, first:
     own = f"{sym}{'^t' if polygon.kind == 'acceleration' and not rack else ''}_{tip}/{through}"
     laid = "".join(f" + {v.label}" for v in vectors)
     polygon.step(Step(polygon=polygon.kind, kind="intersection",
-                      equation=f"{sym}_{tip} = {sym}_{through}{laid} + {own} = {sym}_{known_tip} + {sym}_{tip}/{known_tip}",
+                      equation=f"{sym}_{tip} = {sym}_{through}{laid} + {own} = {sym}_{known_tip} + "
+                               f"{sym}_{tip}/{known_tip}",
                       result=tip.lower(), vectors=vectors,
                       lines=(polygon.step_line(first, f"line of {tip} on link {group.link}"),
                              polygon.step_line(second, f"common normal through {known_tip.lower()}")),

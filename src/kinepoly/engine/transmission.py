@@ -66,12 +66,14 @@ def _describe(positions: Positions, dyad: Dyad) -> tuple[Callable[[], tuple[Poin
             return (lambda: (1j * (point(p2) - point(p1)), 1j * (point(p2) - point(p3))), p2, p2,
                     f"{p1}{p2} and {p3}{p2}", f"the links {p1}{p2} and {p3}{p2} are in line")
         return (lambda: (1j * (point(p2) - point(p1)), slide_direction(positions, second)), p2, p2,
-                f"{p1}{p2} and the normal to slider {second.name}", f"the link {p1}{p2} is square to slider {second.name}'s line")
+                f"{p1}{p2} and the normal to slider {second.name}",
+                f"the link {p1}{p2} is square to slider {second.name}'s line")
     if dyad.kind == "RPR":
         r = slide_roles(dyad)
         q, p, name = r.guide_pin, r.block_pin, r.slider.name
         return (lambda: (1j * (point(p) - point(q)), slide_direction(positions, r.slider)), p, p,
-                f"the normal to slider {name} and the path of {p} about {q}", f"slider {name}'s line is square to {q}{p}")
+                f"the normal to slider {name} and the path of {p} about {q}",
+                f"slider {name}'s line is square to {q}{p}")
     t = two_slide_roles(dyad, positions.mechanism)
     a, b = t.first_slider, t.second_slider
     assert isinstance(a, SliderSpec)

@@ -478,7 +478,8 @@ def _acceleration_leg(ctx: AccelerationContext, triad: Triad, leg: Leg) -> _LegL
         return _LegLine(at, through, np.asarray(direction), (normal,) if normal is not None else ())
     start = b.tip(leg.known, leg.point)
     if leg.kind == "face":  # the point of T under K: a_K - 2 omega_T x v (the block's velocity over the face)
-        coriolis = np.asarray(ctx.rules.coriolis * 2.0 * b.omega_of(triad.ternary) * (1j * ctx.v.equivalent[leg.equivalent]))
+        coriolis = np.asarray(ctx.rules.coriolis * 2.0 * b.omega_of(triad.ternary)
+                              * (1j * ctx.v.equivalent[leg.equivalent]))
         end = np.asarray(start - coriolis)
         laid = [DrawnVector(f"a^c_{b.label(triad.ternary, leg.point)}/{b.label(leg.known, leg.point)}",
                             b.vec(start), b.vec(end), "coriolis")] if b.record else []

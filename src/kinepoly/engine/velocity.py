@@ -24,6 +24,7 @@ from kinepoly.engine.steps import DrawnVector, Step
 from kinepoly.engine.table import kind_of
 from kinepoly.errors import SceneError
 from kinepoly.geom.arrays import Points, cross_lines
+from kinepoly.geom.tolerances import RIGID_REL_TOL, TINY_POSITIVE
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 
 __all__ = ["VelocityResult", "construct_velocity", "link_length", "read_rate", "slide_direction", "slide_reference"]
@@ -68,7 +69,7 @@ def _given(polygon: Polygon, given: GivenInput) -> None:
     at = polygon.world(second.name) - polygon.world(first.name)
     rel = complex(*second.velocity) - complex(*first.velocity)
     along = float(np.real(np.conj(at[0] / abs(at[0])) * rel))
-    if abs(along) > 1e-9 * max(math.hypot(*first.velocity), math.hypot(*second.velocity), 1e-300):
+    if abs(along) > RIGID_REL_TOL * max(math.hypot(*first.velocity), math.hypot(*second.velocity), TINY_POSITIVE):
         raise SceneError(f"{polygon.mechanism.scene.source}: given.{second.name}.velocity: the given velocities of "
                          f"{first.name} and {second.name} differ by {along:.6g} {polygon.unit} along "
                          f"{first.name}{second.name}; a rigid body allows none (make v_{second.name}/{first.name} "

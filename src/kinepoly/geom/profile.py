@@ -40,5 +40,6 @@ def outline(cam: Profile, count: int = 180) -> list[Point]:
     if cam.is_spline:
         return [(z.real, z.imag) for z in periodic_spline(cam.profile_points).sample(count).tolist()]
     cx, cy = cam.center
-    return [(cx + cam.radius * math.cos(2.0 * math.pi * k / count), cy + cam.radius * math.sin(2.0 * math.pi * k / count))
+    return [(cx + cam.radius * math.cos(2.0 * math.pi * k / count),
+             cy + cam.radius * math.sin(2.0 * math.pi * k / count))
             for k in range(count)]

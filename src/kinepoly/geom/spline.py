@@ -238,7 +238,8 @@ def nearest_parameter(spline: PeriodicSpline, point: complex, offset: float = 0.
         normal = 1j * first / speed
         gap = r + offset * normal - point
         slope = (gap * first.conjugate()).real
-        curve = speed * speed * (1.0 - offset * (np.conj(first) * second).imag / speed**3) + (gap * second.conjugate()).real
+        curve = (speed * speed * (1.0 - offset * (np.conj(first) * second).imag / speed**3)
+                 + (gap * second.conjugate()).real)
         if curve == 0.0:
             break
         u -= slope / curve

@@ -10,15 +10,20 @@ __all__ = [
     "ANGLE_SAME_DEG",
     "ANGLE_SAME_RAD",
     "ASSEMBLY_REL_TOL",
+    "AT_INFINITY_REL",
     "BOX_FLOOR",
     "COINCIDENT_REL",
     "COINCIDENT_SIN",
+    "CONTACT_DISTINCT_REL",
     "COLLINEAR_SIN",
+    "CURVES_CONFORMING",
+    "CURVES_STRAIGHT",
     "EDIT_SAME_REL",
     "FIT_MARGIN_REL",
     "LAST_BITS_REL",
     "LOOP_SINGULAR_DET",
     "LOUD_ERROR",
+    "NEAR_SINGULAR_CONDITION",
     "NEAR_SINGULAR_ERROR",
     "NEAR_SINGULAR_SIN",
     "NEWTON_CLOSED_REL",
@@ -35,6 +40,7 @@ __all__ = [
     "RIGID_REL_TOL",
     "ROUNDING_REL",
     "SAME_REL",
+    "SINGULAR_CONDITION",
     "SIZE_FLOOR",
     "STRAIGHT_CURVATURE",
     "TINY_POSITIVE",
@@ -85,6 +91,14 @@ STRAIGHT_CURVATURE = 1e-12
 """A spline's curvature (1/length) below this times its size's inverse (relative, no unit) counts as 0:
 the profile is straight there."""
 
+CURVES_STRAIGHT = 1e-9
+"""Where two profiles touch (curve on curve), a curvature times the profiles' size (no unit) below this
+leaves that profile's centre of curvature at infinity: no equivalent link joins the two centres."""
+
+CURVES_CONFORMING = 1e-6
+"""Where two profiles touch, (1/rho1 + 1/rho2) times the profiles' size (no unit) at or below this: the
+curves conform or cut into each other, and the link joining the two centres has no length."""
+
 # --- the same point, the same number (relative to a size, no unit) --------------------------------
 
 ROUNDING_REL = 1e-12
@@ -96,8 +110,15 @@ COINCIDENT_REL = 1e-12
 """Two points closer than this times the mechanism's (the polygon's) size are one point: a scene's
 points given twice, a tip at the pole, a contact on the cam's centre."""
 
+AT_INFINITY_REL = 1e9
+"""An instant center farther than this many times the mechanism's size is taken to be at infinity."""
+
 ASSEMBLY_REL_TOL = 1e-12
 """Relative slack allowed when a circle just touches another circle or a line (a dead point)."""
+
+CONTACT_DISTINCT_REL = 1e-7
+"""Two roots of one row's contact (curve on curve) nearer than this times the profiles' size, with poses
+turned by less than this in radians, are one contact counted twice."""
 
 SAME_REL = 1e-9
 """Two results of a solve (a sweep's last row against its first, a gear ratio against a fraction, a
@@ -139,6 +160,13 @@ NEWTON_LEAST_STEP = 1e-6
 LOOP_SINGULAR_DET = 1e-10
 """A loop's linear system whose matrix, divided by its largest entry, has a determinant below this is
 singular."""
+
+SINGULAR_CONDITION = 1e12
+"""Above this condition number the joint equations of a group are singular (a change point)."""
+
+NEAR_SINGULAR_CONDITION = 1e8
+"""Above this a row is near-singular (relative error about condition x u). A sound triad's
+scaled joint equations have condition numbers near 1e4."""
 
 PHASE_TOLERANCE = 1e-7
 """How far (relative to the radii) the construction's rolled arcs may be from the phase rule's."""

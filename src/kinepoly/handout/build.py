@@ -54,7 +54,8 @@ def drawn_kinds(frame: Frame) -> list[str]:
     return sorted({v.term for figure in frame.layout.figures for v in figure.vectors})
 
 
-_PAPER_NOTE = "Printed on {paper}: the handout does not fit the {asked} asked for (its text and drawing need more room)."
+_PAPER_NOTE = ("Printed on {paper}: the handout does not fit the {asked} asked for (its text and drawing need more "
+               "room).")
 """The note on every page when a larger paper was chosen (the catalogue's ``page.larger_paper`` when it has one)."""
 
 

@@ -128,7 +128,8 @@ def _headings(solution: Solution, layout: Layout, say: Catalogue) -> tuple[list[
     for panel in layout.panels:
         name = say.say(f"panel.{panel.name}")
         if panel.name == "centers":
-            titles.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, fitted_runs(name, 2.8, panel.rect[2] - panel.rect[0] - 2.0, True), INK,
+            titles.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2,
+                               fitted_runs(name, 2.8, panel.rect[2] - panel.rect[0] - 2.0, True), INK,
                                f"heading {panel.name}", None, True))
             continue
         text, bar_unit = _scale_text(panel, say, unit, panel.name in layout.reduced)

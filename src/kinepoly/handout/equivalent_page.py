@@ -54,8 +54,8 @@ def equivalent_page(context: Context, say: Catalogue, step: Step, number: int, t
                   centre=str(p["centre"]), point=str(p["point"]), follower=str(p["follower"]),
                   length=say.number(float(p["length"])), unit=unit)
     at = say.pair(*contact.point) if contact is not None else "?"
-    result = say.say("higher_pairs.equivalent_result", link=equivalent_name(p, say), pair=pair, contact=contact_name, at=at,
-                     unit=unit)
+    result = say.say("higher_pairs.equivalent_result", link=equivalent_name(p, say), pair=pair, contact=contact_name,
+                     at=at, unit=unit)
     heading = say.say("page.step", number=str(number), total=str(total), polygon=say.say(f"polygon.{step.polygon}"))
     equation = _equation(step, solution, say)
     first = (Paragraph(heading, "heading"), Paragraph(say.say("higher_pairs.equivalent_heading", pair=pair), "note"),

@@ -86,7 +86,8 @@ def merged_pages(pages: Sequence[Sequence[Item]]) -> list[tuple[Item, list[int]]
     order: list[tuple[Item, list[int]]] = []
     kept: dict[int, list[tuple[Item, list[int]]]] = {}  # by the item's id, its entries in ``order``
     for number, items in enumerate(pages, 1):
-        position = dict(zip(map(id, order), range(len(order))))  # by the entry's id (this page's new ones: none)
+        # by the entry's id (this page's new ones: none)
+        position = dict(zip(map(id, order), range(len(order)), strict=True))
         merged: list[tuple[Item, list[int]]] = []
         start = 0
         for item in items:
@@ -165,7 +166,8 @@ def _svg(solution: Solution, frame: Frame, handout: Handout, say: Catalogue) -> 
     text = svg_text(sheet, made)
     groups = [made[layer, frame.height] for layer in sheet.layers]
     head = text.split("\n", 1)[1].split(groups[0], 1)[0]  # no XML declaration inside HTML
-    body = "\n".join(_group(group, items, made, frame.height, len(per_page)) for group, items in zip(groups, shown, strict=True))
+    body = "\n".join(_group(group, items, made, frame.height, len(per_page))
+                     for group, items in zip(groups, shown, strict=True))
     text = head + body + "\n</svg>"
     return re.sub(r'(<g\b[^>]*?) id="([a-z-]+)"', r'\1 class="layer-\2"', text)  # ids kept for the document
 

@@ -23,7 +23,8 @@ e^{iθ} as e^(iθ), so that the names in the exponent are typeset too."""
 
 
 def _notation(line: str) -> str:
-    line = line.replace("ṡ_", "s\u0307_").replace("s̈_", "s\u0308_").replace("{i(", "{i (").replace("{", "(").replace("}", ")")
+    line = (line.replace("ṡ_", "s\u0307_").replace("s̈_", "s\u0308_").replace("{i(", "{i (")
+            .replace("{", "(").replace("}", ")"))
     return _SUBSCRIPT.sub(lambda m: m.group(1) + (m.group(2) or ""), line)
 
 

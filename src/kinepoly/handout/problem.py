@@ -1,8 +1,9 @@
 """The first page of a handout: the problem as a student gets it.
 
 What is given (the input, the frame's points, the higher pairs as a textbook states them, the slides,
-every link's dimensions; an equivalent link is the construction's, not the problem's), what is to be found (the scene's ``[find]``), and the scales to draw at; the drawing beside it shows the
-mechanism and the polygon panels empty but for their poles and scale bars.
+every link's dimensions; an equivalent link is the construction's, not the problem's), what is to be found (the scene's
+``[find]``), and the scales to draw at; the drawing beside it shows the mechanism and the polygon panels empty but for
+their poles and scale bars.
 """
 
 from __future__ import annotations
@@ -69,7 +70,8 @@ def _frame(solution: Solution, say: Catalogue) -> list[Paragraph]:
     if ground is None:
         return []
     points = [f"{p.name} {say.pair(*solution.position(p.name))}" for p in solution.scene.link(ground).points]
-    return [Paragraph(say.say("problem.frame", link=ground, points=", ".join(points), unit=solution.scene.units.length))]
+    return [Paragraph(say.say("problem.frame", link=ground, points=", ".join(points),
+                              unit=solution.scene.units.length))]
 
 
 def _slides(solution: Solution, say: Catalogue) -> list[Table]:
@@ -167,7 +169,7 @@ def _gears(solution: Solution, say: Catalogue, gear: GearSpec) -> Paragraph:
     """A gear pair: each pitch circle's centre and radius (a rack's pitch line) and how they mesh."""
     unit = solution.scene.units.length
     curves = []
-    for link, pitch in zip(gear.links, gear.pitch):
+    for link, pitch in zip(gear.links, gear.pitch, strict=True):
         if isinstance(pitch, PitchCircle):
             curves.append(say.say("problem.pitch_circle", link=link, centre=pitch.center,
                                   radius=_length(say, pitch.radius, unit)))
@@ -184,7 +186,8 @@ def _gear_angles(solution: Solution, say: Catalogue) -> list[Paragraph]:
     translates: its angle says nothing)."""
     ground = solution.mechanism.ground or ""
     inp = solution.scene.input
-    driven = dict.fromkeys(link for gear in solution.scene.gears for link, pitch in zip(gear.links, gear.pitch)
+    driven = dict.fromkeys(link for gear in solution.scene.gears
+                           for link, pitch in zip(gear.links, gear.pitch, strict=True)
                            if isinstance(pitch, PitchCircle) and link != ground and link in solution.pose.links
                            and not (isinstance(inp, LinkInput) and inp.link == link))
     if not driven:

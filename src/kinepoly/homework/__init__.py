@@ -11,9 +11,9 @@
     [(v.key.text, v.is_correct, v.diagnosis and v.diagnosis.code) for v in result.verdicts]
 
 The command line: ``kinepoly check SCENE ANSWERS [--json]`` and
-``kinepoly variants SCENE --n 30 --seed 7 -o DIR [--quiz moodle|qti]`` (``kinepoly.cli.check``, ``kinepoly.cli.variants``:
-they read and write the files; everything here is pure). The names below are imported when first used,
-so that importing one module of this package does not import them all.
+``kinepoly variants SCENE --n 30 --seed 7 -o DIR [--quiz moodle|qti]`` (``kinepoly.cli.check``,
+``kinepoly.cli.variants``: they read and write the files; everything here is pure). The names below are imported when
+first used, so that importing one module of this package does not import them all.
 """
 
 from __future__ import annotations
@@ -32,7 +32,8 @@ if TYPE_CHECKING:
 _HOME = {
     "Answers": "answers", "Tolerance": "answers", "load_answers": "answers", "loads_answers": "answers",
     "CheckResult": "checking", "Checker": "checking", "Verdict": "checking", "check": "checking",
-    "make_checker": "checking", "Diagnosis": "diagnose", "class_csv": "report", "result_json": "report", "result_text": "report",
+    "make_checker": "checking", "Diagnosis": "diagnose", "class_csv": "report", "result_json": "report",
+    "result_text": "report",
     "Variant": "variants", "make_variants": "variants", "Ranges": "vary", "default_ranges": "vary",
     "read_vary": "vary",
 }

@@ -245,7 +245,8 @@ def _rate(report: ProblemReport, path: KeyPath, value: object, kind: Literal["om
                          f'("{number[1:]} {sense}") or a signed number without one')
         return None
     if written_unit and not sense and difflib.get_close_matches(written_unit.lower(), _SENSE_WORDS, n=1):
-        report.add(path, f'"{written_unit}" in {show_value(value)} is not a sense; {suggest(written_unit, _SENSE_WORDS)}'
+        report.add(path, f'"{written_unit}" in {show_value(value)} is not a sense; '
+                         f'{suggest(written_unit, _SENSE_WORDS)}'
                          " (cw: clockwise, ccw: counter-clockwise)")
         return None
     size = read_quantity(report, path, f"{number} {written_unit}" if written_unit else float(number), kind, units)

@@ -97,4 +97,5 @@ def _center(expected: Value, given: Value, tolerance: Tolerance, size: float) ->
     scale = max(size, math.hypot(*expected))
     apart = math.dist(given, expected)
     closeness = _ratio(apart, tolerance.relative * scale)
-    return Comparison(closeness <= 1.0, closeness, {"absolute": apart, "relative": apart / scale if scale else math.inf})
+    return Comparison(closeness <= 1.0, closeness,
+                      {"absolute": apart, "relative": apart / scale if scale else math.inf})

@@ -202,7 +202,8 @@ def _reading_mistakes(reference: Reference, key: AnswerKey, expected: Value) -> 
     unit = reference.scene.units.length
     if kind in _VELOCITY_LEVEL and reference.kv is not None:
         out.append(Candidate("kv-not-divided", f"the {noun} read off the velocity polygon in mm and not divided by "
-                                               f"kv = {reference.kv:g} mm per {unit}/s", _scaled(expected, reference.kv)))
+                                               f"kv = {reference.kv:g} mm per {unit}/s",
+                             _scaled(expected, reference.kv)))
     if kind in _ACCELERATION_LEVEL and reference.ka is not None:
         out.append(Candidate("ka-not-divided", f"the {noun} read off the acceleration polygon in mm and not divided "
                                                f"by ka = {reference.ka:g} mm per {unit}/s^2",

@@ -6,8 +6,9 @@ added to the cam), written with its ``[[cams]]`` and ``[[gears]]`` as they were,
 (:func:`with_equivalent_links`) before it is solved.
 
 The lengths a pair carries belong to a link and take that link's factor: a cam's profile centre and
-radius (a ``points`` profile: every point's coordinates, so that the whole curve scales) are the cam's, its roller's radius and flat face the follower's; a pitch circle's radius, a
-pitch line's ``through`` and a rack's phase (a length) their gear's.
+radius (a ``points`` profile: every point's coordinates, so that the whole curve scales) are the cam's, its roller's
+radius and flat face the follower's; a pitch circle's radius, a pitch line's ``through`` and a rack's phase (a length)
+their gear's.
 """
 
 from __future__ import annotations

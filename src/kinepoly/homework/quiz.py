@@ -63,7 +63,8 @@ class QuizTolerance:
 
     @property
     def text(self) -> str:
-        return f"{self.paper_mm:g} mm on the paper" if self.paper_mm is not None else f"{100 * (self.relative or 0):g} %"
+        return (f"{self.paper_mm:g} mm on the paper" if self.paper_mm is not None
+                else f"{100 * (self.relative or 0):g} %")
 
 
 def parse_tolerance(text: str) -> QuizTolerance:

@@ -104,7 +104,7 @@ def _error_text(verdict: Verdict) -> str:
 
 def _rows(header: list[str], rows: list[list[str]]) -> list[str]:
     widths = [max(len(row[c]) for row in [header, *rows]) for c in range(len(header))]
-    return ["  ".join(value.ljust(width) for value, width in zip(row, widths)).rstrip()
+    return ["  ".join(value.ljust(width) for value, width in zip(row, widths, strict=True)).rstrip()
             for row in [header, ["-" * w for w in widths], *rows]]
 
 

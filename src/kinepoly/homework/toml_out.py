@@ -114,7 +114,8 @@ def _pitch(curve: PitchCircle | PitchLine, scene: Scene) -> str:
 
 
 def _gear_toml(scene: Scene, gear: GearSpec) -> list[str]:
-    phase = [toml_number(p) if isinstance(c, PitchLine) else _angle(scene, p) for c, p in zip(gear.pitch, gear.phase)]
+    phase = [toml_number(p) if isinstance(c, PitchLine) else _angle(scene, p)
+             for c, p in zip(gear.pitch, gear.phase, strict=True)]
     out = ["", "[[gears]]", f"links = {_strings(gear.links)}",
            f"pitch = [{_pitch(gear.pitch[0], scene)}, {_pitch(gear.pitch[1], scene)}]"]
     if gear.internal:

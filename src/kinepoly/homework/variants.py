@@ -110,10 +110,11 @@ def _between(start: _Numbers, end: _Numbers, t: float, turn: float) -> _Numbers:
     if t >= 1.0:
         return end
     inputs = tuple((name, a + t * (turn if name == "angle_rad" else b - a))
-                   for (name, a), (_, b) in zip(start.inputs, end.inputs))
-    return _Numbers(tuple(tuple(_mix(p, q, t) for p, q in zip(ps, qs)) for ps, qs in zip(start.points, end.points)),
-                    tuple(_mix(p, q, t) for p, q in zip(start.through, end.through)), inputs,
-                    tuple(a + t * (b - a) for a, b in zip(start.pairs, end.pairs)))
+                   for (name, a), (_, b) in zip(start.inputs, end.inputs, strict=True))
+    return _Numbers(tuple(tuple(_mix(p, q, t) for p, q in zip(ps, qs, strict=True))
+                          for ps, qs in zip(start.points, end.points, strict=True)),
+                    tuple(_mix(p, q, t) for p, q in zip(start.through, end.through, strict=True)), inputs,
+                    tuple(a + t * (b - a) for a, b in zip(start.pairs, end.pairs, strict=True)))
 
 
 def _as_polar(point: PointSpec, xy: Vec) -> tuple[float, float] | None:
@@ -128,9 +129,9 @@ def _written_scene(base: Scene, numbers: _Numbers, guess: tuple[tuple[str, Vec],
                    title: str | None = None) -> Scene:
     """The variant as it is written: ``base`` (as the user wrote it, cams and gears too) with ``numbers``."""
     links = tuple(LinkSpec(link.name, tuple(PointSpec(p.name, xy, p.line, _as_polar(p, xy))
-                                            for p, xy in zip(link.points, coords)),
-                           link.line) for link, coords in zip(base.links, numbers.points))
-    sliders = tuple(dataclasses.replace(s, through=xy) for s, xy in zip(base.sliders, numbers.through))
+                                            for p, xy in zip(link.points, coords, strict=True)),
+                           link.line) for link, coords in zip(base.links, numbers.points, strict=True))
+    sliders = tuple(dataclasses.replace(s, through=xy) for s, xy in zip(base.sliders, numbers.through, strict=True))
     points = {p.name for link in base.links for p in link.points}
     return with_pair_lengths(dataclasses.replace(
         base, links=links, sliders=sliders, guess=tuple((name, at) for name, at in guess if name in points),
@@ -285,12 +286,12 @@ def _is_good(solved: _Solved, original: _Solved, min_transmission_deg: float) ->
 
 def _steps(start: _Numbers, end: _Numbers, turn: float) -> int:
     worst = abs(math.degrees(turn)) / _STEP_DEG
-    for ps, qs in zip(start.points, end.points):
-        for p, q in zip(ps, qs):
+    for ps, qs in zip(start.points, end.points, strict=True):
+        for p, q in zip(ps, qs, strict=True):
             size = max(math.hypot(*p), math.hypot(*q))
             if size > 0:
                 worst = max(worst, math.dist(p, q) / size / _STEP_FACTOR)
-    for (name, a), (_, b) in zip(start.inputs, end.inputs):
+    for (name, a), (_, b) in zip(start.inputs, end.inputs, strict=True):
         if name != "angle_rad" and max(abs(a), abs(b)) > 0:
             worst = max(worst, abs(b - a) / max(abs(a), abs(b)) / (2 * _STEP_FACTOR))
     return max(2, math.ceil(worst))
@@ -317,7 +318,7 @@ def _reach(base: Scene, start: _Numbers, end: _Numbers, original: _Solved) -> _S
         if direct.signature == original.signature:
             return direct
     turn = 0.0
-    angles = [value for name, value in zip((n for n, _ in start.inputs), (v for _, v in end.inputs))
+    angles = [value for name, value in zip((n for n, _ in start.inputs), (v for _, v in end.inputs), strict=True)
               if name == "angle_rad"]
     if angles:
         turn = math.remainder(angles[0] - dict(start.inputs)["angle_rad"], 2.0 * math.pi)
@@ -354,7 +355,8 @@ def _written(base: Scene, name: str, index: int, numbers: _Numbers, reached: _So
             again, reached, _size(scene)):
         return None
     answers = _key(again)
-    key_header = f"Answer key of {name}.toml (canonical forms; check with: kinepoly check {name}.toml {name}.answers.toml)"
+    key_header = (f"Answer key of {name}.toml (canonical forms; check with: kinepoly check {name}.toml "
+                  f"{name}.answers.toml)")
     return Variant(name, text, answers_toml(answers, scene.units, key_header), scene, answers,
                    again.min_transmission_deg)
 

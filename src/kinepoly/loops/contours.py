@@ -100,7 +100,8 @@ def uncovered(mechanism: Mechanism) -> str | None:
 
 
 def _point_on(mechanism: Mechanism, pose: Pose, link: str, joint: Joint) -> tuple[str, complex]:
-    """Where a loop crossing ``joint`` enters or leaves ``link``: the pin, the block's point or the guide's line point."""
+    """Where a loop crossing ``joint`` enters or leaves ``link``: the pin, the block's point or the guide's line
+    point."""
     if isinstance(joint, Revolute):
         x, y = pose.world(mechanism.local(link, joint.point), link)
         return joint.point, complex(x, y)
@@ -195,7 +196,8 @@ def choose_loops(mechanism: Mechanism, pose: Pose) -> tuple[Loop, ...]:
         cycle = _cycle(parent, joint)
         order = mechanism.link_names.index
         if len(cycle) > 2 and order(cycle[-1][0]) < order(cycle[1][0]):  # round it in the scene's order of links
-            cycle = [(cycle[0][0], cycle[-1][1])] + [(cycle[k][0], cycle[k - 1][1]) for k in range(len(cycle) - 1, 0, -1)]
+            cycle = [(cycle[0][0], cycle[-1][1])] + [(cycle[k][0], cycle[k - 1][1])
+                                                     for k in range(len(cycle) - 1, 0, -1)]
         terms: list[Term] = []
         for k, (link, leave) in enumerate(cycle):
             entry = cycle[k - 1][1]

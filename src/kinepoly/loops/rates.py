@@ -236,7 +236,8 @@ def _s_of(mechanism: Mechanism, pose: Pose, name: str) -> float:
 
 
 def _anchors(mechanism: Mechanism, pose: Pose, omega: Mapping[str, float], alpha: Mapping[str, float] | None,
-             s_dot: Mapping[str, float], s_ddot: Mapping[str, float] | None) -> dict[str, tuple[complex, complex, complex]]:
+             s_dot: Mapping[str, float],
+             s_ddot: Mapping[str, float] | None) -> dict[str, tuple[complex, complex, complex]]:
     """Each link's point of known motion, down the spanning tree from the frame: the position loop's
     vectors from the frame to that point, differentiated."""
     parent, _ = spanning_tree(mechanism)

@@ -113,7 +113,8 @@ class Mechanism:
     def revolutes(self) -> tuple[Revolute, ...]:
         """The pins implied by shared point names. A point of k links is a compound hinge: k - 1 pins,
         each joining the first of those links (in scene order) to one of the others."""
-        return tuple(Revolute(point, (links[0], other)) for point, links in self._links_of.items() for other in links[1:])
+        return tuple(Revolute(point, (links[0], other))
+                     for point, links in self._links_of.items() for other in links[1:])
 
     @cached_property
     def _joints_of(self) -> dict[str, tuple[Joint, ...]]:

@@ -23,7 +23,8 @@ if TYPE_CHECKING:
     from kinepoly.motion.video import Progress
     from kinepoly.solution import Solution
 
-__all__ = ["DEFAULT_POSITIONS", "FORMATS", "MAX_DEFAULT_POSITIONS", "PART_LAYERS", "Animation", "animate", "draw", "motion_format"]
+__all__ = ["DEFAULT_POSITIONS", "FORMATS", "MAX_DEFAULT_POSITIONS", "PART_LAYERS", "Animation", "animate", "draw",
+           "motion_format"]
 
 FORMATS = ("gif", "mp4", "html")
 DEFAULT_POSITIONS = 72

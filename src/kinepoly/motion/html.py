@@ -50,7 +50,7 @@ def frames_data(frames: Frames) -> dict[str, Any]:
         "inputs": [float(x) for x in frames.inputs], "status": [STATUS[int(s)] for s in frames.status],
         "values": [{"name": v.name, "unit": v.unit, "order": v.order, "label": html_of(typographic(quantity_name(
                         v.name, frames.scene.ground or "" if frames.scene is not None else ""))),
-                    "values": [_number(float(x)) if ok else None for x, ok in zip(v.values, v.valid)]}
+                    "values": [_number(float(x)) if ok else None for x, ok in zip(v.values, v.valid, strict=True)]}
                    for v in frames.values],
         "sheets": list(_sheets(frames)),
     }

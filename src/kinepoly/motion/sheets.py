@@ -109,7 +109,8 @@ def frame_solutions(frames: Frames, scene: Scene) -> list[Solution]:
                                  guess=tuple((p, (z.real, z.imag)) for p, z in swept.items()))
         other = int(frames.rows[k - 1 if k > 0 else min(1, frames.count - 1)])
         toward = _input_at(scene, float(frames.inputs[other]))
-        step = (toward.angle_rad - at.input.angle_rad if isinstance(toward, LinkInput) and isinstance(at.input, LinkInput)
+        step = (toward.angle_rad - at.input.angle_rad
+                if isinstance(toward, LinkInput) and isinstance(at.input, LinkInput)
                 else toward.s - at.input.s if isinstance(toward, SliderInput) and isinstance(at.input, SliderInput)
                 else 0.0)
         solution = _solve(at, step)
@@ -247,7 +248,7 @@ def _functions(frames: Frames, k: int, rect: tuple[float, float, float, float]) 
     for j, v in enumerate(chosen):
         ink = Stroke(link_label_color(j + 1), 0.3)
         run: list[tuple[float, float]] = []
-        for x, y, ok in zip(xs, v.values, v.valid):
+        for x, y, ok in zip(xs, v.values, v.valid, strict=True):
             if ok and math.isfinite(float(y)):
                 run.append(at(float(x), float(y)))
                 continue

@@ -60,7 +60,8 @@ def _step_json(centers: InstantCenters, step: KennedyStep, context: Context) -> 
         "result": center.label,
         "center": _where(center),
         "known": [{"term": center_label(name), "known": centers.centers[name].found} for name in dict.fromkeys(used)]
-        + [{"term": line.label, "known": "common normal at the contact"} for line in step.lines if line.is_common_normal],
+        + [{"term": line.label, "known": "common normal at the contact"}
+           for line in step.lines if line.is_common_normal],
         "lines": [_line_json(line) for line in step.lines],
         "vectors": [],
     }
@@ -102,7 +103,8 @@ def centers_table(centers: InstantCenters, unit: str, relative: float | None, no
            for row in [["center", f"position ({unit})", "found"], ["-" * w for w in widths], *rows]]
     if centers.omegas:
         values = ", ".join(f"{o.symbol} = {_fmt(noise.value(o.omega, 'omega'))}" for o in centers.omegas)
-        agree = "" if relative is None else f"; against the polygon and the analytic solution: {relative:.2g} (relative)"
+        agree = ("" if relative is None
+                 else f"; against the polygon and the analytic solution: {relative:.2g} (relative)")
         out.append(f"omega from the instant centers (rad/s): {values}{agree}")
     return out
 

@@ -446,7 +446,8 @@ class _Phrase:
         if abs(height) * side < _FLAT_MM or abs(height) <= SAME_REL:
             return self._collinear(ratio, side, fields), self.found_tip()
         text = self.say.say("step.proportional_offset", ratio=self.w.n(ratio), height=self.w.n(height),
-                            foot_paper=self.say.number(abs(ratio) * side), offset_paper=self.say.number(abs(height) * side),
+                            foot_paper=self.say.number(abs(ratio) * side),
+                            offset_paper=self.say.number(abs(height) * side),
                             **fields)
         return text, self.found_tip()
 
@@ -494,7 +495,8 @@ class _Phrase:
         parts = []
         for direction, line in zip(step.directions, step.lines, strict=True):
             size = norm(sub((step.value[0], step.value[1]), line.through))
-            parts.append(self.say.say("result.term", term=direction.term, magnitude=self.w.n(size, self.w.size_kind(self.polygon)),
+            parts.append(self.say.say("result.term", term=direction.term,
+                                      magnitude=self.w.n(size, self.w.size_kind(self.polygon)),
                                       unit=self.w.unit_of(self.polygon)))
         return self.say.say("result.terms", terms="; ".join(parts))
 

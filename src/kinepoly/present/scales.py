@@ -50,7 +50,8 @@ A4 = (297.0, 210.0)
 
 _NICE = (1.0, 2.0, 2.5, 5.0)
 _SIDE_MM = 22.0
-"""On each side of a polygon's room: the border's margin (10 mm), the space inside it (3) and the panel's padding (9)."""
+"""On each side of a polygon's room: the border's margin (10 mm), the space inside it (3) and the panel's padding
+(9)."""
 _TITLE_MM = 52.0
 """Below a polygon's room: the title block's strip; above it: the panel's heading."""
 _KINDS = (("velocity", "kv"), ("acceleration", "ka"))

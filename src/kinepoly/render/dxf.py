@@ -62,7 +62,8 @@ def _add(doc: Drawing, msp: Modelspace, layer: str, item: Path | Circle | Arrow 
             _fill(msp, layer, item.fill, item.fill_opacity,
                   lambda h: h.paths.add_polyline_path(list(item.points), is_closed=True))
         if item.stroke is not None:
-            line = msp.add_lwpolyline(list(item.points), close=item.closed, dxfattribs=_attribs(doc, layer, item.stroke))
+            line = msp.add_lwpolyline(list(item.points), close=item.closed,
+                                      dxfattribs=_attribs(doc, layer, item.stroke))
             line.rgb = _rgb(item.stroke.color)
     elif isinstance(item, Circle):
         if item.fill is not None:
@@ -74,7 +75,8 @@ def _add(doc: Drawing, msp: Modelspace, layer: str, item: Path | Circle | Arrow 
             circle = msp.add_circle(item.center, item.radius, dxfattribs=_attribs(doc, layer, item.stroke))
             circle.rgb = _rgb(item.stroke.color)
     elif isinstance(item, Arrow):
-        shaft = msp.add_line(item.start, item.shaft_end, dxfattribs=_attribs(doc, layer, Stroke(item.color, item.width)))
+        shaft = msp.add_line(item.start, item.shaft_end,
+                             dxfattribs=_attribs(doc, layer, Stroke(item.color, item.width)))
         shaft.rgb = _rgb(item.color)
         tip, left, right = item.head
         head = msp.add_solid([tip, left, right], dxfattribs={"layer": layer})

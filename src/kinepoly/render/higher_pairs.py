@@ -134,7 +134,7 @@ def higher_pair_points(solution: Solution) -> list[Vec]:
         elif cam.kind == "flat" and cam.follower in solution.pose.links:
             out += list(_flat_face(solution, cam))
     for gear in solution.scene.gears:
-        for side, (link, curve) in enumerate(zip(gear.links, gear.pitch)):
+        for side, (link, curve) in enumerate(zip(gear.links, gear.pitch, strict=True)):
             if isinstance(curve, PitchCircle):
                 out += _circle_points(_point(solution, link, curve.center), curve.radius)
             elif gear.name in solution.contacts:
@@ -165,12 +165,15 @@ def _cam_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[Item]:
     if cam.kind == "roller" and cam.point is not None:
         w = panel.paper(_point(solution, cam.follower, cam.point))
         if cam.follower_profile:  # a curve of the follower's own, shaded like the cam's
-            ring = _ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"follower profile {cam.name}")
+            ring = _ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE),
+                         f"follower profile {cam.name}")
             items.append(replace(ring, fill=link_color(_link_index(solution, cam.follower)), fill_opacity=0.18))
         else:
-            items.append(_ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE), f"roller {cam.name}"))
+            items.append(_ring(w, cam.roller_radius * panel.scale, Stroke(follower_ink, _PROFILE),
+                               f"roller {cam.name}"))
     elif cam.follower_points:  # a spline of the follower's own, shaded like the cam's
-        items.append(Path(tuple(panel.paper(p) for p in _follower_profile(solution, cam)), Stroke(follower_ink, _PROFILE),
+        items.append(Path(tuple(panel.paper(p) for p in _follower_profile(solution, cam)),
+                          Stroke(follower_ink, _PROFILE),
                           fill=link_color(_link_index(solution, cam.follower)), fill_opacity=0.18, closed=True,
                           role=f"follower profile {cam.name}"))
     elif cam.kind == "flat":
@@ -190,7 +193,8 @@ def _equivalent_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[It
     name = cam.equivalent or f"K{cam.name}{cam.point or ''}"
     if cam.follower_points:
         other = _follower_centre(solution, cam)
-        return [] if other is None else [Path((k, panel.paper(other)), _EQUIVALENT, role=f"equivalent link {name}K2{cam.name}")]
+        return [] if other is None else [Path((k, panel.paper(other)), _EQUIVALENT,
+                                              role=f"equivalent link {name}K2{cam.name}")]
     if cam.kind != "flat":
         assert cam.point is not None
         w = panel.paper(_point(solution, cam.follower, cam.point))
@@ -206,7 +210,7 @@ def _equivalent_items(solution: Solution, cam: CamSpec, panel: Panel) -> list[It
 
 def _gear_items(solution: Solution, gear: GearSpec, panel: Panel) -> list[Item]:
     items: list[Item] = []
-    for side, (link, curve) in enumerate(zip(gear.links, gear.pitch)):
+    for side, (link, curve) in enumerate(zip(gear.links, gear.pitch, strict=True)):
         if link != solution.mechanism.ground and link not in solution.pose.links:
             continue
         ink = link_label_color(_link_index(solution, link))
@@ -235,7 +239,7 @@ def _normal_ends(solution: Solution, pair: str, at: Vec, n: Vec) -> tuple[float,
             size = _size(cam)
     for gear in solution.scene.gears:
         if gear.name == pair:
-            ends += [_point(solution, link, c.center) for link, c in zip(gear.links, gear.pitch)
+            ends += [_point(solution, link, c.center) for link, c in zip(gear.links, gear.pitch, strict=True)
                      if isinstance(c, PitchCircle)]
             size = max(c.radius for c in gear.pitch if isinstance(c, PitchCircle))
     along = [(e[0] - at[0]) * n[0] + (e[1] - at[1]) * n[1] for e in ends] + [0.0]
@@ -260,7 +264,8 @@ def higher_pair_items(solution: Solution, panel: Panel) -> tuple[list[Item], lis
         items.append(Path((panel.paper(ends[0]), panel.paper(ends[1])), _NORMAL, role=f"common normal {pair}"))
     marked = [("contact", contact_label(solution, pair), contact.point) for pair, contact in solution.contacts.items()]
     marked += [("centre of curvature", f"K{cam.name}", centre) for cam in solution.scene.cams
-               if cam.is_spline and cam.follower in solution.pose.links and (centre := _centre(solution, cam)) is not None]
+               if cam.is_spline and cam.follower in solution.pose.links
+               and (centre := _centre(solution, cam)) is not None]
     marked += [("centre of curvature", f"K2{cam.name}", other) for cam in solution.scene.cams
                if (other := _follower_centre(solution, cam)) is not None]
     for kind, name, where in marked:

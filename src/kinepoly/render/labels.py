@@ -649,8 +649,9 @@ def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kep
 
 _WRAP_MM = 40.0
 _WRAP_SHARE = 0.35
-"""A label naming several things (``o, a0, g1, g2, ...``, ``v_Q2 = v_Q3 = ...``) is broken into lines no wider than the larger of
-``_WRAP_MM`` and this share of its region's width: the chain of a long mechanism's coinciding tips stays on the page."""
+"""A label naming several things (``o, a0, g1, g2, ...``, ``v_Q2 = v_Q3 = ...``) is broken into lines no wider than
+the larger of ``_WRAP_MM`` and this share of its region's width: the chain of a long mechanism's coinciding tips stays
+on the page."""
 _LINE_GAP_MM = 0.4
 
 
@@ -696,8 +697,8 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
     """Place every request in its region (by priority, then in the given order); items per layer.
 
     A region's labels avoid the drawn items near the region (not the highlight under a step's new
-    elements: a label may lie on it, as on the background, so that it need not move when the step is done) (nothing further can touch a label
-    inside it) and the labels placed before them. With ``cache`` shared by the sheets of one
+    elements: a label may lie on it, as on the background, so that it need not move when the step is done) (nothing
+    further can touch a label inside it) and the labels placed before them. With ``cache`` shared by the sheets of one
     layout, a region whose requests and nearby drawing are as on an earlier sheet gets that
     sheet's labels again, and a region that grew keeps the labels nothing new touches: each
     sheet places only what it adds (``LabelCache``).
@@ -714,7 +715,8 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
     margin = CLEARANCE_MM + PAPER_SAME_MM
     near = {region: [drawn[k] for k in np.flatnonzero(
         (bounds[:, 0] <= region[2] + margin) & (bounds[:, 2] >= region[0] - margin)
-        & (bounds[:, 1] <= region[3] + margin) & (bounds[:, 3] >= region[1] - margin)).tolist()] for region in by_region}
+        & (bounds[:, 1] <= region[3] + margin) & (bounds[:, 3] >= region[1] - margin)).tolist()]
+        for region in by_region}
     keys = {region: (region, tuple(reqs), tuple(near[region])) for region, reqs in by_region.items()}
     shared = _Placed()
     results: dict[Box, list[Placed]] = {}

@@ -58,7 +58,8 @@ def paper_size(spec: str) -> tuple[float, float]:
         return w, h
     name, _, orientation = text.partition("-")
     if name not in _SIZES_MM or orientation not in ("", "landscape", "portrait"):
-        raise ValueError(f"--paper {spec}: expected one of {', '.join(n.upper() if n[0] == 'a' else n for n in PAPER_NAMES)}"
+        raise ValueError(f"--paper {spec}: expected one of "
+                         f"{', '.join(n.upper() if n[0] == 'a' else n for n in PAPER_NAMES)}"
                          f", optionally with -portrait or -landscape (default landscape), or WIDTHxHEIGHT in mm")
     long, short = _SIZES_MM[name]
     return (short, long) if orientation == "portrait" else (long, short)

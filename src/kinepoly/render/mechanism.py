@@ -220,7 +220,7 @@ def mechanism_items(solution: Solution, panel: Panel) -> tuple[list[Item], list[
                 items += _ground_pivot(paper[mech.ground][joint.point])
     joints = {j.point for j in mech.revolutes}
     drawn_points: dict[str, Point] = {}
-    for link, pts in paper.items():
+    for pts in paper.values():
         for name, p in pts.items():
             drawn_points.setdefault(name, p)
     for name, s_world, leg_points in assur_lines(solution):  # the Assur point, where two legs' lines cross

@@ -168,7 +168,8 @@ class _Writer:
             return f"{state}{_circle(item.center, item.radius)} {paint}\n"
         if isinstance(item, Arrow):
             (sx, sy), (ex, ey) = item.start, item.shaft_end
-            shaft = f"{_stroke_state(Stroke(item.color, item.width))} {_num(sx)} {_num(sy)} m {_num(ex)} {_num(ey)} l S\n"
+            shaft = (f"{_stroke_state(Stroke(item.color, item.width))} {_num(sx)} {_num(sy)} m {_num(ex)} {_num(ey)} "
+                     "l S\n")
             return shaft + f"{_rgb(item.color)} rg {_outline(item.head, True)} f\n"
         font = "F2" if item.bold else "F1"
         runs = " ".join(f"/{font} {_num(run.size)} Tf 1 0 0 1 {_num(item.x + run.dx)} {_num(item.y + run.dy)} Tm "
@@ -199,7 +200,8 @@ class _Writer:
         descriptor = self.add(
             (f"<< /Type /FontDescriptor /FontName /{base} /Flags 32 /FontBBox [{x0} {y0} {x1} {y1}] "
              f"/ItalicAngle 0 /Ascent {round(face.ascent * scale)} /Descent {round(face.descent * scale)} "
-             f"/CapHeight {round(face.cap_height * scale)} /StemV {140 if bold else 80} /FontFile2 {file} 0 R >>").encode())
+             f"/CapHeight {round(face.cap_height * scale)} /StemV {140 if bold else 80} /FontFile2 {file} 0 R >>"
+             ).encode())
         widths = " ".join(f"{gid} [{_num(face.advances[gid] * scale)}]" for gid in sorted(gids | {0}))
         cid = self.add(
             (f"<< /Type /Font /Subtype /CIDFontType2 /BaseFont /{base} /CIDSystemInfo << /Registry (Adobe) "
@@ -217,7 +219,8 @@ def _stroke_state(stroke: Stroke) -> str:
 
 def _outline(points: Sequence[tuple[float, float]], closed: bool) -> str:
     (x, y), rest = points[0], points[1:]
-    return f"{_num(x)} {_num(y)} m " + " ".join(f"{_num(px)} {_num(py)} l" for px, py in rest) + (" h" if closed else "")
+    return (f"{_num(x)} {_num(y)} m " + " ".join(f"{_num(px)} {_num(py)} l" for px, py in rest)
+            + (" h" if closed else ""))
 
 
 def _circle(center: tuple[float, float], r: float) -> str:

@@ -2,8 +2,8 @@
 
 ``polygon_figure`` reads the construction steps (physical units, pole at 0) and says what the
 polygon shows and at which step each element appears; ``FigureDrawing`` draws that to a panel's
-scale once and gives each sheet what it shows up to its step, the step's new elements under a highlight. Every vector's drawn end
-is exactly ``pole + k * vector``.
+scale once and gives each sheet what it shows up to its step, the step's new elements under a highlight. Every vector's
+drawn end is exactly ``pole + k * vector``.
 """
 
 from __future__ import annotations
@@ -164,7 +164,8 @@ def polygon_figure(solution: Solution, kind: Kind) -> Figure:
                 key = (name, line.through, value)
                 if key not in seen:
                     seen.add(key)
-                    vectors.append(FigureVector(name, line.through, value, _line_term_kind(kind, step, line, name), number))
+                    vectors.append(FigureVector(name, line.through, value, _line_term_kind(kind, step, line, name),
+                                                number))
         if step.kind in ("intersection", "image", "proportional"):
             lines += [FigureLine(line, number) for line in step.lines]
     pole_names = tuple(sorted(label for label in polygon.tips if label in ground_points
@@ -191,7 +192,8 @@ def _with_absolutes(vectors: list[FigureVector], tips: tuple[FigureTip, ...], sy
     out = list(vectors)
     for tip in tips:
         absolute = f"{symbol}_{tip.label}"
-        same = [k for k, v in enumerate(out) if norm(v.start) <= _SAME * size and norm(sub(v.end, tip.value)) <= _SAME * size]
+        same = [k for k, v in enumerate(out)
+                if norm(v.start) <= _SAME * size and norm(sub(v.end, tip.value)) <= _SAME * size]
         if not same:
             out.append(FigureVector(absolute, (0.0, 0.0), tip.value, "absolute", tip.step))
             continue

@@ -186,7 +186,8 @@ _LEAST_MECHANISM = 0.3
 
 
 def _drawing_area(width: float, height: float, title_h: float) -> tuple[float, float, float, float]:
-    inner = (MARGIN_MM + _INNER_MM, MARGIN_MM + _INNER_MM, width - MARGIN_MM - _INNER_MM, height - MARGIN_MM - _INNER_MM)
+    inner = (MARGIN_MM + _INNER_MM, MARGIN_MM + _INNER_MM, width - MARGIN_MM - _INNER_MM,
+             height - MARGIN_MM - _INNER_MM)
     return (inner[0], inner[1] + title_h + _INNER_MM, inner[2], inner[3])
 
 
@@ -312,7 +313,8 @@ def _headings(solution: Solution, layout: Layout) -> tuple[list[Item], list[Item
         elif panel.name == "acceleration":
             text, bar_unit = f"ka = {format_number(panel.scale)} mm per {unit}/s²", f"{unit}/s²"
         else:
-            title_items.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2, fitted_runs(_NAMES[panel.name], 2.8, panel.rect[2] - panel.rect[0] - 2.0, True),
+            title_items.append(Text(panel.rect[0] + 1.0, panel.rect[3] - 3.2,
+                                    fitted_runs(_NAMES[panel.name], 2.8, panel.rect[2] - panel.rect[0] - 2.0, True),
                                     "#000000", f"heading {panel.name}", None, True))
             continue
         if panel.name in layout.reduced:

@@ -234,12 +234,14 @@ def heading_items(panel: Panel, title: str, scale_text: str, bar_unit: str) -> t
         value = round_step(target / panel.scale)
         length = value * panel.scale
         y = baseline + 0.2
-        scale_items.append(Path(((start, y), (start + length, y)), Stroke("#000000", 0.35), role=f"scale bar {panel.name}"))
+        scale_items.append(Path(((start, y), (start + length, y)), Stroke("#000000", 0.35),
+                                role=f"scale bar {panel.name}"))
         for k in range(3):
             x = start + length * k / 2
             tick = 1.2 if k != 1 else 0.7
             scale_items.append(Path(((x, y), (x, y + tick)), THIN, role=f"scale tick {panel.name}"))
-        scale_items.append(Text(start + length + 1.5, baseline, plain_runs(f"{format_number(value)} {bar_unit}", SMALL_MM),
+        scale_items.append(Text(start + length + 1.5, baseline,
+                                plain_runs(f"{format_number(value)} {bar_unit}", SMALL_MM),
                                 "#000000",
                                 f"scale label {panel.name}"))
     return title_items, scale_items

@@ -90,11 +90,13 @@ class HigherPairTables(ReaderState):
         if links_value is None or pitch_value is None:
             return None
         if not isinstance(links_value, list) or len(links_value) != 2:
-            self.report.add(path + ("links",), f'expected two link names like ["2", "3"], got {show_value(links_value)}')
+            self.report.add(path + ("links",), 'expected two link names like ["2", "3"], got '
+                                               f'{show_value(links_value)}')
             return None
         links = [self._link(path + ("links", str(k)), v, "gear") for k, v in enumerate(links_value, start=1)]
         if not isinstance(pitch_value, list) or len(pitch_value) != 2:
-            self.report.add(path + ("pitch",), f"expected two pitch curves, one per link, got {show_value(pitch_value)}")
+            self.report.add(path + ("pitch",), "expected two pitch curves, one per link, got "
+                                               f"{show_value(pitch_value)}")
             return None
         pitch = [self.read_pitch(path + ("pitch", str(k)), v, links[k - 1]) for k, v in enumerate(pitch_value, start=1)]
         internal = table.get("internal", False)
@@ -110,7 +112,8 @@ class HigherPairTables(ReaderState):
             return None
         one, two = pitch[0], pitch[1]
         if isinstance(one, PitchLine) and isinstance(two, PitchLine):
-            self.report.add(path + ("pitch",), "two pitch lines cannot roll on each other; expected a circle and a line")
+            self.report.add(path + ("pitch",), "two pitch lines cannot roll on each other; "
+                                               "expected a circle and a line")
             return None
         if internal and not (isinstance(one, PitchCircle) and isinstance(two, PitchCircle)):
             self.report.add(path + ("internal",), "a rack has no inside; expected internal only for two circles")
@@ -312,7 +315,8 @@ class HigherPairTables(ReaderState):
         if name is not None and self.links is not None and follower in self.links:
             known = self.links[follower].point_names
             if name not in known:
-                self.report.add(path, lambda: f'no point "{name}" in link "{follower}" (the follower); {suggest(name, known)}')
+                self.report.add(path, lambda: f'no point "{name}" in link "{follower}" (the follower); '
+                                              f'{suggest(name, known)}')
                 return None
         return name
 

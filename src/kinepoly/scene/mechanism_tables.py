@@ -167,7 +167,8 @@ class MechanismTables(ReaderState):
         if name is not None and block in links:
             known = links[block].point_names
             if name not in known:
-                self.report.add(path, lambda: f'no point "{name}" in link "{block}" (the block); {suggest(name, known)}')
+                self.report.add(path, lambda: f'no point "{name}" in link "{block}" (the block); '
+                                              f'{suggest(name, known)}')
         return name
 
     def read_slider_line(self, path: KeyPath, value: object) -> tuple[Vector, float]:
@@ -181,7 +182,8 @@ class MechanismTables(ReaderState):
         through_value = require(self.report, path, table, "through", "through = [x, y], a point of the line")
         angle_value = require(self.report, path, table, "angle", "angle = a, the line's direction")
         through = (
-            None if through_value is None else quantity_pair(self.report, path + ("through",), through_value, self.kinds.length)
+            None if through_value is None
+            else quantity_pair(self.report, path + ("through",), through_value, self.kinds.length)
         )
         angle = (
             None if angle_value is None else quantity(self.report, path + ("angle",), angle_value, self.kinds.angle)

@@ -78,7 +78,8 @@ class RequestTables(ReaderState):
             if isinstance(item, str) and item:
                 names.append(item)
             else:
-                self.report.add(path, f"item {index} is {show_value(item)}; expected {what}s as strings, like {example}")
+                self.report.add(path, f"item {index} is {show_value(item)}; expected {what}s as "
+                                      f"strings, like {example}")
         return list(dict.fromkeys(names))
 
     def find_points(self, path: KeyPath, value: object) -> tuple[str, ...]:

@@ -124,8 +124,8 @@ class GearSpec:
 
 @dataclass(frozen=True)
 class CamSpec:
-    """A circle (or ``points``) profile on ``cam`` touching ``follower`` (``[[cams]]``): by a roller (``roller`` a point of
-    the follower and ``roller_radius``), a flat face (``flat``: through, angle in the follower's frame) or a
+    """A circle (or ``points``) profile on ``cam`` touching ``follower`` (``[[cams]]``): by a roller (``roller`` a
+    point of the follower and ``roller_radius``), a flat face (``flat``: through, angle in the follower's frame) or a
     knife edge (``knife``, a point of the follower). ``equivalent``: the link the pair is replaced by."""
 
     name: str

@@ -96,7 +96,8 @@ def _unit_string(report: ProblemReport, path: KeyPath, text: str, kind: Kind) ->
     unit = match.group("unit")
     size = kind.units.get(unit)
     if size is None:
-        report.add(path, lambda: f'unknown unit "{unit}" for {kind.noun} in {show_value(text)}; {suggest(unit, kind.units)}')
+        report.add(path, lambda: f'unknown unit "{unit}" for {kind.noun} in {show_value(text)}; '
+                                 f'{suggest(unit, kind.units)}')
         return None
     stored = _without_turns(float(match.group("number")), unit, kind) * size / kind.per
     if not math.isfinite(stored):

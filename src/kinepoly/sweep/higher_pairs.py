@@ -71,7 +71,7 @@ def ratio_pairs(out: ColumnBuilder) -> list[tuple[str, str]]:
     """(gear, over) pairs whose angular velocity ratio is reported: each mesh of two turning gears, then each
     turning gear against a turning input."""
     mech = out.mechanism
-    turning = [link for gear in mech.scene.gears for link, curve in zip(gear.links, gear.pitch)
+    turning = [link for gear in mech.scene.gears for link, curve in zip(gear.links, gear.pitch, strict=True)
                if isinstance(curve, PitchCircle) and link != mech.ground]
     pairs = [(gear.links[1], gear.links[0]) for gear in mech.scene.gears
              if all(link in turning for link in gear.links)]

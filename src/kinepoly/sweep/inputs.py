@@ -34,19 +34,18 @@ import numpy as np
 
 from kinepoly.engine.assembly import Continuity
 from kinepoly.engine.centrode import mechanism_size
-from kinepoly.engine.newton import CLOSED_REL
 from kinepoly.engine.plan import NewtonGroup, PositionPlan
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals
-from kinepoly.geom.tolerances import ANGLE_SAME_RAD, ROUNDING_REL, SAME_REL
+from kinepoly.geom.tolerances import ANGLE_SAME_RAD, NEWTON_CLOSED_REL, ROUNDING_REL, SAME_REL
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import LinkInput, PitchCircle, SliderInput
 
-__all__ = ["CYCLE_TURNS", "FULL_TURN_CHECK_ROWS", "MAX_STEPS", "DefaultRange", "InputGrid", "default_range", "full_turn_grid",
-           "input_grid", "input_name"]
+__all__ = ["CYCLE_TURNS", "FULL_TURN_CHECK_ROWS", "MAX_STEPS", "DefaultRange", "InputGrid", "default_range",
+           "full_turn_grid", "input_grid", "input_name"]
 
 MAX_STEPS = 2_000_000
 """The most rows a sweep takes (memory grows with rows times quantities)."""
@@ -176,7 +175,7 @@ def _geared_links(mechanism: Mechanism) -> set[str]:
     out: set[str] = set()
     for gear in mechanism.scene.gears:
         out.update(gear.links)
-        for link, curve in zip(gear.links, gear.pitch, strict=True):
+        for curve in gear.pitch:
             if isinstance(curve, PitchCircle):
                 out.update(x for x in mechanism.links_of_point(curve.center))
     return out
@@ -238,7 +237,8 @@ def _cycle(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: in
                           "on); the sweep covers one turn (its curves do not close)")]
     if turns == 1:
         return 1, []
-    ratios = ", ".join(f"link {link} {Fraction(r).limit_denominator(CYCLE_TURNS)}" for link, r in sorted(per_turn.items())
+    ratios = ", ".join(f"link {link} {Fraction(r).limit_denominator(CYCLE_TURNS)}"
+                       for link, r in sorted(per_turn.items())
                        if Fraction(r).limit_denominator(CYCLE_TURNS).denominator > 1)
     return turns, [Notice("cycle", f"the gears bring the mechanism back after {turns} turns of the input (turns per "
                           f"turn of the input: {ratios}); the sweep covers them all, its whole cycle")]
@@ -247,15 +247,15 @@ def _cycle(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: in
 def _newton_margin(mechanism: Mechanism, size: float) -> float:
     """How far inside the last input where a Newton group closes a range's end is put, in the input's unit.
 
-    Beyond a dead point by less than about ``CLOSED_REL`` radians (or ``CLOSED_REL`` times the mechanism's
-    size for a slider), Newton's method still meets its tolerance from a start close enough: the
+    Beyond a dead point by less than about ``NEWTON_CLOSED_REL`` radians (or ``NEWTON_CLOSED_REL`` times the
+    mechanism's size for a slider), Newton's method still meets its tolerance from a start close enough: the
     subdivision's last input may lie there, where a sweep's rows, walked from a whole step away, do
     not close. ``_NEWTON_EDGE`` times that is well inside, and still far below a printed digit.
     """
     if isinstance(mechanism.scene.input, LinkInput):
-        radians = _NEWTON_EDGE * CLOSED_REL
+        radians = _NEWTON_EDGE * NEWTON_CLOSED_REL
         return math.degrees(radians) if mechanism.scene.units.angle == "deg" else radians
-    return _NEWTON_EDGE * CLOSED_REL * size
+    return _NEWTON_EDGE * NEWTON_CLOSED_REL * size
 
 
 def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: float,
@@ -352,7 +352,8 @@ def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
     if full is None:
         return None
     _check_steps(steps)
-    grid = np.arange(steps, dtype=np.float64) * (full / steps)  # np.linspace(0, full, steps, endpoint=False), without its Python
+    # np.linspace(0, full, steps, endpoint=False), without its Python
+    grid = np.arange(steps, dtype=np.float64) * (full / steps)
     values, mask, seed_row = _with_seed(grid, _seed_value(mechanism), True, full)
     return InputGrid(values, _internal(mechanism, values), mask, seed_row, True)
 

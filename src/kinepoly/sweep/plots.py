@@ -98,7 +98,7 @@ def _mark_rows(ax: Axes, result: SweepResult) -> None:
         if not rows.any():
             continue
         edges = np.flatnonzero(np.diff(np.concatenate([[0], rows.astype(np.int8), [0]])))
-        for a, b in zip(edges[::2], edges[1::2]):
+        for a, b in zip(edges[::2], edges[1::2], strict=True):
             ax.axvspan(x[a] - step / 2, x[b - 1] + step / 2, color=colour, alpha=alpha, lw=0)
 
 
@@ -439,7 +439,7 @@ def plot_figure(result: SweepResult) -> Figure:
     cols = 3
     rows = (len(panels) + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.3 * rows), squeeze=False)
-    for ax, panel in zip(axes.flat, panels):
+    for ax, panel in zip(axes.flat, panels, strict=False):
         panel(ax)
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)

@@ -58,7 +58,8 @@ def pole_between(scene: Scene, link: str, start: float, stop: float) -> PoleBetw
         raise SceneError(f"--pole {start:g} {stop:g}: the mechanism is not assembled (or is singular) at both "
                          "inputs; choose two inputs of one motion")
     rows = np.flatnonzero(result.shown) if result.shown is not None else np.arange(positions.n)
-    first, second = positions.row(int(rows[0])), positions.row(int(rows[-1]))  # the scene's own input may be a hidden row
+    # the scene's own input may be a hidden row
+    first, second = positions.row(int(rows[0])), positions.row(int(rows[-1]))
     ground = prepared.mechanism.ground or ""
     name = f"I_{pair_name((ground, link))}"
     found = finite_pole(prepared.mechanism, link, first[link], second[link])

@@ -218,10 +218,10 @@ def _gap_notices(grid: InputGrid, ok: Bools, name: str, unit: str) -> list[Notic
     if not fails.any():
         return []
     edges = np.flatnonzero(np.diff(np.concatenate([[0], fails.astype(np.int8), [0]])))
-    ranges = [f"{shown[a]:.6g} to {shown[b - 1]:.6g}" for a, b in zip(edges[::2], edges[1::2])]
+    ranges = [f"{shown[a]:.6g} to {shown[b - 1]:.6g}" for a, b in zip(edges[::2], edges[1::2], strict=True)]
     text = (f"the mechanism cannot be assembled for {name} from {', '.join(ranges)} {unit} "
             f"({int(fails.sum())} of {len(shown)} rows; see each row's warning)")
-    if any(a > 0 and b < len(shown) for a, b in zip(edges[::2], edges[1::2])) or len(ranges) > 1:
+    if any(a > 0 and b < len(shown) for a, b in zip(edges[::2], edges[1::2], strict=True)) or len(ranges) > 1:
         text += ("; no motion of the input carries the mechanism across, so beyond such a range the sweep "
                  "resumes on the assembly on the same side as before it")
     return [Notice("cannot-assemble", text)]

@@ -12,7 +12,7 @@ __all__ = ["csv_text"]
 
 
 def _cells(values: list[float], valid: list[bool]) -> list[str]:
-    return [format(v, ".15g") if ok else "" for v, ok in zip(values, valid)]
+    return [format(v, ".15g") if ok else "" for v, ok in zip(values, valid, strict=True)]
 
 
 def csv_text(result: SweepResult) -> str:
@@ -24,5 +24,5 @@ def csv_text(result: SweepResult) -> str:
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow([c.name for c in columns] + ["status", "warnings"])
-    writer.writerows(zip(*cells, status, warnings))
+    writer.writerows(zip(*cells, status, warnings, strict=True))
     return out.getvalue()

@@ -97,7 +97,8 @@ def velocity(state: VelocityContext, dyad: CarriedDyad) -> None:
     if polygon.record:
         record_intersection(polygon, p2, f"v_{p2} = v_{p1} + v_{p2}/{on_carrier} + v_{on_carrier}/{p1} = v_{p3} + "
                              f"v_{p2}/{p3}", line1, line2, labels, crossing,
-                             ((f"v_{p1}", "magnitude and direction"), (f"v_{p2}/{on_carrier}", "magnitude and direction"),
+                             ((f"v_{p1}", "magnitude and direction"),
+                              (f"v_{p2}/{on_carrier}", "magnitude and direction"),
                               (f"v_{on_carrier}/{p1}", "direction"), (f"v_{p3}", "magnitude and direction"),
                               (f"v_{p2}/{p3}", "direction")),
                              (Direction(f"v_{on_carrier}/{p1}", "perpendicular", f"{p1}{p2}",
@@ -138,8 +139,9 @@ def acceleration(ctx: AccelerationContext, dyad: CarriedDyad) -> None:
     b.add_tip(carrier, p2, np.asarray(crossing.point - rel))
     if b.record:
         drawn = vectors + [DrawnVector(f"a_{p2}/{on_carrier}", b.vec(start), b.vec(moved), "relative")]
-        record_crossing(ctx, p2, f"a_{p2} = a_{p1} + a^n_{on_carrier}/{p1} + a_{p2}/{on_carrier} + a^t_{on_carrier}/{p1} = "
-                f"a_{p3} + a^n_{p2}/{p3} + a^t_{p2}/{p3}", line1, line2, (label1, label2), crossing, drawn,
+        record_crossing(ctx, p2, f"a_{p2} = a_{p1} + a^n_{on_carrier}/{p1} + a_{p2}/{on_carrier} + "
+                f"a^t_{on_carrier}/{p1} = a_{p3} + a^n_{p2}/{p3} + a^t_{p2}/{p3}", line1, line2, (label1, label2),
+                crossing, drawn,
                 (Direction(f"a^t_{on_carrier}/{p1}", "perpendicular", f"{p1}{p2}", b.label(k1, p1).lower(),
                            after=f"a_{p2}/{on_carrier}"),
                  along_normal(ctx, f"a^t_{p2}/{p3}", k2, p3, p2, n2)))

@@ -177,7 +177,8 @@ def acceleration(ctx: AccelerationContext, dyad: Dyad) -> None:
                 direction2 = along_slide(ctx, f"a_{p2}/{at2}", dyad.second_joint, k2, p2, laid)
                 cor = f" + a^c_{p2}/{at2}" if laid else ""
                 equation = f"a_{p2} = a_{p1} + a^n_{p2}/{p1} + a^t_{p2}/{p1} = a_{at2}{cor} + a_{p2}/{at2}"
-            record_crossing(ctx, p2, equation, line1, line2, (label1, label2), crossing, vectors, (direction1, direction2))
+            record_crossing(ctx, p2, equation, line1, line2, (label1, label2), crossing, vectors,
+                            (direction1, direction2))
         read_rate(b, i, p1, p2, crossing.along_first)
         if isinstance(dyad.second_joint, Revolute):
             read_rate(b, j, dyad.second_joint.point, p2, crossing.along_second())
@@ -199,7 +200,8 @@ def acceleration(ctx: AccelerationContext, dyad: Dyad) -> None:
         b.add_tip(r.guide, p, crossing.point)
         if b.record:
             cor = f" + a^c_{at}/{p}" if laid else ""
-            record_crossing(ctx, at, f"a_{at} = a_{q} + a^n_{at}/{q} + a^t_{at}/{q} = a_{p}{cor} + a_{at}/{p}", line1, line2,
+            record_crossing(ctx, at, f"a_{at} = a_{q} + a^n_{at}/{q} + a^t_{at}/{q} = a_{p}{cor} + a_{at}/{p}",
+                    line1, line2,
                     labels, crossing, vectors,
                     (along_normal(ctx, f"a^t_{at}/{q}", r.guide_known, q, p, n1),
                      along_slide(ctx, f"a_{at}/{p}", r.slider, r.block_known, p, laid)))
