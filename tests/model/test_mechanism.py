@@ -12,11 +12,11 @@ import tomllib
 from pathlib import Path
 
 import pytest
+from tests.scenes import EXAMPLES
 
 from kinepoly.errors import MobilityError
 from kinepoly.model.mechanism import Revolute, build_mechanism
 from kinepoly.scene.loader import load_scene, loads_scene
-from tests.scenes import EXAMPLES
 
 _EXAMPLES = sorted(EXAMPLES.glob("*.toml"))
 
