@@ -50,28 +50,38 @@ OMEGA2, ALPHA2 = 10.0, 5.0
 Arrays = dict[str, np.ndarray]
 
 
-def closed_form(theta2: np.ndarray) -> Arrays:
-    """The four-bar by the textbook vector loop, written directly in numpy (B left of A -> B0)."""
+def four_bar(a2: np.ndarray | float, a3: np.ndarray | float, a4: np.ndarray | float, theta2: np.ndarray,
+             a1: float = A1, omega2: float = OMEGA2, alpha2: float = ALPHA2) -> Arrays:
+    """The four-bar by the textbook vector loop, written directly in numpy (B left of A -> B0); the link
+    lengths broadcast against ``theta2`` (one mechanism, or a family of them)."""
     e2 = np.exp(1j * theta2)
-    a = A2 * e2
-    to_b0 = A1 - a
+    a = a2 * e2
+    to_b0 = a1 - a
     dist = np.abs(to_b0)
-    gamma = np.arccos((A3 * A3 + dist * dist - A4 * A4) / (2 * A3 * dist))
+    gamma = np.arccos((a3 * a3 + dist * dist - a4 * a4) / (2 * a3 * dist))
     theta3 = np.angle(to_b0) + gamma
     e3 = np.exp(1j * theta3)
-    b = a + A3 * e3
-    theta4 = np.angle(b - A1)
+    b = a + a3 * e3
+    theta4 = np.angle(b - a1)
     e4 = np.exp(1j * theta4)
     s34 = np.sin(theta3 - theta4)
-    omega3 = OMEGA2 * A2 * np.sin(theta4 - theta2) / (A3 * s34)
-    omega4 = OMEGA2 * A2 * np.sin(theta3 - theta2) / (A4 * s34)
-    known = (1j * ALPHA2 - OMEGA2**2) * a - omega3**2 * A3 * e3 + omega4**2 * A4 * e4
-    alpha3 = (known * np.conj(e4)).real / (A3 * s34)
-    alpha4 = (known * np.conj(e3)).real / (A4 * s34)
+    omega3 = omega2 * a2 * np.sin(theta4 - theta2) / (a3 * s34)
+    omega4 = omega2 * a2 * np.sin(theta3 - theta2) / (a4 * s34)
+    known = (1j * alpha2 - omega2**2) * a - omega3**2 * a3 * e3 + omega4**2 * a4 * e4
+    return {"theta3": theta3, "theta4": theta4, "omega_3": omega3, "omega_4": omega4,
+            "alpha_3": (known * np.conj(e4)).real / (a3 * s34), "alpha_4": (known * np.conj(e3)).real / (a4 * s34),
+            "r_A": a, "r_B": b}
+
+
+def closed_form(theta2: np.ndarray) -> Arrays:
+    """examples/four-bar.toml by ``four_bar``, with its coupler point C."""
+    loop = four_bar(A2, A3, A4, theta2)
+    theta3, a, b = loop["theta3"], loop["r_A"], loop["r_B"]
+    omega3, omega4, alpha3, alpha4 = loop["omega_3"], loop["omega_4"], loop["alpha_3"], loop["alpha_4"]
     rc = B3 * np.exp(1j * (theta3 + BETA3))
     v_a, a_a = 1j * OMEGA2 * a, (1j * ALPHA2 - OMEGA2**2) * a
-    return {"theta_3": np.degrees(theta3), "theta_4": np.degrees(theta4), "omega_3": omega3, "omega_4": omega4,
-            "alpha_3": alpha3, "alpha_4": alpha4, "r_A": a, "r_B": b, "r_C": a + rc, "v_A": v_a,
+    return {"theta_3": np.degrees(theta3), "theta_4": np.degrees(loop["theta4"]), "omega_3": omega3,
+            "omega_4": omega4, "alpha_3": alpha3, "alpha_4": alpha4, "r_A": a, "r_B": b, "r_C": a + rc, "v_A": v_a,
             "v_B": 1j * omega4 * (b - A1), "v_C": v_a + 1j * omega3 * rc, "a_A": a_a,
             "a_B": (1j * alpha4 - omega4**2) * (b - A1), "a_C": a_a + (1j * alpha3 - omega3**2) * rc}
 

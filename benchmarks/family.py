@@ -22,6 +22,9 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "src"))
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+from bench_sweep import four_bar
 
 from kinepoly.scene.loader import loads_scene
 from kinepoly.sweep import sweep
@@ -42,23 +45,12 @@ def members(count: int, seed: int) -> np.ndarray:
 
 
 def closed_form(dims: np.ndarray, theta2: np.ndarray) -> dict[str, np.ndarray]:
-    """theta, omega, alpha of links 3 and 4 over (members, positions), B left of A -> B0."""
+    """theta, omega, alpha of links 3 and 4 over (members, positions): ``bench_sweep.four_bar`` with the
+    members' lengths as columns."""
     a2, a3, a4 = (dims[:, k:k + 1] for k in range(3))
-    e2 = np.exp(1j * theta2)[None, :]
-    a = a2 * e2
-    to_b0 = A1 - a
-    dist = np.abs(to_b0)
-    theta3 = np.angle(to_b0) + np.arccos((a3 * a3 + dist * dist - a4 * a4) / (2 * a3 * dist))
-    e3 = np.exp(1j * theta3)
-    b = a + a3 * e3
-    theta4 = np.angle(b - A1)
-    e4 = np.exp(1j * theta4)
-    s34 = np.sin(theta3 - theta4)
-    omega3 = OMEGA2 * a2 * np.sin(theta4 - theta2) / (a3 * s34)
-    omega4 = OMEGA2 * a2 * np.sin(theta3 - theta2) / (a4 * s34)
-    known = (1j * ALPHA2 - OMEGA2**2) * a - omega3**2 * a3 * e3 + omega4**2 * a4 * e4
-    return {"theta_3": np.degrees(theta3), "theta_4": np.degrees(theta4), "omega_3": omega3, "omega_4": omega4,
-            "alpha_3": (known * np.conj(e4)).real / (a3 * s34), "alpha_4": (known * np.conj(e3)).real / (a4 * s34)}
+    loop = four_bar(a2, a3, a4, theta2[None, :], a1=A1, omega2=OMEGA2, alpha2=ALPHA2)
+    return {"theta_3": np.degrees(loop["theta3"]), "theta_4": np.degrees(loop["theta4"]),
+            **{name: loop[name] for name in ("omega_3", "omega_4", "alpha_3", "alpha_4")}}
 
 
 def scene_text(a2: float, a3: float, a4: float) -> str:
