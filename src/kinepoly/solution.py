@@ -26,7 +26,8 @@ from kinepoly.check.compare import CheckReport, Quantity, compare
 from kinepoly.engine.centers import InstantCenters, find_instant_centers, plan_instant_centers
 from kinepoly.engine.construct import Wanted, construct_row
 from kinepoly.engine.contacts import Contact, contact_links
-from kinepoly.engine.plan import PositionPlan, make_plan
+from kinepoly.engine.groups import PositionPlan
+from kinepoly.engine.plan import make_plan
 from kinepoly.engine.position import describe_input
 from kinepoly.engine.row import AccelerationPolygon, SliderValues, VelocityPolygon
 from kinepoly.engine.steps import Step

@@ -12,8 +12,9 @@ from tests.scenes import EXAMPLES
 
 import kinepoly
 from kinepoly.engine.assembly import position_at_input
+from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.newton import _RowSystem, group_size
-from kinepoly.engine.plan import NewtonGroup, make_plan
+from kinepoly.engine.plan import make_plan
 from kinepoly.engine.position import input_values
 from kinepoly.model.mechanism import build_mechanism
 

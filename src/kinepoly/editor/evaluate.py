@@ -153,7 +153,7 @@ def handles(solution: Solution) -> dict[str, Any]:
 def assembly_joints(solution: Solution) -> list[str]:
     """The inner joint of each dyad of the plan none of whose links has a ``[guess]``: where its two assemblies
     differ, the point a guess would pick them by."""
-    from kinepoly.engine.plan import Dyad
+    from kinepoly.engine.groups import Dyad
 
     scene = solution.scene
     guessed = {name for name, _ in scene.guess}

@@ -17,40 +17,11 @@ plan is made backwards from what is asked: only the groups on the path to an ask
 
 from __future__ import annotations
 
-from kinepoly.engine.groups import (
-    CamGroup,
-    CarriedDyad,
-    DriveGroup,
-    Dyad,
-    GearGroup,
-    Group,
-    NewtonGroup,
-    PlanetGroup,
-    PositionPlan,
-    SlideRoles,
-    TwoSlideRoles,
-    slide_roles,
-    two_slide_roles,
-)
+from kinepoly.engine.groups import Group, PositionPlan
 from kinepoly.engine.table import KINDS
 from kinepoly.model.mechanism import Mechanism, Revolute
 
-__all__ = [
-    "CamGroup",
-    "CarriedDyad",
-    "DriveGroup",
-    "Dyad",
-    "GearGroup",
-    "Group",
-    "NewtonGroup",
-    "PlanetGroup",
-    "PositionPlan",
-    "SlideRoles",
-    "TwoSlideRoles",
-    "make_plan",
-    "slide_roles",
-    "two_slide_roles",
-]
+__all__ = ["make_plan"]
 
 
 def _frame_drives(mechanism: Mechanism) -> tuple[str, ...]:

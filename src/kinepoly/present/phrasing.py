@@ -23,7 +23,7 @@ from functools import cache, cached_property
 from kinepoly.engine.center_values import KennedyStep
 from kinepoly.engine.center_velocity import CenterOmega
 from kinepoly.engine.circle_diagram import center_label, pair_name
-from kinepoly.engine.plan import NewtonGroup
+from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.steps import Direction, DrawnVector, Step, term_name
 from kinepoly.geom.tolerances import COINCIDENT_REL, SAME_REL
 from kinepoly.geom.vec import Vec, norm, sub

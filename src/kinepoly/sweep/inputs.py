@@ -34,7 +34,7 @@ import numpy as np
 
 from kinepoly.engine.assembly import Continuity
 from kinepoly.engine.centrode import mechanism_size
-from kinepoly.engine.plan import NewtonGroup, PositionPlan
+from kinepoly.engine.groups import NewtonGroup, PositionPlan
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals

@@ -33,7 +33,8 @@ from kinepoly.engine.assembly import Continuity, position_at_input
 from kinepoly.engine.centrode import frame_centrodes
 from kinepoly.engine.circle_diagram import pair_name
 from kinepoly.engine.group import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
-from kinepoly.engine.plan import NewtonGroup, PositionPlan, make_plan
+from kinepoly.engine.groups import NewtonGroup, PositionPlan
+from kinepoly.engine.plan import make_plan
 from kinepoly.engine.polygon import JointSolve, LineCrossing
 from kinepoly.engine.position import Failure, Positions, solve_positions
 from kinepoly.engine.sliders import slider_motion
