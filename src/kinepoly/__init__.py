@@ -30,11 +30,12 @@ if TYPE_CHECKING:
     from kinepoly.scene.loader import load_scene, loads_scene
     from kinepoly.scene.spec import Scene
     from kinepoly.solution import Solution, solve
+    from kinepoly.sweep.family import sweep_family
 
 _LAZY = {"animate": "kinepoly.motion.api", "draw": "kinepoly.motion.api", "steps_text": "kinepoly.present.report",
          "table_text": "kinepoly.present.report", "to_json": "kinepoly.present.report",
          "load_scene": "kinepoly.scene.loader", "loads_scene": "kinepoly.scene.loader", "Scene": "kinepoly.scene.spec",
-         "Solution": "kinepoly.solution", "solve": "kinepoly.solution"}
+         "Solution": "kinepoly.solution", "solve": "kinepoly.solution", "sweep_family": "kinepoly.sweep.family"}
 """Where each public name lives: loaded when first used, so that ``import kinepoly`` (and every command,
 which imports only what it runs) starts fast."""
 
@@ -55,6 +56,7 @@ __all__ = [
     "loads_scene",
     "solve",
     "steps_text",
+    "sweep_family",
     "table_text",
     "to_json",
 ]

@@ -54,4 +54,4 @@ def test_a_repeated_sweep_of_one_scene_is_prepared_once(monkeypatch: pytest.Monk
 
     monkeypatch.setattr(run, "prepare_sweep", not_again)
     _same(first, sweep(scene, steps=36, start=10.0, stop=50.0))
-    _same(run_sweep(run._prepared(scene, None, False), steps=36), sweep(scene, steps=36))
+    _same(run_sweep(run.prepared_sweep(scene), steps=36), sweep(scene, steps=36))

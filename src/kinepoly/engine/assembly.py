@@ -22,7 +22,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from kinepoly.engine.branches import follow_branch
+from kinepoly.engine.branches import follow_branch, follow_members
 from kinepoly.engine.cam_contact import Candidates, Ints
 from kinepoly.engine.cam_place import floating_unreachable, follow_contact, guessed_contact, seeded_contact
 from kinepoly.engine.closures import Choice, Closure
@@ -39,7 +39,7 @@ from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.flat_side import flat_side
 
-__all__ = ["Continuity", "NearestGuess", "position_at_input"]
+__all__ = ["Continuity", "FamilyContinuity", "NearestGuess", "position_at_input", "seed_labels"]
 
 Vec = tuple[float, float]
 
@@ -273,9 +273,7 @@ class Continuity:
                later: Callable[[int], Placement]) -> Choice | Placement:
         label = self._guessed(mechanism, closure)
         if label is None:
-            target = closure.telling_at(dict(self._seed()))
-            gaps = [abs(complex(t[self.seed_row]) - target) for t in closure.telling]
-            label = gaps.index(min(gaps))
+            label = _seed_label(closure, self._seed(), self.seed_row)
         labels = follow_branch(closure.telling[0], closure.telling[1], placed.ok, self.seed_row, label,
                                self.periodic, closure.gap)
         return labels if isinstance(labels, int) else np.asarray(labels == 0)
@@ -330,6 +328,90 @@ class Continuity:
                 "on the way, and the group closes here only on the far side of it (the sweep resumes after the "
                 "next rows where it does not close at all)")))
         return replace(placed, poses=poses, ok=ok & closed, failures=failures)
+
+
+def _seed_label(closure: Closure, seed: Mapping[str, LinkPose], row: int) -> int:
+    """Which of the closure's assemblies at ``row`` the seed's poses are: the one whose telling point lies nearest
+    the seed's."""
+    target = closure.telling_at(dict(seed))
+    gaps = [abs(complex(t[row]) - target) for t in closure.telling]
+    return gaps.index(min(gaps))
+
+
+@dataclass(frozen=True)
+class _Labelling:
+    """Places the seed's own assembly again (one row), noting each dyad's label: ``seed_labels``."""
+
+    seed: Mapping[str, LinkPose]
+    labels: dict[str, int]
+
+    def choose(self, mechanism: Mechanism, closure: Closure, placed: Placement,
+               later: Callable[[int], Placement]) -> Choice | Placement:
+        label = self.labels[closure.dyad.name] = _seed_label(closure, self.seed, 0)
+        return label
+
+    def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
+        """A Newton group has no labelled assemblies: its seed poses are taken as they are."""
+        poses = {link: ArrayPose.of_rows([self.seed[link]]) for link in group.links}
+        return replace(placed, poses={**placed.poses, **poses})
+
+    def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
+        """The seed closes (it was solved): nothing fails."""
+
+    def unreachable(self, message: str) -> None:
+        """The seed closes (it was solved): nothing fails."""
+
+    def contact(self, mechanism: Mechanism, group: CamGroup, candidates: Candidates,
+                placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
+        return np.array([seeded_contact(mechanism, group, candidates, 0, self.seed)]), ()
+
+
+def seed_labels(mechanism: Mechanism, plan: PositionPlan, seed: Mapping[str, LinkPose]) -> dict[str, int]:
+    """Each dyad's assembly in ``seed`` (the solve's at the scene's own input) by its label, the index of
+    ``Closure.telling``: 0 the inner joint left of the line between the outer joints (RRR) or further along the
+    slide (RRP, RPR, RPP), 1 the other. The same label is the same assembly in every member of a family."""
+    labels: dict[str, int] = {}
+    with np.errstate(all="ignore"):
+        solve_positions(mechanism, plan, input_values(mechanism), _Labelling(seed, labels))
+    return labels
+
+
+@dataclass(frozen=True)
+class FamilyContinuity:
+    """A family's policy (``model.family``; its rows are the members' rows, ``rows_each`` each, one member after
+    another): every member's row ``seed_row`` takes the assembly of the label the scene's own solve takes
+    (``seed_labels``), and the member's other rows follow it continuously (``engine.branches.follow_members``).
+
+    A family is solved in one batch where its groups are dyads, carried dyads and drive groups; a mechanism
+    with cams, gears or groups solved by Newton's method is swept member by member (``sweep.family``), so the
+    questions only those ask are not put to this policy."""
+
+    seed_row: int
+    rows_each: int
+    labels: Mapping[str, int]
+    periodic: bool
+
+    def choose(self, mechanism: Mechanism, closure: Closure, placed: Placement,
+               later: Callable[[int], Placement]) -> Choice | Placement:
+        labels = follow_members(closure.telling[0], closure.telling[1], placed.ok, self.rows_each, self.seed_row,
+                                self.labels[closure.dyad.name], self.periodic, closure.gap)
+        return labels if isinstance(labels, int) else np.asarray(labels == 0)
+
+    def failed(self, mechanism: Mechanism, closure: Closure, rows: Bools) -> None:
+        """Rows that do not close are marked by the executor; nothing to raise."""
+
+    def unreachable(self, message: str) -> None:
+        """Not asked: a family with cams is swept member by member."""
+        raise AssertionError(message)
+
+    def newton(self, mechanism: Mechanism, group: NewtonGroup, placed: Placement) -> Placement:
+        """Not asked: a family with Newton groups is swept member by member."""
+        raise AssertionError(f"group {group.name} is solved by Newton's method: its family is swept member by member")
+
+    def contact(self, mechanism: Mechanism, group: CamGroup, candidates: Candidates,
+                placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
+        """Not asked: a family with cams is swept member by member."""
+        raise AssertionError(f"group {group.name}: a family with cams is swept member by member")
 
 
 def position_at_input(mechanism: Mechanism, plan: PositionPlan, origin: Vec = (0.0, 0.0)) -> Positions:

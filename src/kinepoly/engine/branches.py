@@ -26,7 +26,7 @@ import numpy.typing as npt
 
 from kinepoly.geom.arrays import Bools, Points, Reals
 
-__all__ = ["Labels", "follow_branch"]
+__all__ = ["Labels", "follow_branch", "follow_members"]
 
 Labels = npt.NDArray[np.int8]
 
@@ -149,3 +149,33 @@ def _no_switch_possible(c: tuple[Points, Points], ok: Bools, periodic: bool, lab
         gap = np.abs(c[0] - c[1])
     shortest = float(gap.min() if every else gap[ok].min())
     return bool(16.0 * longest2 < shortest * shortest)
+
+
+def follow_members(c0: Points, c1: Points, ok: Bools, rows_each: int, seed: int, label: int, periodic: bool,
+                   gap: Reals | None = None) -> int | Labels:
+    """``follow_branch`` for a family (``model.family``): the rows are its members' rows one member after
+    another, ``rows_each`` each, and every member's row ``seed`` takes ``label``. Each member is followed on
+    its own rows; the members whose steps are all short of a quarter of their assemblies' gap (the rule keeps
+    the label there, as ``_no_switch_possible`` says for one member) are settled together by array operations."""
+    members = len(c0) // rows_each
+    own = (c0 if label == 0 else c1).reshape(members, rows_each)
+    fine = ok.reshape(members, rows_each)
+    step = own[:, 1:] - own[:, :-1]
+    step2 = np.where(fine[:, 1:] & fine[:, :-1], step.real * step.real + step.imag * step.imag, 0.0)
+    longest2 = step2.max(axis=1) if rows_each > 1 else np.zeros(members)
+    if periodic:
+        wrap = own[:, 0] - own[:, -1]
+        longest2 = np.where(fine[:, 0] & fine[:, -1],
+                            np.maximum(longest2, wrap.real * wrap.real + wrap.imag * wrap.imag), longest2)
+    apart = (np.abs(c0 - c1) if gap is None else np.broadcast_to(gap, c0.shape)).reshape(members, rows_each)
+    shortest = np.where(fine, apart, np.inf).min(axis=1)
+    settled = ~fine.any(axis=1) | (16.0 * longest2 < shortest * shortest)
+    if settled.all():
+        return label
+    labels = np.full(len(c0), label, np.int8)
+    for member in np.flatnonzero(~settled):
+        rows = slice(member * rows_each, (member + 1) * rows_each)
+        found = follow_branch(c0[rows], c1[rows], ok[rows], seed, label, periodic,
+                              None if gap is None else apart[member])
+        labels[rows] = found
+    return labels

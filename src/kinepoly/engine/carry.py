@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from kinepoly.geom.arrays import Points, Reals, turn
-from kinepoly.model.array_pose import ArrayPose
+from kinepoly.model.array_pose import ArrayPose, local_point
 from kinepoly.model.mechanism import Drive, Mechanism, Revolute
 
 __all__ = ["carried_local", "drive_values", "place_on", "relative_acceleration", "relative_turn", "relative_velocity"]
@@ -49,10 +49,10 @@ def carried_local(mechanism: Mechanism, drive: Drive, link: str, local: complex,
     rel = relative_turn(drive, link, values)
     joint = drive.joint
     if isinstance(joint, Revolute):
-        pin_on_carrier = complex(*mechanism.local(carrier, joint.point))
-        return np.asarray(pin_on_carrier + rel * (local - complex(*mechanism.local(link, joint.point))))
+        pin_on_carrier = local_point(mechanism.local(carrier, joint.point))
+        return np.asarray(pin_on_carrier + rel * (local - local_point(mechanism.local(link, joint.point))))
     slide = turn(joint.angle_rad)
-    block_point = complex(*mechanism.local(joint.block, joint.point))
+    block_point = local_point(mechanism.local(joint.block, joint.point))
     if link == joint.block:  # into the guide's frame
         return np.asarray(complex(*joint.through) + values * slide + rel * (local - block_point))
     return np.asarray(block_point + rel * (local - complex(*joint.through)) - values)  # into the block's frame

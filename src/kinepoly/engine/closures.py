@@ -28,7 +28,7 @@ from kinepoly.engine.carry import carried_local, relative_turn
 from kinepoly.engine.groups import Dyad
 from kinepoly.geom.arrays import Bools, Points, Reals, circle_circle, circle_line, cross_lines, length, turn
 from kinepoly.geom.tolerances import ASSEMBLY_REL_TOL, NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
-from kinepoly.model.array_pose import ArrayPose, pose_from_point, pose_from_two_points
+from kinepoly.model.array_pose import ArrayPose, local_point, pose_from_point, pose_from_two_points
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import SliderSpec
@@ -89,12 +89,16 @@ def other_side(joint: Joint, link: str) -> str:
 
 
 def _local(mechanism: Mechanism, link: str, point: str) -> complex:
-    x, y = mechanism.local(link, point)
-    return complex(x, y)
+    return local_point(mechanism.local(link, point))  # type: ignore[return-value]  # per row in a family
 
 
 def _c(v: tuple[float, float]) -> complex:
-    return complex(v[0], v[1])
+    return local_point(v)  # type: ignore[return-value]  # per row in a family
+
+
+def _row(value: Reals | float, k: int) -> float:
+    """Row ``k`` of a dimension that is one number, or one per row in a family (``model.family``)."""
+    return float(value[k]) if np.ndim(value) else float(value)
 
 
 def _outer_world(mech: Mechanism, poses: dict[str, ArrayPose], joint: Joint, link: str, point: str) -> Points:
@@ -129,6 +133,13 @@ def _link_size(mech: Mechanism) -> float:
                 for q in link.points), default=0.0)
 
 
+def _largest(*values: Reals | float) -> Reals | float:
+    """The largest of some lengths: numbers, or arrays where a family's dimensions vary by row."""
+    if any(np.ndim(v) for v in values):
+        return np.asarray(np.maximum.reduce(np.broadcast_arrays(*values)))
+    return max(values)  # type: ignore[type-var]
+
+
 def _closes(slack: Reals, scale: Reals | float) -> Bools:
     """The rows where a circle meets (or, within ``ASSEMBLY_REL_TOL``, just touches) the other curve."""
     return np.asarray(slack >= -ASSEMBLY_REL_TOL * scale * scale)
@@ -145,7 +156,7 @@ def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple
     w3 = _outer_world(mech, poses, dyad.second_joint, j, p3)
     local2: complex | Points = _local(mech, i, p2)
     if drive is not None:  # the inner joint in the carrier's frame, row by row
-        local2 = carried_local(mech, drive, i, complex(local2), values[drive.index])
+        local2 = carried_local(mech, drive, i, local2, values[drive.index])
     span = local2 - _local(mech, outer, p1)
     r1 = np.abs(span)
     r2 = abs(_local(mech, j, p2) - _local(mech, j, p3))
@@ -167,17 +178,17 @@ def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple
         return placed
 
     def why(k: int) -> str:
-        dk, rk = float(d[k]), float(np.broadcast_to(r1, d.shape)[k])
+        dk, rk, r2k = float(d[k]), _row(r1, k), _row(r2, k)
         held = f" (|{p1}{p2}| as links {outer} and {i} are held by {drive.name})" if drive else ""
         if rk == 0.0:
             return f"the input puts {p2} on {p1}, so link {j}'s pin {p2} has no circle to run on"
         if singular[k]:
             return (f"the pins {p1} and {p3} coincide (|{p1} {p3}| = {dk:.3g}), so {p2} may lie anywhere on a "
                     f"circle of radius {rk:.6g} about them (a change point of the linkage)")
-        if dk > rk + r2:
-            return f"|{p1} {p3}| = {dk:.6g} > |{p1}{p2}| + |{p2}{p3}| = {rk:.6g} + {r2:.6g} = {rk + r2:.6g}{held}"
-        return (f"|{p1} {p3}| = {dk:.6g} < | |{p1}{p2}| - |{p2}{p3}| | = | {rk:.6g} - {r2:.6g} | = "
-                f"{abs(rk - r2):.6g}{held}")
+        if dk > rk + r2k:
+            return f"|{p1} {p3}| = {dk:.6g} > |{p1}{p2}| + |{p2}{p3}| = {rk:.6g} + {r2k:.6g} = {rk + r2k:.6g}{held}"
+        return (f"|{p1} {p3}| = {dk:.6g} < | |{p1}{p2}| - |{p2}{p3}| | = | {rk:.6g} - {r2k:.6g} | = "
+                f"{abs(rk - r2k):.6g}{held}")
 
     labels = (f"{p2} left of {p1}->{p3}", f"{p2} right of {p1}->{p3}")
     return Closure(dyad, (left, right), labels, ok, singular, 2.0 * h, place, why, p2, _inner_at(mech, i, p2))
@@ -201,8 +212,9 @@ def _rrp(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
                 j: pose_from_point(mech.local(j, p2), at, rotation_j)}
 
     def why(k: int) -> str:
-        h = math.sqrt(max(r1 * r1 - float(slack[k]), 0.0))
-        return f"{p1} is {h:.6g} from the line {p2} runs on, more than |{p1}{p2}| = {r1:.6g}"
+        r1k = _row(r1, k)
+        h = math.sqrt(max(r1k * r1k - float(slack[k]), 0.0))
+        return f"{p1} is {h:.6g} from the line {p2} runs on, more than |{p1}{p2}| = {r1k:.6g}"
 
     labels = (f"{p2} ahead along slider {slider.name}", f"{p2} behind along slider {slider.name}")
     return Closure(dyad, (ahead, behind), labels, ok, np.zeros_like(ok), 2.0 * half, place, why, p2,
@@ -251,13 +263,13 @@ def _rpr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
         return f"|{pg} {pb}| = {rk:.6g} is less than the offset {h:.6g} of slider {slider.name}'s line from {pg}"
 
     # the guide's angle comes from the direction wg -> wb: when pb nears pg it is ill-conditioned
-    size = max(abs(pg_local - _c(slider.through)), abs(offset), _link_size(mech))
+    size = _largest(abs(pg_local - _c(slider.through)), abs(offset), _link_size(mech))
     close = ok & (r < NEAR_SINGULAR_SIN * size)
     near = None
     if close.any():
         near = (close, lambda k: (
             f"near-singular: {pb} is {float(r[k]):.3g} from {pg}, the pivot of the guide {guide}, so the guide's "
-            f"angle is uncertain by about {UNIT_ROUNDOFF * size / max(float(r[k]), TINY_POSITIVE):.1g} rad"))
+            f"angle is uncertain by about {UNIT_ROUNDOFF * _row(size, k) / max(float(r[k]), TINY_POSITIVE):.1g} rad"))
     labels = (f"{pb} ahead along slider {slider.name}", f"{pb} behind along slider {slider.name}")
     # both assemblies put pb at wb; they differ in the guide's turn, told by wg + r e^(i theta_guide)
     def telling_at(scalar: dict[str, LinkPose]) -> complex:
@@ -296,15 +308,16 @@ def _two_slides(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Clo
         w1 = _outer_world(mech, poses, dyad.first_joint, i, p1)
         point_j = mech.scene.link(j).points[0]
         name = point_j.name
-        rotation_j, through_b, direction_b = slider_locus(mech, second, j, point_j.local, poses[other_side(second, j)])
+        rotation_j, through_b, direction_b = slider_locus(mech, second, j, mech.local(j, name),
+                                                          poses[other_side(second, j)])
         rotation_i = rotation_j * turn(inner.angle_rad if i == inner.block else -inner.angle_rad)
         pose_i = pose_from_point(mech.local(i, p1), w1, rotation_i)
-        _, through_a, direction_a = slider_locus(mech, inner, j, point_j.local, pose_i)
+        _, through_a, direction_a = slider_locus(mech, inner, j, mech.local(j, name), pose_i)
         crossing = cross_lines(through_a, direction_a, through_b, direction_b)
         lines = f"the lines of sliders {inner.name} and {second.name} are parallel"
 
         def place(_: Choice) -> dict[str, ArrayPose]:
-            return {i: pose_i, j: pose_from_point(point_j.local, crossing.point, rotation_j)}
+            return {i: pose_i, j: pose_from_point(mech.local(j, name), crossing.point, rotation_j)}
 
     ok = np.asarray(np.abs(crossing.sin_angle) > PARALLEL_SIN)
     return Closure(dyad, (crossing.point,), (f"{name} where the slides cross",), ok, np.zeros_like(ok), None, place,

@@ -32,8 +32,7 @@ def slide_direction(positions: Positions, slider: SliderSpec) -> Points:
 
 def link_length(mechanism: Mechanism, link: str, a: str, b: str) -> float:
     """|ab| in ``link``'s own frame: the length of a direction k x ab drawn for that link."""
-    (ax, ay), (bx, by) = mechanism.local(link, a), mechanism.local(link, b)
-    return math.hypot(bx - ax, by - ay)
+    return mechanism.distance(link, a, b)
 
 
 def read_rate(polygon: Polygon, link: str, first: str, second: str, along: Reals) -> None:

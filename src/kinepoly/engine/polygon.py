@@ -34,6 +34,7 @@ from kinepoly.geom.arrays import Crossing, Points, PointsLike, Reals, cross, cro
 from kinepoly.geom.lines import Line as StepLine
 from kinepoly.geom.tolerances import COLLINEAR_SIN, PARALLEL_SIN
 from kinepoly.geom.vec import magnitude, phase
+from kinepoly.model.array_pose import local_point
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.link_point import LinkPoint, point_of
 
@@ -252,9 +253,10 @@ class Polygon:
         at = self.world(point)
         known = members[:_IMAGE_MEMBERS]
         pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
-        if self.mechanism.has_point(link, point) and all(m.fixed for m in members):
-            local = {m.label: self._local(link, m.label) for m in members}
-            here = self._local(link, label)
+        local = ({m.label: self._local(link, m.label) for m in members}
+                 if self.mechanism.has_point(link, point) and all(m.fixed for m in members) else {})
+        here = self._local(link, label) if local else None
+        if isinstance(here, complex) and all(isinstance(c, complex) for c in local.values()):
             first, second = pairs[0] if len(pairs) == 1 else max(
                 pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
             a, b = self.tips[first.label], self.tips[second.label]
@@ -273,8 +275,7 @@ class Polygon:
         return value
 
     def _local(self, link: str, label: str) -> complex:
-        x, y = self.mechanism.local(link, point_of(label))
-        return complex(x, y)
+        return local_point(self.mechanism.local(link, point_of(label)))  # type: ignore[return-value]
 
     def _image_of(self, first: Member, second: Member, at: Points) -> Points:
         """Mehmke, row by row (a triangle whose corner slides on the link changes from row to row)."""

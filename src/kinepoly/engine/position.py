@@ -18,7 +18,7 @@ from kinepoly.engine.placement import Failure, Placement, Positions
 from kinepoly.engine.policy import Policy
 from kinepoly.engine.table import kind_of
 from kinepoly.geom.arrays import Reals, turn
-from kinepoly.model.array_pose import ArrayPose, pose_from_point, still_pose
+from kinepoly.model.array_pose import ArrayPose, local_point, pose_from_point, still_pose
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 
@@ -47,11 +47,10 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
     assert ground is not None
     if isinstance(inp, LinkInput):
         pivot = mechanism.input_pivot(inp).point
-        x, y = mechanism.local(ground, pivot)
         rotation = np.empty(n, np.complex128)  # e^(i theta), its parts written in place: the same bits as
         np.cos(inputs, out=rotation.real)       # np.exp(1j * theta), without its complex temporaries
         np.sin(inputs, out=rotation.imag)
-        poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), np.full(n, complex(x, y)), rotation)
+        poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), np.full(n, local_point(mechanism.local(ground, pivot))), rotation)
     else:
         slider = mechanism.slider(inp.slider)
         direction = turn(slider.angle_rad)
@@ -60,7 +59,7 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
             poses[slider.block] = pose_from_point(mechanism.local(slider.block, slider.point), along,
                                                   np.full(n, direction))
         else:  # the block is the frame: place the guide so that the frame's point sits at s
-            block_point = np.full(n, complex(*mechanism.local(ground, slider.point)))
+            block_point = np.full(n, local_point(mechanism.local(ground, slider.point)))
             poses[slider.guide] = ArrayPose(block_point - np.conjugate(direction) * along,
                                             np.full(n, np.conjugate(direction)))
 

@@ -16,7 +16,27 @@ import numpy as np
 from kinepoly.geom.arrays import Points, Reals, length
 from kinepoly.model.pose import LinkPose
 
-__all__ = ["ArrayPose", "pose_from_point", "pose_from_two_points", "still_pose"]
+__all__ = ["ArrayPose", "is_origin", "local_point", "pose_from_point", "pose_from_two_points", "still_pose"]
+
+
+def local_point(local: tuple[float, float]) -> complex | Points:
+    """A link's own coordinates (x, y) as x + iy: one number, or one per row where a family's members differ
+    (``model.family``)."""
+    rows = getattr(local, "rows", None)  # a family's point (model.family.RowPoint): made once
+    if rows is not None:
+        return rows  # type: ignore[no-any-return]
+    x, y = local
+    if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+        out = np.empty(np.broadcast(x, y).shape, np.complex128)
+        out.real, out.imag = x, y
+        return out
+    return complex(x, y)
+
+
+def is_origin(local: tuple[float, float]) -> bool:
+    """Whether the link's own coordinates are (0, 0) for every member."""
+    x, y = local
+    return not isinstance(x, np.ndarray) and not isinstance(y, np.ndarray) and x == 0.0 and y == 0.0
 
 
 @dataclass(frozen=True)
@@ -30,10 +50,11 @@ class ArrayPose:
 
     def world(self, local: tuple[float, float]) -> Points:
         if self.still:
-            return np.full(len(self.origin), complex(local[0], local[1]))
-        if local[0] == 0.0 and local[1] == 0.0:
+            at = local_point(local)
+            return np.full(len(self.origin), at) if isinstance(at, complex) else at
+        if is_origin(local):
             return self.origin
-        return self.origin + self.rotation * complex(local[0], local[1])
+        return self.origin + self.rotation * local_point(local)
 
     def to_local(self, world: Points) -> Points:
         return (world - self.origin) * self.rotation.conjugate()
@@ -66,9 +87,9 @@ def still_pose(n: int) -> ArrayPose:
 
 def pose_from_point(local: tuple[float, float], world: Points, rotation: Points) -> ArrayPose:
     """The pose that puts ``local`` at ``world`` with the given rotation."""
-    if local[0] == 0.0 and local[1] == 0.0:
+    if is_origin(local):
         return ArrayPose(world, rotation)
-    return ArrayPose(world - rotation * complex(local[0], local[1]), rotation)
+    return ArrayPose(world - rotation * local_point(local), rotation)
 
 
 def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, float], world_a: Points,
@@ -81,7 +102,7 @@ def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, flo
     that radius), so the span need not be measured: the rotation is span / local.
     """
     span = world_b - world_a
-    local = complex(local_b[0] - local_a[0], local_b[1] - local_a[1])
+    local = local_point((local_b[0] - local_a[0], local_b[1] - local_a[1]))
     if rigid:
         rotation = span * (local.conjugate() / (abs(local) * abs(local)))
     else:

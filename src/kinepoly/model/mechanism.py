@@ -9,6 +9,8 @@ Coriolis term; that is the test ``has_turning_guide``.
 
 from __future__ import annotations
 
+import math
+
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
@@ -131,6 +133,11 @@ class Mechanism:
     def local(self, link: str, point: str) -> Vec:
         """Coordinates of ``point`` in ``link``'s own frame (KeyError when the link has no such point)."""
         return self._locals[(link, point)]
+
+    def distance(self, link: str, a: str, b: str) -> float:
+        """|ab| in ``link``'s own frame (a link length)."""
+        (ax, ay), (bx, by) = self.local(link, a), self.local(link, b)
+        return math.hypot(bx - ax, by - ay)
 
     def has_point(self, link: str, point: str) -> bool:
         return (link, point) in self._locals

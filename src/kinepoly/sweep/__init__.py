@@ -2,16 +2,20 @@
 
 ``sweep(scene, steps=3600)`` returns a ``SweepResult``: one column per asked quantity over the
 input's turn (or range), each row with its status; ``csv_text`` and ``plot_png`` present it.
+``sweep_family(scene, {"B@3": xy, ...}, steps=360)`` sweeps a family of the scene's mechanism whose
+points differ between members, the plan run once for all (``FamilyResult``).
 ``kinepoly.sweep.rows`` gives a row's link poses and a ``[guess]`` that pins a solve there to the
 sweep's assembly.
 
 The face of the package: ``from kinepoly.sweep import sweep, SweepResult`` (docs/python.md).
 """
 
+from kinepoly.sweep.family import FamilyColumn, FamilyResult, member_scene, sweep_family
 from kinepoly.sweep.result import STATUS, Column, SweepResult
 from kinepoly.sweep.run import PreparedSweep, cycle_turns, prepare_sweep, run_sweep, sweep
 
-__all__ = ["STATUS", "Column", "PreparedSweep", "SweepResult", "cycle_turns", "prepare_sweep", "run_sweep", "sweep"]
+__all__ = ["STATUS", "Column", "FamilyColumn", "FamilyResult", "PreparedSweep", "SweepResult", "cycle_turns",
+           "member_scene", "prepare_sweep", "run_sweep", "sweep", "sweep_family"]
 
 
 def _result_png(result: SweepResult) -> bytes:

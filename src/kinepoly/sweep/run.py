@@ -65,7 +65,8 @@ from kinepoly.sweep.result import NEAR_SINGULAR as _NEAR
 from kinepoly.sweep.result import ORDER, Column, SweepResult
 from kinepoly.sweep.result import SINGULAR as _SINGULAR
 
-__all__ = ["PreparedSweep", "cycle_turns", "prepare_sweep", "run_sweep", "sweep"]
+__all__ = ["PreparedSweep", "cycle_turns", "execute_rows", "gap_notices", "prepare_sweep", "prepared_sweep", "run_sweep",
+           "sweep"]
 
 
 @dataclass
@@ -213,7 +214,7 @@ def _centrode(out: ColumnBuilder, link: str, velocity: VelocityResult, seed_row:
     return []
 
 
-def _gap_notices(grid: InputGrid, ok: Bools, name: str, unit: str) -> list[Notice]:
+def gap_notices(grid: InputGrid, ok: Bools, name: str, unit: str) -> list[Notice]:
     shown = grid.values[grid.shown]
     fails = ~ok[grid.shown]
     if not fails.any():
@@ -320,7 +321,10 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
             grid = input_grid(mechanism, plan, prepared.seed, steps, start, stop,
                               prepared.default_range if start is None else None)
         t1 = time.perf_counter()
-        result = _execute(mechanism, plan, prepared.asked, grid, prepared, progress, positions)
+        if positions is None:
+            positions = solve_positions(mechanism, plan, grid.internal,
+                                        Continuity(grid.seed_row, prepared.seed, grid.periodic, progress))
+        result = execute_rows(mechanism, prepared, grid, positions)
     t2 = time.perf_counter()
     result.timing.update({"prepare_s": prepared.prepare_s, "range_s": t1 - t0, "execute_s": t2 - t1,
                           "total_s": prepared.prepare_s + t2 - t0})  # its own dict, filled once it is done
@@ -334,22 +338,22 @@ def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float |
     Without ``start`` and ``stop``: a full turn, or the input's range where the mechanism closes.
     ``centrode`` names a link whose instant center with the frame is reported (both centrodes).
     """
-    return run_sweep(_prepared(scene, centrode, series), steps=steps, start=start, stop=stop, progress=progress)
+    return run_sweep(prepared_sweep(scene, centrode, series), steps=steps, start=start, stop=stop, progress=progress)
 
 
 @lru_cache(maxsize=8)
-def _prepared(scene: Scene, centrode: str | None, series: bool) -> PreparedSweep:
+def prepared_sweep(scene: Scene, centrode: str | None = None, series: bool = False) -> PreparedSweep:
     """A scene's prepared sweep kept for the calls that follow on the same scene (a scene is a frozen value): its
     mechanism, plan, seed assembly and default range are found once, so a repeated call pays only its rows."""
     return prepare_sweep(scene, centrode, series)
 
 
-def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: InputGrid, prepared: PreparedSweep,
-             progress: Progress | None, positions: Positions | None) -> SweepResult:
-    scene, centrode = mechanism.scene, prepared.centrode
-    if positions is None:
-        positions = solve_positions(mechanism, plan, grid.internal,
-                                    Continuity(grid.seed_row, prepared.seed, grid.periodic, progress))
+def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid, positions: Positions,
+                 gaps: bool = True) -> SweepResult:
+    """The polygons and the columns of the rows ``grid`` over the positions found there (``mechanism``: the
+    prepared one, or a family's, ``model.family``); ``gaps``: say where the input's range does not assemble
+    (a family says it member by member)."""
+    scene, centrode, plan, asked = mechanism.scene, prepared.centrode, prepared.plan, prepared.asked
     flags = _Flags(np.zeros(len(grid.values), np.int8))
     for failure in positions.failures:
         flags.raise_to(failure.rows, _CANNOT, _failure_text(failure))
@@ -387,8 +391,8 @@ def _execute(mechanism: Mechanism, plan: PositionPlan, asked: Asked, grid: Input
     for transmission in transmission_angles(positions, plan, sines):
         out.add(f"mu_{transmission.point}", "transmission", _angle_unit(scene, transmission.angle))
     unit = scene.units.angle if isinstance(scene.input, LinkInput) else scene.units.length
-    if not every_ok:
-        notices += _gap_notices(grid, ok, name, unit)
+    if not every_ok and gaps:
+        notices += gap_notices(grid, ok, name, unit)
     _overflow_flags(flags, ok, out)
     shown = grid.shown
     every = bool(shown.all())

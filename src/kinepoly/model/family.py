@@ -1,0 +1,72 @@
+"""A family of mechanisms of one topology: the scene's mechanism with some points' coordinates given per member.
+
+A family sweep (``kinepoly.sweep.family``) stacks its members' rows one member after another, ``rows_each``
+rows each, so a point that differs between members has a coordinate per row: member k's value repeated over
+its rows. ``FamilyMechanism.local`` returns those arrays where the scene's mechanism returns numbers; the
+engine's arithmetic on a link's own coordinates (``model.array_pose.local_point``) is elementwise, so the
+plan runs once for every member at once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from kinepoly.geom.arrays import Points, Reals
+from kinepoly.geom.vec import Vec
+from kinepoly.model.mechanism import Mechanism
+
+__all__ = ["FamilyMechanism", "RowPoint"]
+
+
+class RowPoint(tuple[Reals, Reals]):
+    """A point's own coordinates (x, y) at every row of a family, with x + iy (``rows``) made once."""
+
+    rows: Points
+
+    @classmethod
+    def of(cls, members: Points, rows_each: int) -> RowPoint:
+        """The members' x + iy (one each), repeated over each member's rows."""
+        rows = np.repeat(members, rows_each)
+        point = cls((rows.real, rows.imag))
+        point.rows = rows
+        return point
+
+
+@dataclass(frozen=True, eq=False)
+class FamilyMechanism(Mechanism):
+    """The scene's mechanism whose points ``varied`` (keyed (link, point), each member's x + iy) differ between
+    the members, whose rows come ``rows_each`` to a member."""
+
+    varied: Mapping[tuple[str, str], Points] = field(default_factory=dict)
+    rows_each: int = 1
+
+    @cached_property
+    def _rows(self) -> dict[tuple[str, str], RowPoint]:
+        return {key: RowPoint.of(members, self.rows_each) for key, members in self.varied.items()}
+
+    def local(self, link: str, point: str) -> Vec:
+        """Coordinates of ``point`` in ``link``'s own frame: numbers, or one per row where the point is varied
+        (a ``RowPoint``, typed as the numbers it stands for row by row)."""
+        found = self._rows.get((link, point))
+        if found is not None:
+            return found  # type: ignore[return-value]
+        return super().local(link, point)
+
+    def distance(self, link: str, a: str, b: str) -> float:
+        """|ab| in ``link``'s own frame at every row where a or b is varied: worked out per member, then repeated."""
+        key = (link, a, b)
+        found = self._distances.get(key)
+        if found is None:
+            ends = [self.varied.get((link, p), complex(*super(FamilyMechanism, self).local(link, p))) for p in (a, b)]
+            if all(isinstance(e, complex) for e in ends):
+                return super().distance(link, a, b)
+            found = self._distances[key] = np.repeat(np.abs(np.asarray(ends[1] - ends[0])), self.rows_each)
+        return found  # type: ignore[return-value]
+
+    @cached_property
+    def _distances(self) -> dict[tuple[str, str, str], Reals]:
+        return {}

@@ -1,0 +1,256 @@
+"""``sweep_family``: a scene's mechanism over a family of dimensions, each member swept over the same inputs.
+
+A sweep is a batch over the input; a family is a batch over the dimensions too. The members share the
+scene's topology (its links, joints, input and ``[find]``) and differ in the coordinates of some points
+of their links, given as arrays over the members: ``{"B@3": [[120, 0], [118, 0], ...]}`` is point B of
+link 3 in link 3's own frame, one row per member (``B`` alone where one link has B).
+
+Where the position plan is made of dyads, carried dyads and drive groups, the plan runs once for every
+row of every member (``model.family``): each member's rows follow, from the row at the scene's own
+input, the assembly the scene's own solve takes there (the same label, ``engine.assembly.seed_labels``:
+an open four-bar stays open). A mechanism with groups solved by Newton's method (triads, cylinders
+inside larger groups, planet groups) is swept member by member, each member a scene of its own solved
+as ``sweep`` solves it. Scenes with cams or gears are refused: their equivalent links are made from the
+pair's dimensions when the scene is read.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from kinepoly.engine.assembly import FamilyContinuity, seed_labels
+from kinepoly.engine.groups import CarriedDyad, DriveGroup, Dyad
+from kinepoly.engine.position import solve_positions
+from kinepoly.errors import KinepolyError, SceneError
+from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.model.family import FamilyMechanism
+from kinepoly.notice import Notice
+from kinepoly.scene.link_point import LinkPoint
+from kinepoly.scene.spec import LinkSpec, Scene, SliderInput
+from kinepoly.sweep.inputs import InputGrid, input_grid
+from kinepoly.sweep.result import STATUS, Column, Kind, SweepResult
+from kinepoly.sweep.run import PreparedSweep, execute_rows, gap_notices, prepare_sweep, prepared_sweep, run_sweep
+
+__all__ = ["FamilyColumn", "FamilyResult", "member_scene", "sweep_family"]
+
+_BATCHED = (Dyad, CarriedDyad, DriveGroup)
+"""The group kinds a family runs in one batch (their closures are closed forms whose dimensions may vary by row)."""
+
+
+@dataclass(frozen=True)
+class FamilyColumn:
+    """One reported quantity of every member at every row: ``values[k, j]`` member k at input row j; 0.0 where
+    ``valid`` is False."""
+
+    name: str
+    kind: Kind
+    values: Reals
+    valid: Bools
+
+
+@dataclass(frozen=True)
+class FamilyResult:
+    """A family sweep: the input column (the same for every member), each quantity over (members, rows), each
+    row's status per member, and how the family was run (``batched``: the plan once for every member)."""
+
+    scene: Scene
+    points: Mapping[str, Reals]
+    """The varied points as given, each (members, 2), keyed as ``B@3``."""
+    input: Column
+    columns: tuple[FamilyColumn, ...]
+    status: npt.NDArray[np.int8]
+    """(members, rows): the level of each row of each member (``sweep.result.STATUS``)."""
+    batched: bool
+    notices: tuple[Notice, ...] = ()
+    """What the scene's own sweep says of the range (every member is swept over the scene's range)."""
+    timing: dict[str, float] = field(default_factory=dict)
+    _members: tuple[SweepResult, ...] | SweepResult = field(default=(), repr=False, compare=False)
+    _grid: InputGrid | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def members(self) -> int:
+        return int(self.status.shape[0])
+
+    def column(self, name: str) -> FamilyColumn:
+        for col in self.columns:
+            if col.name == name:
+                return col
+        raise KeyError(name)
+
+    def member(self, k: int) -> SweepResult:
+        """Member ``k`` as a sweep result of its own (columns, statuses, warnings), as ``sweep`` gives it for
+        ``self.member_scene(k)`` over the family's range."""
+        self._check(k)
+        if isinstance(self._members, tuple):
+            return self._members[k]
+        return _member_of_batch(self, self._members, k)
+
+    def member_scene(self, k: int) -> Scene:
+        """Member ``k`` as a scene of its own: the scene with the member's points, its ``[guess]`` moved to where
+        the member has the guessed points at the scene's input, so that a solve or a sweep of it takes the
+        member's assembly (the family's: the scene's own, by label)."""
+        self._check(k)
+        scene = member_scene(self.scene, self.points, k)
+        if isinstance(self._members, tuple):
+            return scene  # swept member by member: each from the scene's own [guess]
+        grid, positions = self._grid, self._members.positions
+        assert grid is not None and positions is not None
+        row = k * len(grid.values) + grid.seed_row
+        guess = []
+        for name, xy in scene.guess:
+            at = complex(positions.point(name)[row]) if positions.ok[row] else complex(*xy)
+            guess.append((name, (at.real, at.imag)))
+        return dataclasses.replace(scene, guess=tuple(guess))
+
+    def _check(self, k: int) -> None:
+        if not 0 <= k < self.members:
+            raise IndexError(f"member {k} of a family of {self.members}")
+
+
+def member_scene(scene: Scene, points: Mapping[str, npt.ArrayLike], k: int) -> Scene:
+    """Member ``k`` of a family as a scene of its own: ``scene`` with the varied points' coordinates of row ``k``."""
+    varied = _read_points(scene, points)[0]
+    return _scene_of(scene, {key: (float(xy[k, 0]), float(xy[k, 1])) for key, xy in varied.items()})
+
+
+def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike], *, steps: int, start: float | None = None,
+                 stop: float | None = None) -> FamilyResult:
+    """Sweep every member of the family over ``steps`` rows of the input from ``start`` to ``stop`` (the input's
+    unit; without them, the range ``sweep`` takes for the scene itself: a full turn, or its input's range).
+
+    ``points``: the varied points' local coordinates, each an array of (members, 2), keyed ``B@3`` (point B of
+    link 3) or ``B`` where one link has B. Every member is the scene with those coordinates.
+    """
+    t0 = time.perf_counter()
+    if scene.cams or scene.gears:
+        raise SceneError(f"{scene.source}: sweep_family: the scene has "
+                         f"{'cams' if scene.cams else 'gears'}, whose equivalent links are made from the pair's "
+                         "dimensions when the scene is read; sweep each member as a scene of its own")
+    varied, count = _read_points(scene, points)
+    prepared = prepared_sweep(scene)
+    if (start is None) != (stop is None):
+        raise SceneError("sweep_family: start and stop: give both, or neither for the scene's own range")
+    with np.errstate(all="ignore"):
+        grid = input_grid(prepared.mechanism, prepared.plan, prepared.seed, steps, start, stop,
+                          prepared.default_range if start is None else None)
+        if not all(type(group) in _BATCHED for group in prepared.plan.groups):
+            ends = (prepared.default_range.start, prepared.default_range.stop) if start is None else (start, stop)
+            return _member_by_member(scene, points, varied, count, steps, ends, grid, t0)
+        t1 = time.perf_counter()
+        batch = _batch(prepared, varied, count, grid)
+    t2 = time.perf_counter()
+    rows = int(grid.shown.sum())
+    columns = tuple(FamilyColumn(c.name, c.kind, c.values.reshape(count, rows), c.valid.reshape(count, rows))
+                    for c in batch.columns)
+    inputs = Column(batch.input.name, "input", batch.input.values[:rows], batch.input.valid[:rows])
+    timing = {"prepare_s": prepared.prepare_s, "range_s": t1 - t0, "execute_s": t2 - t1,
+              "total_s": prepared.prepare_s + t2 - t0}
+    return FamilyResult(scene, {k: np.asarray(v, np.float64) for k, v in points.items()}, inputs, columns,
+                        batch.status.reshape(count, rows), True, grid.notices, timing, batch, grid)
+
+
+def _batch(prepared: PreparedSweep, varied: Mapping[tuple[str, str], Reals], count: int,
+           grid: InputGrid) -> SweepResult:
+    """Every member's rows in one run of the plan and the construction."""
+    n = len(grid.values)
+    mechanism = FamilyMechanism(prepared.mechanism.scene, {key: xy[:, 0] + 1j * xy[:, 1] for key, xy in varied.items()},
+                                n)
+    policy = FamilyContinuity(grid.seed_row, n, seed_labels(prepared.mechanism, prepared.plan, prepared.seed),
+                              grid.periodic)
+    internal = np.tile(grid.internal, count)
+    positions = solve_positions(mechanism, prepared.plan, internal, policy)
+    rows = InputGrid(np.tile(grid.values, count), internal, np.tile(grid.shown, count), grid.seed_row,
+                     grid.periodic)
+    return execute_rows(mechanism, prepared, rows, positions, gaps=False)
+
+
+def _member_of_batch(family: FamilyResult, batch: SweepResult, k: int) -> SweepResult:
+    grid = family._grid
+    assert grid is not None
+    rows = len(family.input.values)
+    shown = slice(k * rows, (k + 1) * rows)
+    columns = tuple(Column(c.name, c.kind, c.values[k], c.valid[k]) for c in family.columns)
+    warnings = {row - k * rows: text for row, text in batch.warnings.items() if shown.start <= row < shown.stop}
+    ok = np.ones(len(grid.values), np.bool_)
+    ok[grid.shown] = family.status[k] < STATUS.index("cannot-assemble")
+    notices = tuple(gap_notices(grid, ok, family.input.name, _input_unit(family.scene)))
+    return SweepResult(family.member_scene(k), family.input, columns, family.status[k],
+                       warnings, notices, grid.periodic, float(grid.values[grid.seed_row]), grid.seed_row,
+                       shown=grid.shown)
+
+
+def _input_unit(scene: Scene) -> str:
+    return scene.units.length if isinstance(scene.input, SliderInput) else scene.units.angle
+
+
+def _member_by_member(scene: Scene, points: Mapping[str, npt.ArrayLike], varied: Mapping[tuple[str, str], Reals],
+                      count: int, steps: int, ends: tuple[float, float], grid: InputGrid, t0: float) -> FamilyResult:
+    """A family whose plan has groups solved by Newton's method: each member swept as a scene of its own over the
+    scene's range ``ends``, its assembly the one nearest the scene's ``[guess]`` (as ``solve`` takes it)."""
+    members = []
+    for k in range(count):
+        member = _scene_of(scene, {key: (float(xy[k, 0]), float(xy[k, 1])) for key, xy in varied.items()})
+        try:
+            members.append(run_sweep(prepare_sweep(member), steps=steps, start=ends[0], stop=ends[1]))
+        except KinepolyError as error:
+            raise type(error)(f"sweep_family: member {k}: {error}") from error
+    names = [[c.name for c in m.columns] for m in members]
+    if any(n != names[0] for n in names):
+        raise SceneError(f"{scene.source}: sweep_family: the members report different quantities")
+    columns = tuple(FamilyColumn(c.name, c.kind, np.stack([m.columns[j].values for m in members]),
+                                 np.stack([m.columns[j].valid for m in members]))
+                    for j, c in enumerate(members[0].columns))
+    status = np.stack([m.status for m in members])
+    return FamilyResult(scene, {k: np.asarray(v, np.float64) for k, v in points.items()}, members[0].input, columns,
+                        status, False, grid.notices, {"total_s": time.perf_counter() - t0}, tuple(members))
+
+
+def _read_points(scene: Scene, points: Mapping[str, npt.ArrayLike]) -> tuple[dict[tuple[str, str], Reals], int]:
+    """The varied points keyed (link, point), each (members, 2), and how many members; SceneError naming the key
+    and what to change where one is not a point of the scene or not an array of (members, 2) finite numbers."""
+    if not points:
+        raise SceneError("sweep_family: points: give at least one point to vary, as {'B@3': [[x, y], ...]}")
+    out: dict[tuple[str, str], Reals] = {}
+    count: int | None = None
+    for key, value in points.items():
+        name = LinkPoint.parse(key)
+        owners = [link.name for link in scene.links if name.point in link.point_names]
+        if name.link is None and len(owners) == 1:
+            name = LinkPoint(name.point, owners[0])
+        if name.link is None or name.link not in owners:
+            which = ", ".join(f"{name.point}@{o}" for o in owners) or "none: no link has that point"
+            raise SceneError(f"sweep_family: points: {key!r} is not a point of one link of the scene; the links' "
+                             f"points of that name are: {which}")
+        try:
+            xy = np.asarray(value, np.float64)
+        except (TypeError, ValueError) as error:
+            raise SceneError(f"sweep_family: points: {key!r}: expected an array of (members, 2) numbers ({error})") \
+                from error
+        if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] == 0:
+            raise SceneError(f"sweep_family: points: {key!r}: expected an array of (members, 2) numbers, one [x, y] "
+                             f"per member; got the shape {xy.shape}")
+        if not np.isfinite(xy).all():
+            raise SceneError(f"sweep_family: points: {key!r}: member {int(np.flatnonzero(~np.isfinite(xy))[0]) // 2} "
+                             "has a coordinate that is not a finite number")
+        if count is not None and xy.shape[0] != count:
+            raise SceneError(f"sweep_family: points: {key!r} has {xy.shape[0]} members, the points before it "
+                             f"{count}: give every point one row per member")
+        count = xy.shape[0]
+        out[(name.link, name.point)] = xy
+    assert count is not None
+    return out, count
+
+
+def _scene_of(scene: Scene, coordinates: Mapping[tuple[str, str], tuple[float, float]]) -> Scene:
+    """``scene`` with the points ``coordinates`` (keyed (link, point)) moved."""
+    def link_of(link: LinkSpec) -> LinkSpec:
+        moved = tuple(dataclasses.replace(p, local=coordinates[(link.name, p.name)], polar=None)
+                      if (link.name, p.name) in coordinates else p for p in link.points)
+        return dataclasses.replace(link, points=moved)
+    return dataclasses.replace(scene, links=tuple(link_of(link) for link in scene.links))
