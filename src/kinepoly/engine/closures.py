@@ -89,16 +89,16 @@ def other_side(joint: Joint, link: str) -> str:
 
 
 def _local(mechanism: Mechanism, link: str, point: str) -> complex:
-    return local_point(mechanism.local(link, point))  # type: ignore[return-value]  # per row in a family
+    return local_point(mechanism.local(link, point))
 
 
 def _c(v: tuple[float, float]) -> complex:
-    return local_point(v)  # type: ignore[return-value]  # per row in a family
+    return local_point(v)
 
 
 def _row(value: Reals | float, k: int) -> float:
     """Row ``k`` of a dimension that is one number, or one per row in a family (``model.family``)."""
-    return float(value[k]) if np.ndim(value) else float(value)
+    return float(value[k]) if isinstance(value, np.ndarray) else float(value)
 
 
 def _outer_world(mech: Mechanism, poses: dict[str, ArrayPose], joint: Joint, link: str, point: str) -> Points:
@@ -137,7 +137,7 @@ def _largest(*values: Reals | float) -> Reals | float:
     """The largest of some lengths: numbers, or arrays where a family's dimensions vary by row."""
     if any(np.ndim(v) for v in values):
         return np.asarray(np.maximum.reduce(np.broadcast_arrays(*values)))
-    return max(values)  # type: ignore[type-var]
+    return max(values)
 
 
 def _closes(slack: Reals, scale: Reals | float) -> Bools:
@@ -156,7 +156,7 @@ def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple
     w3 = _outer_world(mech, poses, dyad.second_joint, j, p3)
     local2: complex | Points = _local(mech, i, p2)
     if drive is not None:  # the inner joint in the carrier's frame, row by row
-        local2 = carried_local(mech, drive, i, local2, values[drive.index])
+        local2 = carried_local(mech, drive, i, _local(mech, i, p2), values[drive.index])
     span = local2 - _local(mech, outer, p1)
     r1 = np.abs(span)
     r2 = abs(_local(mech, j, p2) - _local(mech, j, p3))

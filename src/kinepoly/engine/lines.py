@@ -7,8 +7,6 @@ to a slide for a sliding one; where two cross is the unknown tip, and omega is r
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from kinepoly.engine.placement import Positions

@@ -275,7 +275,7 @@ class Polygon:
         return value
 
     def _local(self, link: str, label: str) -> complex:
-        return local_point(self.mechanism.local(link, point_of(label)))  # type: ignore[return-value]
+        return local_point(self.mechanism.local(link, point_of(label)))
 
     def _image_of(self, first: Member, second: Member, at: Points) -> Points:
         """Mehmke, row by row (a triangle whose corner slides on the link changes from row to row)."""

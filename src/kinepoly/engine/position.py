@@ -50,7 +50,8 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
         rotation = np.empty(n, np.complex128)  # e^(i theta), its parts written in place: the same bits as
         np.cos(inputs, out=rotation.real)       # np.exp(1j * theta), without its complex temporaries
         np.sin(inputs, out=rotation.imag)
-        poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), np.full(n, local_point(mechanism.local(ground, pivot))), rotation)
+        at = np.full(n, local_point(mechanism.local(ground, pivot)))
+        poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), at, rotation)
     else:
         slider = mechanism.slider(inp.slider)
         direction = turn(slider.angle_rad)

@@ -19,9 +19,9 @@ from kinepoly.model.pose import LinkPose
 __all__ = ["ArrayPose", "is_origin", "local_point", "pose_from_point", "pose_from_two_points", "still_pose"]
 
 
-def local_point(local: tuple[float, float]) -> complex | Points:
+def local_point(local: tuple[float, float]) -> complex:
     """A link's own coordinates (x, y) as x + iy: one number, or one per row where a family's members differ
-    (``model.family``)."""
+    (``model.family``; an array, typed as the number it stands for row by row, as ``Mechanism.local`` types it)."""
     rows = getattr(local, "rows", None)  # a family's point (model.family.RowPoint): made once
     if rows is not None:
         return rows  # type: ignore[no-any-return]

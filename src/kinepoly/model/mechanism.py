@@ -10,7 +10,6 @@ Coriolis term; that is the test ``has_turning_guide``.
 from __future__ import annotations
 
 import math
-
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property

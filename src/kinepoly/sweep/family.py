@@ -140,7 +140,8 @@ def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike], *, steps: in
         grid = input_grid(prepared.mechanism, prepared.plan, prepared.seed, steps, start, stop,
                           prepared.default_range if start is None else None)
         if not all(type(group) in _BATCHED for group in prepared.plan.groups):
-            ends = (prepared.default_range.start, prepared.default_range.stop) if start is None else (start, stop)
+            ends = (prepared.default_range.start, prepared.default_range.stop) if start is None or stop is None \
+                else (start, stop)
             return _member_by_member(scene, points, varied, count, steps, ends, grid, t0)
         t1 = time.perf_counter()
         batch = _batch(prepared, varied, count, grid)

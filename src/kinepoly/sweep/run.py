@@ -65,8 +65,8 @@ from kinepoly.sweep.result import NEAR_SINGULAR as _NEAR
 from kinepoly.sweep.result import ORDER, Column, SweepResult
 from kinepoly.sweep.result import SINGULAR as _SINGULAR
 
-__all__ = ["PreparedSweep", "cycle_turns", "execute_rows", "gap_notices", "prepare_sweep", "prepared_sweep", "run_sweep",
-           "sweep"]
+__all__ = ["PreparedSweep", "cycle_turns", "execute_rows", "gap_notices", "prepare_sweep", "prepared_sweep",
+           "run_sweep", "sweep"]
 
 
 @dataclass
