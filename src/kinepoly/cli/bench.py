@@ -1,4 +1,4 @@
-"""``kinepoly bench SCENE [--json] [--plot FILE.png] [--sweep [N]]``: error against run time.
+"""``kinepoly bench SCENE [--json] [--plot FILE.png] [--sweep [N]] [--family N]``: error against run time.
 
 The bench package measures (``bench.run``, ``bench.sweep``), draws (``bench.plot``) and words
 (``bench.report``); this module prints the lines and writes the plot whole or not at all.
@@ -32,6 +32,28 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              f"stroke), singular positions marked; N defaults to {DEFAULT_SWEEP}")
     parser.add_argument("--budget", metavar="SECONDS", type=float, default=0.25,
                         help="time spent repeating each method for its median (default 0.25 s)")
+    parser.add_argument("--family", metavar="N", type=int,
+                        help="a family of N members (each link's points times a factor of its own): "
+                             "kinepoly.sweep_family against one sweep per member, timed, and against the reference")
+    parser.add_argument("--spread", type=float, default=0.05,
+                        help="with --family: the factors lie in [1 - SPREAD, 1 + SPREAD] (default 0.05)")
+    parser.add_argument("--seed", type=int, default=0, help="with --family: the random seed of the factors")
+    parser.add_argument("--positions", type=int, default=72,
+                        help="with --family: rows of each member over the scene's range (default 72)")
+
+
+def _family(args: argparse.Namespace, scene: Any) -> list[str]:
+    """``--family N``: the family sweep against the loop and the reference (``bench.family``)."""
+    from kinepoly.bench.family import run_family
+
+    if args.family < 1:
+        raise SceneError(f"--family {args.family}: expected at least 1 member")
+    if not 0.0 <= args.spread < 1.0:
+        raise SceneError(f"--spread {args.spread:g}: expected a fraction from 0 up to (not including) 1")
+    if args.sweep is not None or args.plot:
+        raise SceneError("--family: measured on its own; leave out --sweep and --plot")
+    result = run_family(scene, args.family, args.positions, spread=args.spread, seed=args.seed)
+    return [json.dumps(result.as_json(), indent=1, allow_nan=False)] if args.json else result.lines()
 
 
 def _write_plot(path: str, image: bytes) -> None:
@@ -71,6 +93,8 @@ def _bench(args: argparse.Namespace) -> list[str]:
                          "driven slider); a [given] scene has no input to vary")
     if args.sweep is not None and args.sweep < 2:
         raise SceneError(f"--sweep {args.sweep}: expected at least 2 inputs")
+    if args.family is not None:
+        return _family(args, scene)
     t0 = time.perf_counter()
     solution = solve(scene)
     if args.sweep is not None:
