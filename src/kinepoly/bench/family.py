@@ -102,23 +102,23 @@ def run_family(scene: Scene, members: int, rows: int, *, spread: float = 0.05, s
         t0 = time.perf_counter()
         family = sweep_family(scene, points, steps=rows)
         best = min(best, time.perf_counter() - t0)
-    ends = _ends(scene, family)
+    start, stop = _ends(scene, family)
     scenes = [family.member_scene(k) for k in range(members)]
     t0 = time.perf_counter()
-    alone = [sweep(member, steps=rows, **ends) for member in scenes]
+    alone = [sweep(member, steps=rows, start=start, stop=stop) for member in scenes]
     loop_s = time.perf_counter() - t0
     errors, checked = _reference_errors(family, alone, scenes)
     return FamilyBench(scene.title, members, len(family.input.values), spread, seed, family.batched, best, loop_s,
                        *_agreement(family, alone), errors, checked)
 
 
-def _ends(scene: Scene, family: FamilyResult) -> dict[str, float]:
+def _ends(scene: Scene, family: FamilyResult) -> tuple[float, float]:
     """The family's range, as ``sweep`` takes it for a member (a full turn whether the member turns fully or not)."""
     values = family.input.values
     stop = float(values[-1])
     if isinstance(scene.input, LinkInput) and family.member(0).periodic:
         stop = float(values[0]) + (360.0 if scene.units.angle == "deg" else 2.0 * math.pi)
-    return {"start": float(values[0]), "stop": stop}
+    return float(values[0]), stop
 
 
 def _agreement(family: FamilyResult, alone: list[SweepResult]) -> tuple[float, str]:
@@ -155,7 +155,7 @@ def _reference_errors(family: FamilyResult, alone: list[SweepResult],
         assert solution.inside is not None
         mechanism, origin = solution.inside.mechanism, solution.inside.frame.origin
         guesses = row_guesses(alone[k])
-        ok = [n for n in np.flatnonzero(family.status[k] == 0) if guesses[n] is not None]
+        ok = [int(n) for n in np.flatnonzero(family.status[k] == 0) if guesses[n] is not None]
         for n in [ok[int(i)] for i in np.linspace(0, len(ok) - 1, min(CHECKED_ROWS, len(ok))).round()] if ok else []:
             value = float(family.input.values[n])
             t = math.radians(value) if isinstance(family.scene.input, LinkInput) and degrees else value
