@@ -7,7 +7,7 @@ from tests.scenes import EXAMPLES
 
 import kinepoly.sweep as face
 from kinepoly.scene.loader import load_scene
-from kinepoly.sweep import result, run
+from kinepoly.sweep import family, result, run
 
 
 def _isort_order(name: str) -> tuple[int, str]:
@@ -17,9 +17,10 @@ def _isort_order(name: str) -> tuple[int, str]:
 
 def test_the_face_exports_the_sweep_and_its_result_type_sorted() -> None:
     assert face.__all__ == sorted(face.__all__, key=_isort_order)
-    assert {"sweep", "SweepResult", "Column", "STATUS", "prepare_sweep", "run_sweep"} <= set(face.__all__)
+    assert {"sweep", "SweepResult", "Column", "STATUS", "prepare_sweep", "run_sweep", "sweep_family",
+            "FamilyResult"} <= set(face.__all__)
     for name in face.__all__:
-        home = result if hasattr(result, name) and name in result.__all__ else run
+        home = next(m for m in (result, family, run) if name in m.__all__)
         assert getattr(face, name) is getattr(home, name), name
 
 
