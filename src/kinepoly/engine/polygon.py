@@ -26,6 +26,7 @@ from typing import Literal, NamedTuple
 
 import numpy as np
 
+from kinepoly.engine.groups import PlanConstants
 from kinepoly.engine.inputs import describe_input
 from kinepoly.engine.placement import Positions
 from kinepoly.engine.steps import Direction, DrawnVector, Step
@@ -94,8 +95,14 @@ class Polygon:
 
     def __init__(self, positions: Positions, kind: Kind, omega: dict[str, Reals] | None = None, *,
                  unit: str = "mm", record: bool = False, strict: bool = False,
-                 crossing: CrossLines = cross_lines) -> None:
+                 crossing: CrossLines = cross_lines, constants: PlanConstants | None = None) -> None:
         self.mechanism: Mechanism = positions.mechanism
+        if constants is None or (constants.mechanism is not None and constants.mechanism is not self.mechanism):
+            constants = PlanConstants()
+        if constants.mechanism is None:
+            constants.mechanism = self.mechanism
+        self.constants = constants
+        """The plan's constants of construction (``PlanConstants``): read where found, else found and kept."""
         self.positions = positions
         self.kind = kind
         self.symbol = "v" if kind == "velocity" else "a"
@@ -116,8 +123,12 @@ class Polygon:
         mech = self.mechanism
         if mech.ground is not None:
             self.set_rate(mech.ground, np.zeros(self.n))  # and every link that slides on it without turning
-            for p in mech.scene.link(mech.ground).points:
-                self._register(p.name, self.zero, p.name, mech.links_of_point(p.name))
+            frame = self.constants.frame
+            if frame is None:
+                frame = self.constants.frame = tuple((p.name, mech.links_of_point(p.name))
+                                                     for p in mech.scene.link(mech.ground).points)
+            for name, links in frame:
+                self._register(name, self.zero, name, links)
 
     # -- row 0 as plain values, for the steps -------------------------------------------------------
     @staticmethod
@@ -250,16 +261,21 @@ class Polygon:
     # -- Mehmke's image ---------------------------------------------------------------------------------
     def _image(self, link: str, point: str, label: str, members: list[Member]) -> Points:
         at = self.world(point)
-        known = members[:_IMAGE_MEMBERS]
-        pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
-        if self.mechanism.has_point(link, point) and all(m.fixed for m in members):
-            local = {m.label: self._local(link, m.label) for m in members}
-            here = self._local(link, label)
-            first, second = pairs[0] if len(pairs) == 1 else max(
-                pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
-            a, b = self.tips[first.label], self.tips[second.label]
-            value = np.asarray(a + (b - a) * _similar(local[first.label], local[second.label], here, label, link))
+        key = (link, label, tuple(m.label for m in members))
+        images = self.constants.images
+        if key in images:
+            rigid = images[key]
         else:
+            rigid = images[key] = self._rigid_image(link, point, label, members)
+        if rigid is not None:
+            first_label, second_label, factor = rigid
+            a, b = self.tips[first_label], self.tips[second_label]
+            value = np.asarray(a + (b - a) * factor)
+            if self.record:
+                first, second = (next(m for m in members if m.label == name) for name in (first_label, second_label))
+        else:
+            known = members[:_IMAGE_MEMBERS]
+            pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
             keys = np.stack([np.asarray(_key(m.at, k.at, at)) for m, k in pairs])
             best = np.argmax(keys, axis=0)
             value = self.zero
@@ -271,6 +287,20 @@ class Polygon:
         if self.record:
             self._record_image(link, label, first, second, at, value)
         return value
+
+    def _rigid_image(self, link: str, point: str, label: str, members: list[Member]) -> tuple[str, str, complex] | None:
+        """The image of a point of ``link`` whose known tips are all of points fixed on it: the labels of the two
+        known tips it is built from and Mehmke's factor (``_similar``), which depend on the link's shape alone; None
+        where the image is built row by row."""
+        if not (self.mechanism.has_point(link, point) and all(m.fixed for m in members)):
+            return None
+        known = members[:_IMAGE_MEMBERS]
+        pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
+        local = {m.label: self._local(link, m.label) for m in members}
+        here = self._local(link, label)
+        first, second = pairs[0] if len(pairs) == 1 else max(
+            pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
+        return first.label, second.label, _similar(local[first.label], local[second.label], here, label, link)
 
     def _local(self, link: str, label: str) -> complex:
         x, y = self.mechanism.local(link, point_of(label))
