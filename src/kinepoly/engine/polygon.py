@@ -121,6 +121,7 @@ class Polygon:
         self.crossing = crossing
         self.steps: list[Step] = []
         mech = self.mechanism
+        self._ground = mech.ground
         if mech.ground is not None:
             self.set_rate(mech.ground, np.zeros(self.n))  # and every link that slides on it without turning
             frame = self.constants.frame
@@ -128,7 +129,7 @@ class Polygon:
                 frame = self.constants.frame = tuple((p.name, mech.links_of_point(p.name))
                                                      for p in mech.scene.link(mech.ground).points)
             for name, links in frame:
-                self._register(name, self.zero, name, links)
+                self._register(name, self.zero, name, links, True)
 
     # -- row 0 as plain values, for the steps -------------------------------------------------------
     @staticmethod
@@ -170,33 +171,38 @@ class Polygon:
         return np.zeros(self.n) if omega is None else omega
 
     # -- tips -----------------------------------------------------------------------------------------
-    def _register(self, label: str, value: Points, point: str, links: tuple[str, ...] | list[str]) -> None:
+    def _register(self, label: str, value: Points, point: str, links: tuple[str, ...] | list[str],
+                  fixed: bool) -> None:
+        """``fixed``: ``point`` is a point of each of ``links`` (a named point as a point of the links that have
+        it, not a point of one link under another's, ``B@4``)."""
         known = label in self.tips  # only a label with a tip already can be a member already
         self.tips[label] = value
         at = self.positions.point(point)
-        has_point = self.mechanism.has_point
         for link in links:
             entries = self.members.setdefault(link, [])
             if not known or all(m.label != label for m in entries):
-                entries.append(Member(label, point, at, has_point(link, point)))
+                entries.append(Member(label, point, at, fixed))
 
     def add_tip(self, link: str, point: str, value: Points) -> str:
         """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
         label = self.label(link, point)
-        self._register(label, value, point, self.mechanism.links_of_point(point) if label == point else (link,))
+        if label == point:  # the links that have the point, each with it fixed on it
+            self._register(label, value, point, self.mechanism.links_of_point(point), True)
+        else:
+            self._register(label, value, point, (link,), False)
         return label
 
     def add_virtual_tip(self, link: str, name: str, value: Points) -> None:
         """The tip of a point the construction found on ``link`` (not a named point: a triad's Assur point,
         whose place the positions were told)."""
-        self._register(name, value, name, [link])
+        self._register(name, value, name, [link], self.mechanism.has_point(link, name))
 
     def tip(self, link: str, point: str) -> Points:
         """The tip of ``point`` as a point of ``link``, constructing it when it is not known yet."""
         label = self.label(link, point)
         if label in self.tips:
             return self.tips[label]
-        if link == self.mechanism.ground:
+        if link == self._ground:
             self.add_tip(link, point, self.zero)
             return self.zero
         members = self.members.get(link, [])
