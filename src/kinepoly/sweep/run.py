@@ -355,7 +355,18 @@ def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float |
     Without ``start`` and ``stop``: a full turn, or the input's range where the mechanism closes.
     ``centrode`` names a link whose instant center with the frame is reported (both centrodes).
     """
-    return run_sweep(_prepared(scene, centrode, series), steps=steps, start=start, stop=stop, progress=progress)
+    last = _last_prepared[0]
+    if last is not None and last[0] is scene and last[1] == centrode and last[2] == series:
+        prepared = last[3]
+    else:
+        prepared = _prepared(scene, centrode, series)
+        _last_prepared[0] = (scene, centrode, series, prepared)
+    return run_sweep(prepared, steps=steps, start=start, stop=stop, progress=progress)
+
+
+_last_prepared: list[tuple[Scene, str | None, bool, PreparedSweep] | None] = [None]
+"""The scene swept last (this very object) and its prepared sweep: found again without hashing the scene, whose
+hash takes every value it holds."""
 
 
 @lru_cache(maxsize=8)
