@@ -6,7 +6,9 @@ the numpy closed form of ``bench_sweep.py`` over the same rows.
 - ``repeated``: the same scene again (``kinepoly.sweep.sweep`` keeps a scene's prepared sweep: its plan, seed
   assembly and default range found once), 36 rows;
 - each with the default range (a full turn, checked on a coarse grid) and with ``--from``/``--to`` given;
-- ``per row``: (3600 rows - 36 rows) / 3564 with the range given.
+- ``per row``: (3600 rows - 36 rows) / 3564 with the range given;
+- the repeated 36-row call's stages (the sweep's own ``timing``: the rows found, then executed), and the Python
+  function calls it makes (a count, free of the machine's load).
 
 Times are the best of several rounds; ratios are to the closed form measured in the same run.
 
@@ -16,7 +18,9 @@ Times are the best of several rounds; ratios are to the closed form measured in 
 from __future__ import annotations
 
 import argparse
+import cProfile
 import math
+import pstats
 import sys
 import time
 from collections.abc import Callable
@@ -33,6 +37,7 @@ from bench_sweep import closed_form
 from kinepoly.scene.loader import loads_scene
 from kinepoly.scene.spec import Scene
 from kinepoly.sweep import sweep
+from kinepoly.sweep.result import SweepResult
 
 SCENE = ROOT / "examples" / "four-bar.toml"
 FEW, MANY = 36, 3600
@@ -47,6 +52,23 @@ def _per_call(work: Callable[[int], object], calls: int, rounds: int) -> float:
             work(r * calls + k)
         best = min(best, (time.perf_counter() - t0) / calls)
     return best
+
+
+def _stages(work: Callable[[], SweepResult], calls: int) -> dict[str, float]:
+    """The least of each stage's time (``SweepResult.timing``) over ``calls`` calls."""
+    best: dict[str, float] = {}
+    for _ in range(calls):
+        for stage, seconds in work().timing.items():
+            best[stage] = min(best.get(stage, math.inf), seconds)
+    return best
+
+
+def _function_calls(work: Callable[[], object]) -> int:
+    profile = cProfile.Profile()
+    profile.enable()
+    work()
+    profile.disable()
+    return int(pstats.Stats(profile).total_calls)  # type: ignore[attr-defined]
 
 
 def main() -> int:
@@ -80,6 +102,12 @@ def main() -> int:
     closed_row = (figures["closed form, 3600 rows"] - reference) / (MANY - FEW)
     print(f"{'per row (3600 - 36 rows), range given':42s} {per_row * 1e6:8.3f} us  {per_row / closed_row:8.1f} x "
           f"closed form per row ({closed_row * 1e6:.3f} us)")
+    for given, start, stop in (("default range", None, None), ("range given", 0.0, 350.0)):
+        def call(start: float | None = start, stop: float | None = stop) -> SweepResult:
+            return sweep(same, steps=FEW, start=start, stop=stop)
+        stages = _stages(call, args.rounds * CALLS)
+        print(f"repeated call, 36 rows, {given}: rows found {stages['range_s'] * 1e3:.3f} ms, executed "
+              f"{stages['execute_s'] * 1e3:.3f} ms (least of each); {_function_calls(call)} Python function calls")
     return 0
 
 

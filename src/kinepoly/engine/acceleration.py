@@ -101,7 +101,7 @@ def construct_acceleration(velocity: VelocityResult, plan: PositionPlan, wanted:
     """Construct the acceleration polygon at every row for every group of ``plan``, on top of its velocity polygon."""
     positions = velocity.polygon.positions
     polygon = Polygon(positions, "acceleration", omega=velocity.omega, unit=unit, record=record, strict=strict,
-                      crossing=crossing)
+                      crossing=crossing, constants=plan.constants)
     polygon.normal_sign = rules.normal
     ctx = AccelerationContext(polygon, velocity, rules)
     _drive(ctx)

@@ -17,6 +17,7 @@ __all__ = [
     "Group",
     "NewtonGroup",
     "PlanetGroup",
+    "PlanConstants",
     "PositionPlan",
     "SlideRoles",
     "TwoSlideRoles",
@@ -236,12 +237,28 @@ class PlanetGroup(NewtonGroup):
 Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
 
 
+@dataclass
+class PlanConstants:
+    """What constructing a plan's polygons finds that does not depend on the rows, kept by its first construction
+    for the next ones (``engine.polygon``): the frame's points with the links that have each, and each image of a
+    rigid link as the two known tips it is built from and Mehmke's factor, keyed by the link, the point and the
+    link's known tips. A prepared sweep's plan is constructed at every call: its calls replay these."""
+
+    mechanism: Mechanism | None = None
+    """The mechanism they were found on: a polygon of another (the same plan on other dimensions) finds its own."""
+    frame: tuple[tuple[str, tuple[str, ...]], ...] | None = None
+    images: dict[tuple[str, str, tuple[str, ...]], tuple[str, str, complex] | None] = field(default_factory=dict)
+    """None: the image is built row by row (a corner of its triangle slides on the link)."""
+
+
 @dataclass(frozen=True)
 class PositionPlan:
     """Links known from the input, then the groups in order."""
 
     driven: tuple[str, ...]
     groups: tuple[Group, ...]
+    constants: PlanConstants = field(default_factory=PlanConstants, compare=False, repr=False)
+    """The construction's constants, found on the plan's first construction (``PlanConstants``)."""
 
     def describe(self) -> list[str]:
         lines = [f"input: link(s) {', '.join(self.driven)}"] if self.driven else []

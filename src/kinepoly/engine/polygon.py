@@ -26,6 +26,7 @@ from typing import Literal, NamedTuple
 
 import numpy as np
 
+from kinepoly.engine.groups import PlanConstants
 from kinepoly.engine.inputs import describe_input
 from kinepoly.engine.placement import Positions
 from kinepoly.engine.steps import Direction, DrawnVector, Step
@@ -95,8 +96,14 @@ class Polygon:
 
     def __init__(self, positions: Positions, kind: Kind, omega: dict[str, Reals] | None = None, *,
                  unit: str = "mm", record: bool = False, strict: bool = False,
-                 crossing: CrossLines = cross_lines) -> None:
+                 crossing: CrossLines = cross_lines, constants: PlanConstants | None = None) -> None:
         self.mechanism: Mechanism = positions.mechanism
+        if constants is None or (constants.mechanism is not None and constants.mechanism is not self.mechanism):
+            constants = PlanConstants()
+        if constants.mechanism is None:
+            constants.mechanism = self.mechanism
+        self.constants = constants
+        """The plan's constants of construction (``PlanConstants``): read where found, else found and kept."""
         self.positions = positions
         self.kind = kind
         self.symbol = "v" if kind == "velocity" else "a"
@@ -115,10 +122,15 @@ class Polygon:
         self.crossing = crossing
         self.steps: list[Step] = []
         mech = self.mechanism
+        self._ground = mech.ground
         if mech.ground is not None:
             self.set_rate(mech.ground, np.zeros(self.n))  # and every link that slides on it without turning
-            for p in mech.scene.link(mech.ground).points:
-                self._register(p.name, self.zero, p.name, mech.links_of_point(p.name))
+            frame = self.constants.frame
+            if frame is None:
+                frame = self.constants.frame = tuple((p.name, mech.links_of_point(p.name))
+                                                     for p in mech.scene.link(mech.ground).points)
+            for name, links in frame:
+                self._register(name, self.zero, name, links, True)
 
     # -- row 0 as plain values, for the steps -------------------------------------------------------
     @staticmethod
@@ -160,33 +172,38 @@ class Polygon:
         return np.zeros(self.n) if omega is None else omega
 
     # -- tips -----------------------------------------------------------------------------------------
-    def _register(self, label: str, value: Points, point: str, links: tuple[str, ...] | list[str]) -> None:
+    def _register(self, label: str, value: Points, point: str, links: tuple[str, ...] | list[str],
+                  fixed: bool) -> None:
+        """``fixed``: ``point`` is a point of each of ``links`` (a named point as a point of the links that have
+        it, not a point of one link under another's, ``B@4``)."""
         known = label in self.tips  # only a label with a tip already can be a member already
         self.tips[label] = value
         at = self.positions.point(point)
-        has_point = self.mechanism.has_point
         for link in links:
             entries = self.members.setdefault(link, [])
             if not known or all(m.label != label for m in entries):
-                entries.append(Member(label, point, at, has_point(link, point)))
+                entries.append(Member(label, point, at, fixed))
 
     def add_tip(self, link: str, point: str, value: Points) -> str:
         """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
         label = self.label(link, point)
-        self._register(label, value, point, self.mechanism.links_of_point(point) if label == point else (link,))
+        if label == point:  # the links that have the point, each with it fixed on it
+            self._register(label, value, point, self.mechanism.links_of_point(point), True)
+        else:
+            self._register(label, value, point, (link,), False)
         return label
 
     def add_virtual_tip(self, link: str, name: str, value: Points) -> None:
         """The tip of a point the construction found on ``link`` (not a named point: a triad's Assur point,
         whose place the positions were told)."""
-        self._register(name, value, name, [link])
+        self._register(name, value, name, [link], self.mechanism.has_point(link, name))
 
     def tip(self, link: str, point: str) -> Points:
         """The tip of ``point`` as a point of ``link``, constructing it when it is not known yet."""
         label = self.label(link, point)
         if label in self.tips:
             return self.tips[label]
-        if link == self.mechanism.ground:
+        if link == self._ground:
             self.add_tip(link, point, self.zero)
             return self.zero
         members = self.members.get(link, [])
@@ -251,17 +268,21 @@ class Polygon:
     # -- Mehmke's image ---------------------------------------------------------------------------------
     def _image(self, link: str, point: str, label: str, members: list[Member]) -> Points:
         at = self.world(point)
-        known = members[:_IMAGE_MEMBERS]
-        pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
-        local = ({m.label: self._local(link, m.label) for m in members}
-                 if self.mechanism.has_point(link, point) and all(m.fixed for m in members) else {})
-        here = self._local(link, label) if local else None
-        if isinstance(here, complex) and all(isinstance(c, complex) for c in local.values()):
-            first, second = pairs[0] if len(pairs) == 1 else max(
-                pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
-            a, b = self.tips[first.label], self.tips[second.label]
-            value = np.asarray(a + (b - a) * _similar(local[first.label], local[second.label], here, label, link))
+        key = (link, label, tuple(m.label for m in members))
+        images = self.constants.images
+        if key in images:
+            rigid = images[key]
         else:
+            rigid = images[key] = self._rigid_image(link, point, label, members)
+        if rigid is not None:
+            first_label, second_label, factor = rigid
+            a, b = self.tips[first_label], self.tips[second_label]
+            value = np.asarray(a + (b - a) * factor)
+            if self.record:
+                first, second = (next(m for m in members if m.label == name) for name in (first_label, second_label))
+        else:
+            known = members[:_IMAGE_MEMBERS]
+            pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
             keys = np.stack([np.asarray(_key(m.at, k.at, at)) for m, k in pairs])
             best = np.argmax(keys, axis=0)
             value = self.zero
@@ -273,6 +294,22 @@ class Polygon:
         if self.record:
             self._record_image(link, label, first, second, at, value)
         return value
+
+    def _rigid_image(self, link: str, point: str, label: str, members: list[Member]) -> tuple[str, str, complex] | None:
+        """The image of a point of ``link`` whose known tips are all of points fixed on it: the labels of the two
+        known tips it is built from and Mehmke's factor (``_similar``), which depend on the link's shape alone; None
+        where the image is built row by row."""
+        if not (self.mechanism.has_point(link, point) and all(m.fixed for m in members)):
+            return None
+        known = members[:_IMAGE_MEMBERS]
+        pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
+        local = {m.label: self._local(link, m.label) for m in members}
+        here = self._local(link, label)
+        if not (isinstance(here, complex) and all(isinstance(c, complex) for c in local.values())):
+            return None  # a family's link whose points differ by row (model.family): built row by row
+        first, second = pairs[0] if len(pairs) == 1 else max(
+            pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
+        return first.label, second.label, _similar(local[first.label], local[second.label], here, label, link)
 
     def _local(self, link: str, label: str) -> complex:
         return local_point(self.mechanism.local(link, point_of(label)))

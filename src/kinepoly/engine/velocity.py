@@ -85,7 +85,8 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
     ``wanted`` holds (link, point) pairs: the velocity of ``point`` as a point of ``link``.
     ``record``: keep the steps of row 0; ``strict``: a parallel pair of lines raises (a solve).
     """
-    polygon = Polygon(positions, "velocity", unit=unit, record=record, strict=strict, crossing=crossing)
+    polygon = Polygon(positions, "velocity", unit=unit, record=record, strict=strict, crossing=crossing,
+                      constants=plan.constants)
     state = VelocityContext(polygon)
     _drive(polygon, state.sliding)
     record_equivalent_links(polygon)

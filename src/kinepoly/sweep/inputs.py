@@ -127,7 +127,7 @@ def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) ->
         ordered = shown if ascending else shown[::-1]
         at = int(np.searchsorted(ordered, seed))
         at = at if ascending else len(shown) - at
-        values = np.insert(shown, at, seed)
+        values = np.concatenate((shown[:at], (float(seed),), shown[at:]))  # np.insert's values, a tenth of its cost
         mask = np.ones(len(values), np.bool_)
         mask[at] = False
         return values, mask, at

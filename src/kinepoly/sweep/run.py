@@ -41,7 +41,7 @@ from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.transmission import transmission_angles
 from kinepoly.engine.velocity import VelocityResult, construct_velocity
 from kinepoly.errors import AssemblyError, SceneError, SingularityError
-from kinepoly.geom.arrays import Bools, Points, Reals
+from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import LinkPose
@@ -163,27 +163,43 @@ def _angle_unit(scene: Scene, radians: Reals) -> Reals:
     return np.degrees(radians) if scene.units.angle == "deg" else radians
 
 
-def _position(positions: Positions, label: str) -> Points:
-    return positions.point(point_of(label))
+@dataclass(frozen=True)
+class _ColumnNames:
+    """The asked columns of a prepared sweep, named once for all its calls: each asked link's (link, theta,
+    omega, alpha) and each asked point's (label, point, r, v, a) column names, None where not reported."""
+
+    degrees: bool
+    links: tuple[tuple[str, str | None, str | None, str | None], ...]
+    points: tuple[tuple[str, str, str, str | None, str | None], ...]
 
 
-def _columns(out: ColumnBuilder, asked: Asked, velocity: VelocityResult | None, acceleration: AccelerationResult | None,
-             input_column: str) -> None:
+def _column_names(mechanism: Mechanism, asked: Asked) -> _ColumnNames:
+    find, input_column = mechanism.scene.find, input_name(mechanism)
+    links = tuple((link, None if f"theta_{link}" == input_column else f"theta_{link}",
+                   f"omega_{link}" if link in asked.omega else None, f"alpha_{link}" if link in asked.alpha else None)
+                  for link in dict.fromkeys((*asked.omega, *asked.alpha)))
+    points = tuple((label, point_of(label), f"r_{label}", f"v_{label}" if label in find.velocity else None,
+                    f"a_{label}" if label in find.acceleration else None)
+                   for label in dict.fromkeys((*find.velocity, *find.acceleration)))
+    return _ColumnNames(mechanism.scene.units.angle == "deg", links, points)
+
+
+def _columns(out: ColumnBuilder, names: _ColumnNames, asked: Asked, velocity: VelocityResult | None,
+             acceleration: AccelerationResult | None, input_column: str) -> None:
     mech, positions = out.mechanism, out.positions
-    scene = mech.scene
-    for link in dict.fromkeys((*asked.omega, *asked.alpha)):
-        if f"theta_{link}" != input_column:
-            out.add(f"theta_{link}", "angle", positions.poses[link].theta(degrees=scene.units.angle == "deg"))
-        if link in asked.omega and velocity is not None:
-            out.add(f"omega_{link}", "omega", _rate(velocity.polygon.rate_of(link)))
-        if link in asked.alpha and acceleration is not None:
-            out.add(f"alpha_{link}", "alpha", _rate(acceleration.polygon.rate_of(link)))
-    for label in dict.fromkeys((*scene.find.velocity, *scene.find.acceleration)):
-        out.pair(f"r_{label}", "position", _position(positions, label))
-        if label in scene.find.velocity and velocity is not None:
-            out.pair(f"v_{label}", "velocity", velocity.tips[label])
-        if label in scene.find.acceleration and acceleration is not None:
-            out.pair(f"a_{label}", "acceleration", acceleration.tips[label])
+    for link, theta, omega, alpha in names.links:
+        if theta is not None:
+            out.add(theta, "angle", positions.poses[link].theta(degrees=names.degrees))
+        if omega is not None and velocity is not None:
+            out.add(omega, "omega", _rate(velocity.polygon.rate_of(link)))
+        if alpha is not None and acceleration is not None:
+            out.add(alpha, "alpha", _rate(acceleration.polygon.rate_of(link)))
+    for label, point, r, v, a in names.points:
+        out.pair(r, "position", positions.point(point))
+        if v is not None and velocity is not None:
+            out.pair(v, "velocity", velocity.tips[label])
+        if a is not None and acceleration is not None:
+            out.pair(a, "acceleration", acceleration.tips[label])
     driven = {drive.spec.slider: drive.spec for drive in mech.drives if isinstance(drive.spec, SliderInput)}
     for name in asked.sliders:
         motion = slider_motion(positions, mech.slider(name), velocity, acceleration)
@@ -259,6 +275,11 @@ class PreparedSweep:
     @cached_property
     def seed(self) -> dict[str, LinkPose]:
         return seed_poses(self.mechanism, self.plan)
+
+    @cached_property
+    def column_names(self) -> _ColumnNames:
+        """The asked columns' names, found once for every call."""
+        return _column_names(self.mechanism, self.asked)
 
     @cached_property
     def default_range(self) -> DefaultRange:
@@ -341,10 +362,26 @@ def sweep(scene: Scene, *, steps: int, start: float | None = None, stop: float |
     return run_sweep(prepared_sweep(scene, centrode, series), steps=steps, start=start, stop=stop, progress=progress)
 
 
-@lru_cache(maxsize=8)
 def prepared_sweep(scene: Scene, centrode: str | None = None, series: bool = False) -> PreparedSweep:
     """A scene's prepared sweep kept for the calls that follow on the same scene (a scene is a frozen value): its
-    mechanism, plan, seed assembly and default range are found once, so a repeated call pays only its rows."""
+    mechanism, plan, seed assembly and default range are found once, so a repeated call pays only its rows. The
+    scene swept last (this very object) is found again without hashing it."""
+    last = _last_prepared[0]
+    if last is not None and last[0] is scene and last[1] == centrode and last[2] == series:
+        return last[3]
+    prepared = _prepared(scene, centrode, series)
+    _last_prepared[0] = (scene, centrode, series, prepared)
+    return prepared
+
+
+_last_prepared: list[tuple[Scene, str | None, bool, PreparedSweep] | None] = [None]
+"""The scene swept last (this very object) and its prepared sweep: found again without hashing the scene, whose
+hash takes every value it holds."""
+
+
+@lru_cache(maxsize=8)
+def _prepared(scene: Scene, centrode: str | None, series: bool) -> PreparedSweep:
+    """The prepared sweeps of the last few scenes (``prepared_sweep``)."""
     return prepare_sweep(scene, centrode, series)
 
 
@@ -375,7 +412,7 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
         _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings)
     name = input_name(mechanism)
     out = ColumnBuilder(mechanism, positions)
-    _columns(out, asked, velocity, acceleration, name)
+    _columns(out, prepared.column_names, asked, velocity, acceleration, name)
     followers = higher_pair_columns(out, velocity, acceleration, name)
     notices = list(grid.notices)
     if centrode is not None and velocity is not None:
