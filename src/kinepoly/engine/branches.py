@@ -158,17 +158,20 @@ def follow_members(c0: Points, c1: Points, ok: Bools, rows_each: int, seed: int,
     its own rows; the members whose steps are all short of a quarter of their assemblies' gap (the rule keeps
     the label there, as ``_no_switch_possible`` says for one member) are settled together by array operations."""
     members = len(c0) // rows_each
+    every = bool(ok.all())
     own = (c0 if label == 0 else c1).reshape(members, rows_each)
     fine = ok.reshape(members, rows_each)
     step = own[:, 1:] - own[:, :-1]
-    step2 = np.where(fine[:, 1:] & fine[:, :-1], step.real * step.real + step.imag * step.imag, 0.0)
+    step2 = step.real * step.real + step.imag * step.imag
+    if not every:
+        step2 = np.where(fine[:, 1:] & fine[:, :-1], step2, 0.0)
     longest2 = step2.max(axis=1) if rows_each > 1 else np.zeros(members)
     if periodic:
         wrap = own[:, 0] - own[:, -1]
         longest2 = np.where(fine[:, 0] & fine[:, -1],
                             np.maximum(longest2, wrap.real * wrap.real + wrap.imag * wrap.imag), longest2)
     apart = (np.abs(c0 - c1) if gap is None else np.broadcast_to(gap, c0.shape)).reshape(members, rows_each)
-    shortest = np.where(fine, apart, np.inf).min(axis=1)
+    shortest = (apart if every else np.where(fine, apart, np.inf)).min(axis=1)
     settled = ~fine.any(axis=1) | (16.0 * longest2 < shortest * shortest)
     if settled.all():
         return label

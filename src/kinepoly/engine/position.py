@@ -17,8 +17,9 @@ from kinepoly.engine.inputs import describe_input, input_values
 from kinepoly.engine.placement import Failure, Placement, Positions
 from kinepoly.engine.policy import Policy
 from kinepoly.engine.table import kind_of
-from kinepoly.geom.arrays import Reals, turn
+from kinepoly.geom.arrays import Points, Reals, turn
 from kinepoly.model.array_pose import ArrayPose, local_point, pose_from_point, still_pose
+from kinepoly.model.family import FamilyMechanism
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
 
@@ -47,9 +48,7 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
     assert ground is not None
     if isinstance(inp, LinkInput):
         pivot = mechanism.input_pivot(inp).point
-        rotation = np.empty(n, np.complex128)  # e^(i theta), its parts written in place: the same bits as
-        np.cos(inputs, out=rotation.real)       # np.exp(1j * theta), without its complex temporaries
-        np.sin(inputs, out=rotation.imag)
+        rotation = _unit_turns(mechanism, inputs)
         at = np.full(n, local_point(mechanism.local(ground, pivot)))
         poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), at, rotation)
     else:
@@ -63,6 +62,18 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
             block_point = np.full(n, local_point(mechanism.local(ground, slider.point)))
             poses[slider.guide] = ArrayPose(block_point - np.conjugate(direction) * along,
                                             np.full(n, np.conjugate(direction)))
+
+
+def _unit_turns(mechanism: Mechanism, inputs: Reals) -> Points:
+    """e^(i theta) at every row, its parts written in place: the same bits as np.exp(1j * theta), without its
+    complex temporaries. A family's members share their inputs (``model.family``): one member's are worked out and
+    repeated."""
+    each = mechanism.rows_each if isinstance(mechanism, FamilyMechanism) else len(inputs)
+    one = inputs[:each]
+    rotation = np.empty(len(one), np.complex128)
+    np.cos(one, out=rotation.real)
+    np.sin(one, out=rotation.imag)
+    return rotation if each == len(inputs) else np.tile(rotation, len(inputs) // each)
 
 
 def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placement, policy: Policy) -> Placement:

@@ -39,7 +39,7 @@ class RowPoint(tuple[Reals, Reals]):
 @dataclass(frozen=True, eq=False)
 class FamilyMechanism(Mechanism):
     """The scene's mechanism whose points ``varied`` (keyed (link, point), each member's x + iy) differ between
-    the members, whose rows come ``rows_each`` to a member."""
+    the members, whose rows come ``rows_each`` to a member, every member over the same inputs."""
 
     varied: Mapping[tuple[str, str], Points] = field(default_factory=dict)
     rows_each: int = 1
