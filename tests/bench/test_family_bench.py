@@ -17,7 +17,7 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 def test_the_members_are_each_link_times_a_factor_of_its_own() -> None:
     scene = kinepoly.load_scene(EXAMPLES / "four-bar.toml")
-    points = family_points(scene, 5, 0.1, 3)
+    points, slides = family_points(scene, 5, 0.1, 3)
     assert points.keys() == {f"{p.name}@{link.name}" for link in scene.links for p in link.points}
     for link in scene.links:
         factors = None
@@ -29,8 +29,18 @@ def test_the_members_are_each_link_times_a_factor_of_its_own() -> None:
             assert ((0.9 <= k) & (k <= 1.1)).all() and np.ptp(k) > 0.0
             assert factors is None or np.allclose(k, factors, rtol=1e-15)
             factors = k
-    again = family_points(scene, 5, 0.1, 3)
+    again, _ = family_points(scene, 5, 0.1, 3)
     assert all(np.array_equal(points[key], again[key]) for key in points)
+    assert slides == {}
+
+
+def test_a_slide_line_takes_its_guides_factor() -> None:
+    """The shaper's ram slides on the frame along y = 430: its line moves with the frame's points (A0 = [0, 150])."""
+    scene = kinepoly.load_scene(EXAMPLES / "shaper.toml")
+    points, slides = family_points(scene, 4, 0.1, 1)
+    frame = points["A0@1"][:, 1] / 150.0
+    assert np.allclose(slides["16"][:, 1] / 430.0, frame, rtol=1e-15) and np.ptp(frame) > 0.0
+    assert np.array_equal(slides["43"], np.zeros((4, 2)))  # the slot's line through the lever's pivot
 
 
 @pytest.mark.parametrize("name", ["four-bar", "shaper"])

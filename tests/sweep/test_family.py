@@ -222,7 +222,7 @@ def test_a_range_given_is_every_members() -> None:
                           stop=100.0)
     assert family.input.values[0] == 10.0 and family.input.values[-1] == 100.0
     for k in range(2):
-        alone = sweep(member_scene(scene, family.points, k), steps=20, start=10.0, stop=100.0)
+        alone = sweep(family.dimensions.scene(scene, k), steps=20, start=10.0, stop=100.0)
         assert np.array_equal(alone.status, family.status[k])
 
 
@@ -247,7 +247,7 @@ def test_a_family_with_newton_groups_is_swept_member_by_member() -> None:
     ({"B@3": [1.0, 2.0]}, "expected an array of (members, 2) numbers, one [x, y] per member; got the shape (2,)"),
     ({"B@3": [["a", 2.0]]}, "expected an array of (members, 2) numbers"),
     ({"B@3": [[math.nan, 2.0]]}, "member 0 has a coordinate that is not a finite number"),
-    ({"B@3": [[120.0, 0.0]], "B@4": [[80.0, 0.0], [81.0, 0.0]]}, "'B@4' has 2 members, the points before it 1"),
+    ({"B@3": [[120.0, 0.0]], "B@4": [[80.0, 0.0], [81.0, 0.0]]}, "'B@4' has 2 members, 'B@3' before it 1"),
 ])
 def test_bad_points_are_refused_by_name(points: dict[str, object], message: str) -> None:
     with pytest.raises(SceneError) as error:
@@ -266,3 +266,65 @@ def test_higher_pairs_are_refused_with_what_to_do(name: str) -> None:
     link = scene.links[1]
     with pytest.raises(SceneError, match="sweep each member as a scene of its own"):
         sweep_family(scene, {f"{link.points[0].name}@{link.name}": [list(link.points[0].local)]}, steps=12)
+
+
+# -- slide lines ----------------------------------------------------------------------------------------------------
+
+def _offset_slider_crank(a2: np.ndarray, a3: float, c: np.ndarray, theta: np.ndarray,
+                         omega: float) -> dict[str, np.ndarray]:
+    """x, v_x, a_x of the block of the offset slider-crank (alpha 0): s = a2 cos t + sqrt(a3^2 - (a2 sin t - c)^2),
+    differentiated by hand."""
+    u = a2 * np.sin(theta) - c
+    d = np.sqrt(a3 * a3 - u * u)
+    cos, sin = a2 * np.cos(theta), a2 * np.sin(theta)
+    first = -sin - u * cos / d
+    second = -cos - (cos * cos - u * sin) / d - (u * cos) ** 2 / d ** 3
+    return {"r_B_x": cos + d, "v_B_x": omega * first, "a_B_x": omega * omega * second}
+
+
+def test_a_family_of_slide_offsets_against_its_closed_form() -> None:
+    scene = _scene("slider-crank")
+    offsets = np.linspace(-20.0, 20.0, 9)
+    family = sweep_family(scene, slides={"14": np.c_[np.zeros(9), offsets]}, steps=72)
+    assert family.batched and (family.status == 0).all()
+    theta = np.radians(family.input.values)
+    expected = _offset_slider_crank(np.array(40.0), 120.0, offsets[:, None], theta[None, :], 10.0)
+    for name, values in expected.items():
+        assert np.abs(family.column(name).values - values).max() <= 1e-12 * np.abs(values).max(), name
+    assert np.abs(family.column("r_B_y").values - offsets[:, None]).max() <= 1e-12 * 120.0  # the block on its line
+
+
+def test_the_closed_form_of_the_offset_slider_crank_by_finite_differences() -> None:
+    theta, h = np.radians(np.arange(0.0, 360.0, 10.0)), 1e-5
+    at = {k: _offset_slider_crank(np.array(40.0), 120.0, np.array(7.0), theta + k * h, 1.0)["r_B_x"] for k in (-1, 1)}
+    mid = _offset_slider_crank(np.array(40.0), 120.0, np.array(7.0), theta, 1.0)
+    assert np.allclose((at[1] - at[-1]) / (2 * h), mid["v_B_x"], rtol=0, atol=1e-8)
+    v = {k: _offset_slider_crank(np.array(40.0), 120.0, np.array(7.0), theta + k * h, 1.0)["v_B_x"] for k in (-1, 1)}
+    assert np.allclose((v[1] - v[-1]) / (2 * h), mid["a_B_x"], rtol=0, atol=1e-6)
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(name=st.sampled_from(["slider-crank", "shaper", "slotted-crank-slider", "scotch-yoke"]),
+       seed=st.integers(0, 2**32 - 1), members=st.integers(1, 3))
+def test_slides_and_points_together_are_their_members_swept_alone(name: str, seed: int, members: int) -> None:
+    scene = _scene(name)
+    rng = np.random.default_rng(seed)
+    size = max(abs(v) for link in scene.links for p in link.points for v in p.local)
+    slides = {s.name: np.array(s.through) + rng.uniform(-0.02, 0.02, (members, 2)) * size for s in scene.sliders}
+    family = sweep_family(scene, _varied(scene, members, 0.01, rng), steps=48, slides=slides)
+    for k in range(members):
+        _assert_member_is_alone(family, scene, k, 48)
+
+
+def test_a_slider_that_is_not_the_scenes_is_refused() -> None:
+    with pytest.raises(SceneError, match="'41' is not a slider of the scene; its sliders are: 14"):
+        sweep_family(_scene("slider-crank"), slides={"41": [[0.0, 5.0]]}, steps=12)
+
+
+def test_a_members_scene_is_the_scene_with_its_row_of_coordinates() -> None:
+    scene = _scene("slider-crank")
+    member = member_scene(scene, {"A@3": [[118.0, 0.0], [122.0, 1.0]]}, 1, slides={"14": [[0.0, 5.0], [0.0, -5.0]]})
+    assert member.link("3").point("A").local == (122.0, 1.0) and member.link("3").point("A").polar is None
+    assert member.link("3").point("C") == scene.link("3").point("C")
+    assert member.link("2") == scene.link("2") and member.sliders[0].through == (0.0, -5.0)
+    assert member.sliders[0].angle_rad == scene.sliders[0].angle_rad and member.guess == scene.guess

@@ -2,7 +2,8 @@
 sweep per member, timed in the same run, and both against the 50-digit reference.
 
 The members are the scene with every point of each link multiplied by a factor of its own, drawn uniformly from
-[1 - spread, 1 + spread] (the same seed, the same family). The family and the loop are swept over the same rows
+[1 - spread, 1 + spread] (the same seed, the same family), and each slide line's ``through`` by its guide's.
+The family and the loop are swept over the same rows
 (the scene's range); the loop sweeps each member's own scene (``FamilyResult.member_scene``: its ``[guess]`` where
 the family put the guessed points, so that it is in the family's assembly). At a few rows of a few members the
 family's values are measured against the mpmath reference (``bench.reference``), started from the solve at that
@@ -79,28 +80,29 @@ class FamilyBench:
                 "checked_rows": self.checked}
 
 
-def family_points(scene: Scene, members: int, spread: float, seed: int) -> dict[str, np.ndarray]:
-    """Every point of every link, as ``sweep_family`` takes them: each link's points times a factor of its own per
-    member, drawn from [1 - spread, 1 + spread] with ``seed`` (Python's Mersenne Twister, one draw order)."""
+def family_points(scene: Scene, members: int, spread: float,
+                  seed: int) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """Every point of every link and every slide line, as ``sweep_family`` takes them: each link's points (and the
+    ``through`` of the slides it guides) times a factor of its own per member, drawn from [1 - spread, 1 + spread]
+    with ``seed`` (Python's Mersenne Twister, one draw order)."""
     rng = random.Random(seed)
     factors = [[rng.uniform(1.0 - spread, 1.0 + spread) for _ in scene.links] for _ in range(members)]
-    out = {}
-    for index, link in enumerate(scene.links):
-        column = np.array([row[index] for row in factors])
-        for p in link.points:
-            out[f"{p.name}@{link.name}"] = column[:, None] * np.array(p.local, np.float64)[None, :]
-    return out
+    column = {link.name: np.array([row[index] for row in factors]) for index, link in enumerate(scene.links)}
+    points = {f"{p.name}@{link.name}": column[link.name][:, None] * np.array(p.local, np.float64)[None, :]
+              for link in scene.links for p in link.points}
+    slides = {s.name: column[s.guide][:, None] * np.array(s.through, np.float64)[None, :] for s in scene.sliders}
+    return points, slides
 
 
 def run_family(scene: Scene, members: int, rows: int, *, spread: float = 0.05, seed: int = 0,
                rounds: int = 3) -> FamilyBench:
     """Time the family and the loop over ``rows`` rows of the scene's range, and measure both (see the module)."""
-    points = family_points(scene, members, spread, seed)
-    family = sweep_family(scene, points, steps=rows)  # the scene's plan prepared, as a repeated call finds it
+    points, slides = family_points(scene, members, spread, seed)
+    family = sweep_family(scene, points, steps=rows, slides=slides)  # the plan prepared, as a repeated call finds it
     best = math.inf
     for _ in range(rounds):
         t0 = time.perf_counter()
-        family = sweep_family(scene, points, steps=rows)
+        family = sweep_family(scene, points, steps=rows, slides=slides)
         best = min(best, time.perf_counter() - t0)
     start, stop = _ends(scene, family)
     scenes = [family.member_scene(k) for k in range(members)]

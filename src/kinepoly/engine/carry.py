@@ -54,8 +54,9 @@ def carried_local(mechanism: Mechanism, drive: Drive, link: str, local: complex,
     slide = turn(joint.angle_rad)
     block_point = local_point(mechanism.local(joint.block, joint.point))
     if link == joint.block:  # into the guide's frame
-        return np.asarray(complex(*joint.through) + values * slide + rel * (local - block_point))
-    return np.asarray(block_point + rel * (local - complex(*joint.through)) - values)  # into the block's frame
+        return np.asarray(local_point(mechanism.slide_through(joint)) + values * slide + rel * (local - block_point))
+    through = local_point(mechanism.slide_through(joint))
+    return np.asarray(block_point + rel * (local - through) - values)  # into the block's frame
 
 
 def place_on(mechanism: Mechanism, drive: Drive, link: str, known: ArrayPose, values: Reals) -> ArrayPose:

@@ -112,13 +112,13 @@ def slider_locus(mechanism: Mechanism, slider: SliderSpec, moving: str, local: t
     its point ``local`` runs on, the other side's pose being ``other``."""
     if moving == slider.block:
         rotation = other.rotation * turn(slider.angle_rad)
-        through = other.world(slider.through)
+        through = other.world(mechanism.slide_through(slider))
         offset = rotation * (_c(local) - _local(mechanism, slider.block, slider.point))
         direction = rotation
     else:
         rotation = other.rotation * turn(-slider.angle_rad)
         through = other.world(mechanism.local(slider.block, slider.point))
-        offset = rotation * (_c(local) - _c(slider.through))
+        offset = rotation * (_c(local) - _c(mechanism.slide_through(slider)))
         direction = other.rotation
     return np.asarray(rotation), np.asarray(through + offset), np.asarray(direction)
 
@@ -235,7 +235,8 @@ def _rpr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
     offset = (_local(mech, block, pb) - _local(mech, block, slider.point)) * slide
     span = wb - wg
     r = length(span)
-    ahead, behind, slack, _ = circle_line(pg_local, r, _c(slider.through) + offset, slide)
+    through = _c(mech.slide_through(slider))
+    ahead, behind, slack, _ = circle_line(pg_local, r, through + offset, slide)
     # where pb lies on the guide's pivot the guide may take any angle: a change point
     singular = np.asarray(~(r > ASSEMBLY_REL_TOL
                             * (np.abs(wg) + np.abs(wb) + abs(pg_local) + abs(offset) + TINY_POSITIVE)))
@@ -263,7 +264,7 @@ def _rpr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
         return f"|{pg} {pb}| = {rk:.6g} is less than the offset {h:.6g} of slider {slider.name}'s line from {pg}"
 
     # the guide's angle comes from the direction wg -> wb: when pb nears pg it is ill-conditioned
-    size = _largest(abs(pg_local - _c(slider.through)), abs(offset), _link_size(mech))
+    size = _largest(abs(pg_local - through), abs(offset), _link_size(mech))
     close = ok & (r < NEAR_SINGULAR_SIN * size)
     near = None
     if close.any():

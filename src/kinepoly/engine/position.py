@@ -54,7 +54,7 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
     else:
         slider = mechanism.slider(inp.slider)
         direction = turn(slider.angle_rad)
-        along = np.asarray(complex(*slider.through) + inputs * direction, np.complex128)
+        along = np.asarray(local_point(mechanism.slide_through(slider)) + inputs * direction, np.complex128)
         if slider.guide == ground:
             poses[slider.block] = pose_from_point(mechanism.local(slider.block, slider.point), along,
                                                   np.full(n, direction))

@@ -33,7 +33,7 @@ class SliderMotion:
 def slider_motion(positions: Positions, spec: SliderSpec, velocity: VelocityResult | None = None,
                   acceleration: AccelerationResult | None = None) -> SliderMotion:
     e = slide_direction(positions, spec)
-    through = positions.poses[spec.guide].world(spec.through)
+    through = positions.poses[spec.guide].world(positions.mechanism.slide_through(spec))
     s = dot(e, positions.point(spec.point) - through)
     s_dot = dot(e, velocity.sliding[spec.name]) if velocity is not None else None
     s_ddot = dot(e, acceleration.sliding[spec.name]) if acceleration is not None else None

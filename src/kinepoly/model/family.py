@@ -18,6 +18,7 @@ import numpy as np
 from kinepoly.geom.arrays import Points, Reals
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Mechanism
+from kinepoly.scene.spec import SliderSpec
 
 __all__ = ["FamilyMechanism", "RowPoint"]
 
@@ -43,10 +44,23 @@ class FamilyMechanism(Mechanism):
 
     varied: Mapping[tuple[str, str], Points] = field(default_factory=dict)
     rows_each: int = 1
+    slides: Mapping[str, Points] = field(default_factory=dict)
+    """The slide lines that differ between the members: each member's ``through`` (x + iy), keyed by slider."""
 
     @cached_property
     def _rows(self) -> dict[tuple[str, str], RowPoint]:
         return {key: RowPoint.of(members, self.rows_each) for key, members in self.varied.items()}
+
+    @cached_property
+    def _slide_rows(self) -> dict[str, RowPoint]:
+        return {name: RowPoint.of(members, self.rows_each) for name, members in self.slides.items()}
+
+    def slide_through(self, slider: SliderSpec) -> Vec:
+        """The slide line's ``through``: the scene's, or one per row where the members' lines differ."""
+        found = self._slide_rows.get(slider.name)
+        if found is not None:
+            return found  # type: ignore[return-value]
+        return slider.through
 
     def local(self, link: str, point: str) -> Vec:
         """Coordinates of ``point`` in ``link``'s own frame: numbers, or one per row where the point is varied

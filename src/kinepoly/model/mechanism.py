@@ -138,6 +138,10 @@ class Mechanism:
         (ax, ay), (bx, by) = self.local(link, a), self.local(link, b)
         return math.hypot(bx - ax, by - ay)
 
+    def slide_through(self, slider: SliderSpec) -> Vec:
+        """A point of ``slider``'s line in its guide's own frame (the line's ``through``)."""
+        return slider.through
+
     def has_point(self, link: str, point: str) -> bool:
         return (link, point) in self._locals
 

@@ -3,7 +3,9 @@
 A sweep is a batch over the input; a family is a batch over the dimensions too. The members share the
 scene's topology (its links, joints, input and ``[find]``) and differ in the coordinates of some points
 of their links, given as arrays over the members: ``{"B@3": [[120, 0], [118, 0], ...]}`` is point B of
-link 3 in link 3's own frame, one row per member (``B`` alone where one link has B).
+link 3 in link 3's own frame, one row per member (``B`` alone where one link has B); and in the slide lines
+of some sliders: ``slides={"14": [[0, 20], [0, 25], ...]}`` is the point the line of slider 14 passes through,
+in its guide's frame (its angle stays the scene's).
 
 Where the position plan is made of dyads, carried dyads and drive groups, the plan runs once for every
 row of every member (``model.family``): each member's rows follow, from the row at the scene's own
@@ -30,6 +32,7 @@ from kinepoly.engine.position import solve_positions
 from kinepoly.errors import KinepolyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.family import FamilyMechanism
+from kinepoly.model.mechanism import Mechanism
 from kinepoly.notice import Notice
 from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import LinkSpec, Scene, SliderInput
@@ -37,7 +40,7 @@ from kinepoly.sweep.inputs import InputGrid, input_grid
 from kinepoly.sweep.result import STATUS, Column, Kind, SweepResult
 from kinepoly.sweep.run import PreparedSweep, execute_rows, gap_notices, prepare_sweep, prepared_sweep, run_sweep
 
-__all__ = ["FamilyColumn", "FamilyResult", "member_scene", "sweep_family"]
+__all__ = ["Dimensions", "FamilyColumn", "FamilyResult", "member_scene", "read_dimensions", "sweep_family"]
 
 _BATCHED = (Dyad, CarriedDyad, DriveGroup)
 """The group kinds a family runs in one batch (their closures are closed forms whose dimensions may vary by row)."""
@@ -54,14 +57,14 @@ class FamilyColumn:
     valid: Bools
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class FamilyResult:
     """A family sweep: the input column (the same for every member), each quantity over (members, rows), each
     row's status per member, and how the family was run (``batched``: the plan once for every member)."""
 
     scene: Scene
-    points: Mapping[str, Reals]
-    """The varied points as given, each (members, 2), keyed as ``B@3``."""
+    dimensions: Dimensions
+    """What differs between the members: the points and slide lines as given."""
     input: Column
     columns: tuple[FamilyColumn, ...]
     status: npt.NDArray[np.int8]
@@ -96,7 +99,7 @@ class FamilyResult:
         the member has the guessed points at the scene's input, so that a solve or a sweep of it takes the
         member's assembly (the family's: the scene's own, by label)."""
         self._check(k)
-        scene = member_scene(self.scene, self.points, k)
+        scene = self.dimensions.scene(self.scene, k)
         if isinstance(self._members, tuple):
             return scene  # swept member by member: each from the scene's own [guess]
         grid, positions = self._grid, self._members.positions
@@ -113,26 +116,59 @@ class FamilyResult:
             raise IndexError(f"member {k} of a family of {self.members}")
 
 
-def member_scene(scene: Scene, points: Mapping[str, npt.ArrayLike], k: int) -> Scene:
-    """Member ``k`` of a family as a scene of its own: ``scene`` with the varied points' coordinates of row ``k``."""
-    varied = _read_points(scene, points)[0]
-    return _scene_of(scene, {key: (float(xy[k, 0]), float(xy[k, 1])) for key, xy in varied.items()})
+@dataclass(frozen=True, eq=False)
+class Dimensions:
+    """What differs between a family's members: points keyed (link, point) and slide lines' ``through`` keyed by
+    slider, each an array of (members, 2)."""
+
+    points: Mapping[tuple[str, str], Reals]
+    slides: Mapping[str, Reals]
+    count: int
+
+    def scene(self, scene: Scene, k: int) -> Scene:
+        """Member ``k`` as a scene of its own: ``scene`` with member ``k``'s coordinates."""
+        def row(xy: Reals) -> tuple[float, float]:
+            return (float(xy[k, 0]), float(xy[k, 1]))
+
+        def link_of(link: LinkSpec) -> LinkSpec:
+            moved = tuple(dataclasses.replace(p, local=row(self.points[(link.name, p.name)]), polar=None)
+                          if (link.name, p.name) in self.points else p for p in link.points)
+            return dataclasses.replace(link, points=moved)
+        sliders = tuple(dataclasses.replace(s, through=row(self.slides[s.name])) if s.name in self.slides else s
+                        for s in scene.sliders)
+        return dataclasses.replace(scene, links=tuple(link_of(link) for link in scene.links), sliders=sliders)
+
+    def mechanism(self, base: Mechanism, rows_each: int) -> FamilyMechanism:
+        """The members' mechanism over their rows, ``rows_each`` to a member."""
+        return FamilyMechanism(base.scene, {key: xy[:, 0] + 1j * xy[:, 1] for key, xy in self.points.items()},
+                               rows_each, {name: xy[:, 0] + 1j * xy[:, 1] for name, xy in self.slides.items()})
 
 
-def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike], *, steps: int, start: float | None = None,
-                 stop: float | None = None) -> FamilyResult:
+def member_scene(scene: Scene, points: Mapping[str, npt.ArrayLike], k: int,
+                 slides: Mapping[str, npt.ArrayLike] | None = None) -> Scene:
+    """Member ``k`` of a family as a scene of its own: ``scene`` with the varied points' (and slide lines')
+    coordinates of row ``k``."""
+    return read_dimensions(scene, points, slides).scene(scene, k)
+
+
+def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike] | None = None, *, steps: int,
+                 start: float | None = None, stop: float | None = None,
+                 slides: Mapping[str, npt.ArrayLike] | None = None) -> FamilyResult:
     """Sweep every member of the family over ``steps`` rows of the input from ``start`` to ``stop`` (the input's
     unit; without them, the range ``sweep`` takes for the scene itself: a full turn, or its input's range).
 
     ``points``: the varied points' local coordinates, each an array of (members, 2), keyed ``B@3`` (point B of
-    link 3) or ``B`` where one link has B. Every member is the scene with those coordinates.
+    link 3) or ``B`` where one link has B. ``slides``: the varied slide lines, each the point its line passes
+    through in its guide's frame, an array of (members, 2), keyed by slider (``"14"``). Every member is the scene
+    with those coordinates.
     """
     t0 = time.perf_counter()
     if scene.cams or scene.gears:
         raise SceneError(f"{scene.source}: sweep_family: the scene has "
                          f"{'cams' if scene.cams else 'gears'}, whose equivalent links are made from the pair's "
                          "dimensions when the scene is read; sweep each member as a scene of its own")
-    varied, count = _read_points(scene, points)
+    dimensions = read_dimensions(scene, points, slides)
+    count = dimensions.count
     prepared = prepared_sweep(scene)
     if (start is None) != (stop is None):
         raise SceneError("sweep_family: start and stop: give both, or neither for the scene's own range")
@@ -142,9 +178,9 @@ def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike], *, steps: in
         if not all(type(group) in _BATCHED for group in prepared.plan.groups):
             ends = (prepared.default_range.start, prepared.default_range.stop) if start is None or stop is None \
                 else (start, stop)
-            return _member_by_member(scene, points, varied, count, steps, ends, grid, t0)
+            return _member_by_member(scene, dimensions, steps, ends, grid, t0)
         t1 = time.perf_counter()
-        batch = _batch(prepared, varied, count, grid)
+        batch = _batch(prepared, dimensions, grid)
     t2 = time.perf_counter()
     rows = int(grid.shown.sum())
     columns = tuple(FamilyColumn(c.name, c.kind, c.values.reshape(count, rows), c.valid.reshape(count, rows))
@@ -152,16 +188,14 @@ def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike], *, steps: in
     inputs = Column(batch.input.name, "input", batch.input.values[:rows], batch.input.valid[:rows])
     timing = {"prepare_s": prepared.prepare_s, "range_s": t1 - t0, "execute_s": t2 - t1,
               "total_s": prepared.prepare_s + t2 - t0}
-    return FamilyResult(scene, {k: np.asarray(v, np.float64) for k, v in points.items()}, inputs, columns,
-                        batch.status.reshape(count, rows), True, grid.notices, timing, batch, grid)
+    return FamilyResult(scene, dimensions, inputs, columns, batch.status.reshape(count, rows), True, grid.notices,
+                        timing, batch, grid)
 
 
-def _batch(prepared: PreparedSweep, varied: Mapping[tuple[str, str], Reals], count: int,
-           grid: InputGrid) -> SweepResult:
+def _batch(prepared: PreparedSweep, dimensions: Dimensions, grid: InputGrid) -> SweepResult:
     """Every member's rows in one run of the plan and the construction."""
-    n = len(grid.values)
-    mechanism = FamilyMechanism(prepared.mechanism.scene, {key: xy[:, 0] + 1j * xy[:, 1] for key, xy in varied.items()},
-                                n)
+    n, count = len(grid.values), dimensions.count
+    mechanism = dimensions.mechanism(prepared.mechanism, n)
     policy = FamilyContinuity(grid.seed_row, n, seed_labels(prepared.mechanism, prepared.plan, prepared.seed),
                               grid.periodic)
     internal = np.tile(grid.internal, count)
@@ -190,13 +224,13 @@ def _input_unit(scene: Scene) -> str:
     return scene.units.length if isinstance(scene.input, SliderInput) else scene.units.angle
 
 
-def _member_by_member(scene: Scene, points: Mapping[str, npt.ArrayLike], varied: Mapping[tuple[str, str], Reals],
-                      count: int, steps: int, ends: tuple[float, float], grid: InputGrid, t0: float) -> FamilyResult:
+def _member_by_member(scene: Scene, dimensions: Dimensions, steps: int, ends: tuple[float, float], grid: InputGrid,
+                      t0: float) -> FamilyResult:
     """A family whose plan has groups solved by Newton's method: each member swept as a scene of its own over the
     scene's range ``ends``, its assembly the one nearest the scene's ``[guess]`` (as ``solve`` takes it)."""
     members = []
-    for k in range(count):
-        member = _scene_of(scene, {key: (float(xy[k, 0]), float(xy[k, 1])) for key, xy in varied.items()})
+    for k in range(dimensions.count):
+        member = dimensions.scene(scene, k)
         try:
             members.append(run_sweep(prepare_sweep(member), steps=steps, start=ends[0], stop=ends[1]))
         except KinepolyError as error:
@@ -208,18 +242,21 @@ def _member_by_member(scene: Scene, points: Mapping[str, npt.ArrayLike], varied:
                                  np.stack([m.columns[j].valid for m in members]))
                     for j, c in enumerate(members[0].columns))
     status = np.stack([m.status for m in members])
-    return FamilyResult(scene, {k: np.asarray(v, np.float64) for k, v in points.items()}, members[0].input, columns,
-                        status, False, grid.notices, {"total_s": time.perf_counter() - t0}, tuple(members))
+    return FamilyResult(scene, dimensions, members[0].input, columns, status, False, grid.notices,
+                        {"total_s": time.perf_counter() - t0}, tuple(members))
 
 
-def _read_points(scene: Scene, points: Mapping[str, npt.ArrayLike]) -> tuple[dict[tuple[str, str], Reals], int]:
-    """The varied points keyed (link, point), each (members, 2), and how many members; SceneError naming the key
-    and what to change where one is not a point of the scene or not an array of (members, 2) finite numbers."""
-    if not points:
-        raise SceneError("sweep_family: points: give at least one point to vary, as {'B@3': [[x, y], ...]}")
-    out: dict[tuple[str, str], Reals] = {}
-    count: int | None = None
-    for key, value in points.items():
+def read_dimensions(scene: Scene, points: Mapping[str, npt.ArrayLike] | None,
+                    slides: Mapping[str, npt.ArrayLike] | None = None) -> Dimensions:
+    """The varied points keyed (link, point) and slide lines keyed by slider, each (members, 2); SceneError naming
+    the key and what to change where one is not a point of one link (or a slider) of the scene, or not an array of
+    (members, 2) finite numbers, or where they differ in their number of members."""
+    if not points and not slides:
+        raise SceneError("sweep_family: points: give at least one point (or slide line) to vary, as "
+                         "{'B@3': [[x, y], ...]}")
+    counts: list[tuple[str, int]] = []
+    varied: dict[tuple[str, str], Reals] = {}
+    for key, value in (points or {}).items():
         name = LinkPoint.parse(key)
         owners = [link.name for link in scene.links if name.point in link.point_names]
         if name.link is None and len(owners) == 1:
@@ -228,30 +265,32 @@ def _read_points(scene: Scene, points: Mapping[str, npt.ArrayLike]) -> tuple[dic
             which = ", ".join(f"{name.point}@{o}" for o in owners) or "none: no link has that point"
             raise SceneError(f"sweep_family: points: {key!r} is not a point of one link of the scene; the links' "
                              f"points of that name are: {which}")
-        try:
-            xy = np.asarray(value, np.float64)
-        except (TypeError, ValueError) as error:
-            raise SceneError(f"sweep_family: points: {key!r}: expected an array of (members, 2) numbers ({error})") \
-                from error
-        if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] == 0:
-            raise SceneError(f"sweep_family: points: {key!r}: expected an array of (members, 2) numbers, one [x, y] "
-                             f"per member; got the shape {xy.shape}")
-        if not np.isfinite(xy).all():
-            raise SceneError(f"sweep_family: points: {key!r}: member {int(np.flatnonzero(~np.isfinite(xy))[0]) // 2} "
-                             "has a coordinate that is not a finite number")
-        if count is not None and xy.shape[0] != count:
-            raise SceneError(f"sweep_family: points: {key!r} has {xy.shape[0]} members, the points before it "
-                             f"{count}: give every point one row per member")
-        count = xy.shape[0]
-        out[(name.link, name.point)] = xy
-    assert count is not None
-    return out, count
+        varied[(name.link, name.point)] = _coordinates("points", key, value, counts)
+    lines: dict[str, Reals] = {}
+    names = [s.name for s in scene.sliders]
+    for key, value in (slides or {}).items():
+        if key not in names:
+            raise SceneError(f"sweep_family: slides: {key!r} is not a slider of the scene; its sliders are: "
+                             f"{', '.join(names) or 'none'}")
+        lines[key] = _coordinates("slides", key, value, counts)
+    return Dimensions(varied, lines, counts[0][1])
 
 
-def _scene_of(scene: Scene, coordinates: Mapping[tuple[str, str], tuple[float, float]]) -> Scene:
-    """``scene`` with the points ``coordinates`` (keyed (link, point)) moved."""
-    def link_of(link: LinkSpec) -> LinkSpec:
-        moved = tuple(dataclasses.replace(p, local=coordinates[(link.name, p.name)], polar=None)
-                      if (link.name, p.name) in coordinates else p for p in link.points)
-        return dataclasses.replace(link, points=moved)
-    return dataclasses.replace(scene, links=tuple(link_of(link) for link in scene.links))
+def _coordinates(table: str, key: str, value: npt.ArrayLike, counts: list[tuple[str, int]]) -> Reals:
+    """``value`` as (members, 2) finite numbers, as many members as ``counts`` holds already (appended to it)."""
+    try:
+        xy = np.asarray(value, np.float64)
+    except (TypeError, ValueError) as error:
+        raise SceneError(f"sweep_family: {table}: {key!r}: expected an array of (members, 2) numbers ({error})") \
+            from error
+    if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] == 0:
+        raise SceneError(f"sweep_family: {table}: {key!r}: expected an array of (members, 2) numbers, one [x, y] per "
+                         f"member; got the shape {xy.shape}")
+    if not np.isfinite(xy).all():
+        raise SceneError(f"sweep_family: {table}: {key!r}: member {int(np.flatnonzero(~np.isfinite(xy))[0]) // 2} "
+                         "has a coordinate that is not a finite number")
+    if counts and xy.shape[0] != counts[0][1]:
+        raise SceneError(f"sweep_family: {table}: {key!r} has {xy.shape[0]} members, {counts[0][0]!r} before it "
+                         f"{counts[0][1]}: give every point and slide line one row per member")
+    counts.append((key, xy.shape[0]))
+    return xy
