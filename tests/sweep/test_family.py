@@ -328,3 +328,21 @@ def test_a_members_scene_is_the_scene_with_its_row_of_coordinates() -> None:
     assert member.link("3").point("C") == scene.link("3").point("C")
     assert member.link("2") == scene.link("2") and member.sliders[0].through == (0.0, -5.0)
     assert member.sliders[0].angle_rad == scene.sliders[0].angle_rad and member.guess == scene.guess
+
+
+@pytest.mark.parametrize("name", ["four-bar", "shaper", "centers-six-bar"])
+def test_a_members_positions_are_its_own_sweeps(name: str) -> None:
+    """A member's link poses (its drawings' skeleton, its rows' [guess]) are those of the member swept alone."""
+    from kinepoly.sweep.rows import row_guesses
+
+    scene = _scene(name)
+    family = sweep_family(scene, _varied(scene, 2, 0.01, np.random.default_rng(11)), steps=24)
+    for k in range(2):
+        member, alone = family.member(k), _alone(family, scene, k, 24)
+        size = max(abs(complex(at)) for _, points in alone.skeleton for at in points)
+        for (link, mine), (other, theirs) in zip(member.skeleton, alone.skeleton, strict=True):
+            assert link == other and max(abs(a - b) for a, b in zip(mine, theirs, strict=True)) <= 1e-12 * size
+        for mine_row, their_row in zip(row_guesses(member), row_guesses(alone), strict=True):
+            assert (mine_row is None) == (their_row is None)
+            for (name_a, a), (name_b, b) in zip(mine_row or (), their_row or (), strict=True):
+                assert name_a == name_b and abs(complex(*a) - complex(*b)) <= 1e-12 * size

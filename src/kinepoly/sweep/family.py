@@ -28,9 +28,10 @@ import numpy.typing as npt
 
 from kinepoly.engine.assembly import FamilyContinuity, seed_labels
 from kinepoly.engine.groups import CarriedDyad, DriveGroup, Dyad
-from kinepoly.engine.position import solve_positions
+from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import KinepolyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.family import FamilyMechanism
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.notice import Notice
@@ -215,9 +216,20 @@ def _member_of_batch(family: FamilyResult, batch: SweepResult, k: int) -> SweepR
     ok = np.ones(len(grid.values), np.bool_)
     ok[grid.shown] = family.status[k] < STATUS.index("cannot-assemble")
     notices = tuple(gap_notices(grid, ok, family.input.name, _input_unit(family.scene)))
-    return SweepResult(family.member_scene(k), family.input, columns, family.status[k],
-                       warnings, notices, grid.periodic, float(grid.values[grid.seed_row]), grid.seed_row,
-                       shown=grid.shown)
+    scene = family.member_scene(k)
+    return SweepResult(scene, family.input, columns, family.status[k], warnings, notices, grid.periodic,
+                       float(grid.values[grid.seed_row]), grid.seed_row,
+                       positions=_member_positions(batch, scene, k, len(grid.values)), shown=grid.shown)
+
+
+def _member_positions(batch: SweepResult, scene: Scene, k: int, rows_each: int) -> Positions:
+    """Member ``k``'s rows of the family's positions, on the member's own mechanism (its drawings and its rows'
+    ``[guess]``, ``sweep.rows``, read them)."""
+    assert batch.positions is not None
+    rows = slice(k * rows_each, (k + 1) * rows_each)
+    found = batch.positions
+    poses = {link: ArrayPose(pose.origin[rows], pose.rotation[rows], pose.still) for link, pose in found.poses.items()}
+    return Positions(Mechanism(scene), poses, found.ok[rows], values=tuple(v[rows] for v in found.values))
 
 
 def _input_unit(scene: Scene) -> str:
