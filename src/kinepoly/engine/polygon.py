@@ -36,6 +36,7 @@ from kinepoly.geom.lines import Line as StepLine
 from kinepoly.geom.tolerances import COLLINEAR_SIN, PARALLEL_SIN
 from kinepoly.geom.vec import magnitude, phase
 from kinepoly.model.array_pose import local_point
+from kinepoly.model.family import FamilyMechanism
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.link_point import LinkPoint, point_of
 
@@ -306,10 +307,34 @@ class Polygon:
         local = {m.label: self._local(link, m.label) for m in members}
         here = self._local(link, label)
         if not (isinstance(here, complex) and all(isinstance(c, complex) for c in local.values())):
-            return None  # a family's link whose points differ by row (model.family): built row by row
+            return self._family_image(link, label, members, pairs)
         first, second = pairs[0] if len(pairs) == 1 else max(
             pairs, key=lambda pair: _key(local[pair[0].label], local[pair[1].label], here))
         return first.label, second.label, _similar(local[first.label], local[second.label], here, label, link)
+
+    def _family_image(self, link: str, label: str, members: list[Member],
+                      pairs: list[tuple[Member, Member]]) -> tuple[str, str, complex] | None:
+        """``_rigid_image`` of a family's link whose points differ between the members (``model.family``): the
+        factor member by member (the link's shape is the member's), repeated over its rows; None (row by row) where
+        the members would build the image from different pairs of tips."""
+        mechanism = self.mechanism
+        assert isinstance(mechanism, FamilyMechanism)
+        local = {m.label: mechanism.member_local(link, point_of(m.label)) for m in members}
+        here = mechanism.member_local(link, point_of(label))
+        chosen: tuple[Member, Member] | None = None
+        factors = []
+        for k in range(len(here)):
+            at = complex(here[k])
+            pair = pairs[0] if len(pairs) == 1 else max(
+                pairs, key=lambda p: _key(complex(local[p[0].label][k]), complex(local[p[1].label][k]), at))
+            if chosen is not None and pair != chosen:
+                return None
+            chosen = pair
+            factors.append(_similar(complex(local[pair[0].label][k]), complex(local[pair[1].label][k]), at, label,
+                                    link))
+        assert chosen is not None
+        factor = np.repeat(np.array(factors, np.complex128), mechanism.rows_each)
+        return chosen[0].label, chosen[1].label, factor  # type: ignore[return-value]  # per row in a family
 
     def _local(self, link: str, label: str) -> complex:
         return local_point(self.mechanism.local(link, point_of(label)))

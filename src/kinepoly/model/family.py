@@ -70,6 +70,18 @@ class FamilyMechanism(Mechanism):
             return found  # type: ignore[return-value]
         return super().local(link, point)
 
+    @property
+    def members(self) -> int:
+        """How many members the family has."""
+        return len(next(iter((*self.varied.values(), *self.slides.values()))))
+
+    def member_local(self, link: str, point: str) -> Points:
+        """``point``'s own coordinates in ``link`` as x + iy, one per member."""
+        found = self.varied.get((link, point))
+        if found is not None:
+            return found
+        return np.full(self.members, complex(*super().local(link, point)))
+
     def distance(self, link: str, a: str, b: str) -> float:
         """|ab| in ``link``'s own frame at every row where a or b is varied: worked out per member, then repeated."""
         key = (link, a, b)
