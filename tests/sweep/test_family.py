@@ -260,8 +260,8 @@ def test_a_range_needs_both_ends() -> None:
         sweep_family(_scene("four-bar"), {"B@3": [[120.0, 0.0]]}, steps=12, start=10.0)
 
 
-@pytest.mark.parametrize("name", ["gear-pair", "cam-roller-rocker"])
-def test_higher_pairs_are_refused_with_what_to_do(name: str) -> None:
+@pytest.mark.parametrize("name", ["cam-roller-rocker", "eccentric-cam-flat"])
+def test_cams_are_refused_with_what_to_do(name: str) -> None:
     scene = _scene(name)
     link = scene.links[1]
     with pytest.raises(SceneError, match="sweep each member as a scene of its own"):
@@ -346,3 +346,39 @@ def test_a_members_positions_are_its_own_sweeps(name: str) -> None:
             assert (mine_row is None) == (their_row is None)
             for (name_a, a), (name_b, b) in zip(mine_row or (), their_row or (), strict=True):
                 assert name_a == name_b and abs(complex(*a) - complex(*b)) <= 1e-12 * size
+
+
+# -- gears ------------------------------------------------------------------------------------------------------------
+
+def test_a_family_of_gear_pairs_turns_at_its_ratio() -> None:
+    """Two gears on frame pivots, scaled together (radii r2, r3 and the centres r2 + r3 apart): omega_3 is
+    -omega_2 r2 / r3 in every member, and the pin E at 45 from O3 runs at |omega_3| 45."""
+    scene = _scene("gear-pair")
+    r2 = np.array([30.0, 40.0, 50.0])
+    r3 = np.array([70.0, 60.0, 50.0])
+    family = sweep_family(scene, {"O3@1": np.c_[r2 + r3, np.zeros(3)]}, steps=24,
+                          radii={"23": np.c_[r2, r3]})
+    assert not family.batched and (family.status == 0).all()
+    omega = family.column("omega_3").values
+    assert np.allclose(omega, (-12.0 * r2 / r3)[:, None], rtol=1e-12, atol=0.0)
+    speed = np.hypot(family.column("v_E_x").values, family.column("v_E_y").values)
+    assert np.allclose(speed, np.abs(omega) * 45.0, rtol=1e-12, atol=0.0)
+    for k in range(3):
+        _assert_member_is_alone(family, scene, k, 24)
+
+
+@pytest.mark.parametrize(("radii", "message"), [
+    ({"32": [[40.0, 60.0]]}, "'32' is not a gear pair of the scene; its pairs are: 23"),
+    ({"23": [[40.0, 0.0]]}, "member 0 has a pitch radius that is not positive"),
+    ({"23": [[40.0, 60.0, 1.0]]}, "expected an array of (members, 2) numbers"),
+])
+def test_bad_radii_are_refused_by_name(radii: dict[str, object], message: str) -> None:
+    with pytest.raises(SceneError) as error:
+        sweep_family(_scene("gear-pair"), radii=radii, steps=12)  # type: ignore[arg-type]
+    assert message in str(error.value)
+
+
+def test_a_rack_has_no_radius_to_vary() -> None:
+    with pytest.raises(SceneError, match="has a rack"):
+        sweep_family(_scene("rack-pinion"), radii={kinepoly.load_scene(EXAMPLES / "rack-pinion.toml").gears[0].name:
+                                                  [[40.0, 60.0]]}, steps=12)

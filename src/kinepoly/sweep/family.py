@@ -5,15 +5,17 @@ scene's topology (its links, joints, input and ``[find]``) and differ in the coo
 of their links, given as arrays over the members: ``{"B@3": [[120, 0], [118, 0], ...]}`` is point B of
 link 3 in link 3's own frame, one row per member (``B`` alone where one link has B); and in the slide lines
 of some sliders: ``slides={"14": [[0, 20], [0, 25], ...]}`` is the point the line of slider 14 passes through,
-in its guide's frame (its angle stays the scene's).
+in its guide's frame (its angle stays the scene's); and in the pitch radii of some gear pairs:
+``radii={"23": [[40, 60], [42, 63], ...]}`` (both gears' radii, one row per member; the caller keeps each pair's
+centres r2 + r3 apart, as the scene itself must).
 
 Where the position plan is made of dyads, carried dyads and drive groups, the plan runs once for every
 row of every member (``model.family``): each member's rows follow, from the row at the scene's own
 input, the assembly the scene's own solve takes there (the same label, ``engine.assembly.seed_labels``:
 an open four-bar stays open). A mechanism with groups solved by Newton's method (triads, cylinders
 inside larger groups, planet groups) is swept member by member, each member a scene of its own solved
-as ``sweep`` solves it. Scenes with cams or gears are refused: their equivalent links are made from the
-pair's dimensions when the scene is read.
+as ``sweep`` solves it; so is a geared mechanism (a gear pair is placed by rolling). Scenes with cams are
+refused: a cam's equivalent link is made from the pair's dimensions when the scene is read.
 """
 
 from __future__ import annotations
@@ -36,7 +38,7 @@ from kinepoly.model.family import FamilyMechanism
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.notice import Notice
 from kinepoly.scene.link_point import LinkPoint
-from kinepoly.scene.spec import LinkSpec, Scene, SliderInput
+from kinepoly.scene.spec import GearSpec, LinkSpec, PitchCircle, Scene, SliderInput
 from kinepoly.sweep.inputs import InputGrid, input_grid
 from kinepoly.sweep.result import STATUS, Column, Kind, SweepResult
 from kinepoly.sweep.run import PreparedSweep, execute_rows, gap_notices, prepare_sweep, prepared_sweep, run_sweep
@@ -125,6 +127,8 @@ class Dimensions:
     points: Mapping[tuple[str, str], Reals]
     slides: Mapping[str, Reals]
     count: int
+    radii: Mapping[str, Reals] = field(default_factory=dict)
+    """The gear pairs' pitch radii, keyed by pair, each (members, 2)."""
 
     def scene(self, scene: Scene, k: int) -> Scene:
         """Member ``k`` as a scene of its own: ``scene`` with member ``k``'s coordinates."""
@@ -135,9 +139,17 @@ class Dimensions:
             moved = tuple(dataclasses.replace(p, local=row(self.points[(link.name, p.name)]), polar=None)
                           if (link.name, p.name) in self.points else p for p in link.points)
             return dataclasses.replace(link, points=moved)
+        def gear_of(gear: GearSpec) -> GearSpec:
+            if gear.name not in self.radii:
+                return gear
+            circles = [curve for curve in gear.pitch if isinstance(curve, PitchCircle)]  # both (read_dimensions)
+            first, second = (PitchCircle(curve.center, r)
+                             for curve, r in zip(circles, row(self.radii[gear.name]), strict=True))
+            return dataclasses.replace(gear, pitch=(first, second))
         sliders = tuple(dataclasses.replace(s, through=row(self.slides[s.name])) if s.name in self.slides else s
                         for s in scene.sliders)
-        return dataclasses.replace(scene, links=tuple(link_of(link) for link in scene.links), sliders=sliders)
+        return dataclasses.replace(scene, links=tuple(link_of(link) for link in scene.links), sliders=sliders,
+                                   gears=tuple(gear_of(gear) for gear in scene.gears))
 
     def mechanism(self, base: Mechanism, rows_each: int) -> FamilyMechanism:
         """The members' mechanism over their rows, ``rows_each`` to a member."""
@@ -146,29 +158,30 @@ class Dimensions:
 
 
 def member_scene(scene: Scene, points: Mapping[str, npt.ArrayLike], k: int,
-                 slides: Mapping[str, npt.ArrayLike] | None = None) -> Scene:
-    """Member ``k`` of a family as a scene of its own: ``scene`` with the varied points' (and slide lines')
-    coordinates of row ``k``."""
-    return read_dimensions(scene, points, slides).scene(scene, k)
+                 slides: Mapping[str, npt.ArrayLike] | None = None,
+                 radii: Mapping[str, npt.ArrayLike] | None = None) -> Scene:
+    """Member ``k`` of a family as a scene of its own: ``scene`` with the varied points' (slide lines', pitch
+    radii's) values of row ``k``."""
+    return read_dimensions(scene, points, slides, radii).scene(scene, k)
 
 
 def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike] | None = None, *, steps: int,
                  start: float | None = None, stop: float | None = None,
-                 slides: Mapping[str, npt.ArrayLike] | None = None) -> FamilyResult:
+                 slides: Mapping[str, npt.ArrayLike] | None = None,
+                 radii: Mapping[str, npt.ArrayLike] | None = None) -> FamilyResult:
     """Sweep every member of the family over ``steps`` rows of the input from ``start`` to ``stop`` (the input's
     unit; without them, the range ``sweep`` takes for the scene itself: a full turn, or its input's range).
 
     ``points``: the varied points' local coordinates, each an array of (members, 2), keyed ``B@3`` (point B of
     link 3) or ``B`` where one link has B. ``slides``: the varied slide lines, each the point its line passes
-    through in its guide's frame, an array of (members, 2), keyed by slider (``"14"``). Every member is the scene
-    with those coordinates.
+    through in its guide's frame, an array of (members, 2), keyed by slider (``"14"``). ``radii``: the varied gear
+    pairs' pitch radii, (members, 2), keyed by pair (``"23"``). Every member is the scene with those values.
     """
     t0 = time.perf_counter()
-    if scene.cams or scene.gears:
-        raise SceneError(f"{scene.source}: sweep_family: the scene has "
-                         f"{'cams' if scene.cams else 'gears'}, whose equivalent links are made from the pair's "
-                         "dimensions when the scene is read; sweep each member as a scene of its own")
-    dimensions = read_dimensions(scene, points, slides)
+    if scene.cams:
+        raise SceneError(f"{scene.source}: sweep_family: the scene has cams, whose equivalent links are made from "
+                         "the pair's dimensions when the scene is read; sweep each member as a scene of its own")
+    dimensions = read_dimensions(scene, points, slides, radii)
     count = dimensions.count
     prepared = prepared_sweep(scene)
     if (start is None) != (stop is None):
@@ -259,13 +272,14 @@ def _member_by_member(scene: Scene, dimensions: Dimensions, steps: int, ends: tu
 
 
 def read_dimensions(scene: Scene, points: Mapping[str, npt.ArrayLike] | None,
-                    slides: Mapping[str, npt.ArrayLike] | None = None) -> Dimensions:
+                    slides: Mapping[str, npt.ArrayLike] | None = None,
+                    radii: Mapping[str, npt.ArrayLike] | None = None) -> Dimensions:
     """The varied points keyed (link, point) and slide lines keyed by slider, each (members, 2); SceneError naming
     the key and what to change where one is not a point of one link (or a slider) of the scene, or not an array of
     (members, 2) finite numbers, or where they differ in their number of members."""
-    if not points and not slides:
-        raise SceneError("sweep_family: points: give at least one point (or slide line) to vary, as "
-                         "{'B@3': [[x, y], ...]}")
+    if not points and not slides and not radii:
+        raise SceneError("sweep_family: points: give at least one point (or slide line, or pitch radius) to vary, "
+                         "as {'B@3': [[x, y], ...]}")
     counts: list[tuple[str, int]] = []
     varied: dict[tuple[str, str], Reals] = {}
     for key, value in (points or {}).items():
@@ -285,7 +299,21 @@ def read_dimensions(scene: Scene, points: Mapping[str, npt.ArrayLike] | None,
             raise SceneError(f"sweep_family: slides: {key!r} is not a slider of the scene; its sliders are: "
                              f"{', '.join(names) or 'none'}")
         lines[key] = _coordinates("slides", key, value, counts)
-    return Dimensions(varied, lines, counts[0][1])
+    pitch: dict[str, Reals] = {}
+    pairs = {gear.name: gear for gear in scene.gears}
+    for key, value in (radii or {}).items():
+        gear = pairs.get(key)
+        if gear is None:
+            raise SceneError(f"sweep_family: radii: {key!r} is not a gear pair of the scene; its pairs are: "
+                             f"{', '.join(pairs) or 'none'}")
+        if not all(isinstance(curve, PitchCircle) for curve in gear.pitch):
+            raise SceneError(f"sweep_family: radii: {key!r} has a rack (a pitch line, no radius); expected a pair "
+                             "of two pitch circles")
+        pitch[key] = _coordinates("radii", key, value, counts)
+        if not (pitch[key] > 0.0).all():
+            raise SceneError(f"sweep_family: radii: {key!r}: member {int(np.flatnonzero(pitch[key] <= 0.0)[0]) // 2} "
+                             "has a pitch radius that is not positive")
+    return Dimensions(varied, lines, counts[0][1], pitch)
 
 
 def _coordinates(table: str, key: str, value: npt.ArrayLike, counts: list[tuple[str, int]]) -> Reals:
@@ -303,6 +331,6 @@ def _coordinates(table: str, key: str, value: npt.ArrayLike, counts: list[tuple[
                          "has a coordinate that is not a finite number")
     if counts and xy.shape[0] != counts[0][1]:
         raise SceneError(f"sweep_family: {table}: {key!r} has {xy.shape[0]} members, {counts[0][0]!r} before it "
-                         f"{counts[0][1]}: give every point and slide line one row per member")
+                         f"{counts[0][1]}: give every point, slide line and pair of radii one row per member")
     counts.append((key, xy.shape[0]))
     return xy
