@@ -1,5 +1,6 @@
-"""Start-up: ``import kinepoly`` loads none of the solve (its public names are imported when first used), and
-``kinepoly --version`` reads the package's metadata only when it is given."""
+"""Start-up: ``import kinepoly`` loads none of the solve (its public names are imported when first used),
+``kinepoly --version`` reads the package's metadata only when it is given, and ``kinepoly solve`` loads the
+instant centers' modules only for a scene that asks for centers, and no drawing library at all."""
 
 from __future__ import annotations
 
@@ -11,7 +12,14 @@ from pathlib import Path
 
 import kinepoly
 
-SRC = str(Path(__file__).resolve().parents[2] / "src")
+ROOT = Path(__file__).resolve().parents[2]
+SRC = str(ROOT / "src")
+FOUR_BAR = str(ROOT / "examples" / "four-bar.toml")  # no [find] instant_centers
+CENTERS_SIX_BAR = str(ROOT / "examples" / "centers-six-bar.toml")  # instant_centers = "all"
+
+CENTER_MODULES = {"kinepoly.engine.centers", "kinepoly.engine.kennedy", "kinepoly.present.centers"}
+"""Aronhold-Kennedy's construction and its report: needed only where a scene asks for instant centers."""
+DRAWING_LIBRARIES = {"matplotlib", "shapely", "svgwrite", "ezdxf"}
 
 
 def _modules(code: str) -> set[str]:
@@ -35,3 +43,23 @@ def test_every_public_name_is_there() -> None:
         assert getattr(kinepoly, name) is not None
     assert kinepoly.solve.__module__ == "kinepoly.solution"
     assert kinepoly.Scene.__name__ == "Scene"
+
+
+def _solve_modules(scene: str, *options: str) -> set[str]:
+    """The modules loaded by ``kinepoly solve scene options`` run in a fresh process through the command line."""
+    argv = ["solve", scene, *options]
+    return _modules(f"import contextlib, io, kinepoly.cli\nwith contextlib.redirect_stdout(io.StringIO()):\n"
+                    f"    assert kinepoly.cli.main({argv!r}) == 0")
+
+
+def test_solve_without_centers_loads_neither_their_modules_nor_a_drawing_library() -> None:
+    for options in ((), ("--json",), ("--steps",)):
+        loaded = _solve_modules(FOUR_BAR, *options)
+        assert "kinepoly.solution" in loaded and "kinepoly.present.report" in loaded  # it did solve
+        assert not (CENTER_MODULES | DRAWING_LIBRARIES) & loaded, options
+
+
+def test_solve_with_centers_loads_their_modules() -> None:
+    loaded = _solve_modules(CENTERS_SIX_BAR, "--json")
+    assert CENTER_MODULES <= loaded
+    assert not DRAWING_LIBRARIES & loaded
