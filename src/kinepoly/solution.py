@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -23,7 +24,6 @@ from kinepoly.check import (
 )
 from kinepoly.check.analytic import AnalyticSolution, solve_analytic
 from kinepoly.check.compare import CheckReport, Quantity, compare
-from kinepoly.engine.center_values import InstantCenters
 from kinepoly.engine.construct import Wanted, construct_row
 from kinepoly.engine.contacts import Contact, contact_links
 from kinepoly.engine.groups import PositionPlan
@@ -41,6 +41,9 @@ from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
 from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
+
+if TYPE_CHECKING:  # Aronhold-Kennedy's modules are loaded only for a scene that asks for instant centers
+    from kinepoly.engine.center_values import InstantCenters
 
 __all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "wanted", "what_is_asked"]
 

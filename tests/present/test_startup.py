@@ -17,7 +17,8 @@ SRC = str(ROOT / "src")
 FOUR_BAR = str(ROOT / "examples" / "four-bar.toml")  # no [find] instant_centers
 CENTERS_SIX_BAR = str(ROOT / "examples" / "centers-six-bar.toml")  # instant_centers = "all"
 
-CENTER_MODULES = {"kinepoly.engine.centers", "kinepoly.engine.kennedy", "kinepoly.present.centers"}
+CENTER_MODULES = {"kinepoly.engine.centers", "kinepoly.engine.kennedy", "kinepoly.engine.center_values",
+                  "kinepoly.engine.center_velocity", "kinepoly.engine.circle_diagram", "kinepoly.present.centers"}
 """Aronhold-Kennedy's construction and its report: needed only where a scene asks for instant centers."""
 DRAWING_LIBRARIES = {"matplotlib", "shapely", "svgwrite", "ezdxf"}
 
