@@ -17,6 +17,7 @@ import string
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cache
 from importlib import resources
 from pathlib import Path
 from types import MappingProxyType
@@ -114,6 +115,14 @@ def _packaged_text(code: str) -> str:
     return resources.files("kinepoly.present").joinpath("messages", f"{code}.toml").read_text(encoding="utf-8")
 
 
+@cache
+def _packaged(code: str) -> tuple[str, Mapping[str, Any]]:
+    """A shipped catalogue's text and its keys, flattened: each shipped file is read and parsed once a process
+    (English is every catalogue's reference as well as a language of its own)."""
+    text = _packaged_text(code)
+    return text, MappingProxyType(_read(text, f"{code}.toml"))
+
+
 def _check(data: dict[str, Any], reference: Mapping[str, str], text: str, source: str) -> list[str]:
     problems = []
 
@@ -145,7 +154,7 @@ def _check(data: dict[str, Any], reference: Mapping[str, str], text: str, source
 
 
 def _english() -> dict[str, str]:
-    data = _read(_packaged_text("en"), "en.toml")
+    _, data = _packaged("en")
     return {key: value for key, value in data.items() if key not in _META}
 
 
@@ -162,14 +171,16 @@ def load_catalogue(lang: str = "en", messages: str | Path | None = None) -> Cata
             raise CatalogueError(f"--lang {lang}: no such language; expected one of {', '.join(languages)}, or a "
                                  f"catalogue of your own with --messages FILE (copy en.toml from "
                                  f"{resources.files('kinepoly.present').joinpath('messages')} and translate it)")
-        source, text = f"{lang}.toml", _packaged_text(lang)
+        source = f"{lang}.toml"
+        text, parsed = _packaged(lang)
+        data = dict(parsed)
     else:
         source = str(messages)
         try:
             text = read_text(source, "a message catalogue")
         except SceneError as error:
             raise CatalogueError(f"--messages {messages}: cannot read the catalogue: {error}") from None
-    data = _read(text, source)
+        data = _read(text, source)
     problems = _check(data, reference, text, source)
     base: dict[str, Any] = {}
     if "extends" in data:
@@ -177,7 +188,7 @@ def load_catalogue(lang: str = "en", messages: str | Path | None = None) -> Cata
         if parent not in languages:
             problems.append(f"{source}: extends: no such language {parent!r}; expected one of {', '.join(languages)}")
         else:
-            base = _read(_packaged_text(parent), f"{parent}.toml")
+            base = dict(_packaged(parent)[1])
     merged = {**base, **{k: v for k, v in data.items() if k != "extends"}}
     missing = [key for key in reference if key not in merged]
     if missing:
