@@ -39,6 +39,11 @@ def test_the_command_line_reads_no_metadata_unless_asked() -> None:
     assert "importlib.metadata" not in _modules("import kinepoly.cli; kinepoly.cli.parser()")
 
 
+def test_building_the_command_line_loads_no_command() -> None:
+    loaded = _modules("import kinepoly.cli; kinepoly.cli.parser()")
+    assert not {"numpy", "kinepoly.present.scales", "kinepoly.scene.loader", "tempfile", "socket"} & loaded
+
+
 def test_every_public_name_is_there() -> None:
     for name in kinepoly.__all__:
         assert getattr(kinepoly, name) is not None
