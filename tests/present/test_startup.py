@@ -23,8 +23,8 @@ CENTER_MODULES = {"kinepoly.engine.centers", "kinepoly.engine.kennedy", "kinepol
 DRAWING_LIBRARIES = {"matplotlib", "shapely", "svgwrite", "ezdxf"}
 
 
-def _modules(code: str) -> set[str]:
-    env = {**os.environ, "PYTHONPATH": SRC}
+def _modules(code: str, **environment: str) -> set[str]:
+    env = {**os.environ, "PYTHONPATH": SRC, **environment}
     out = subprocess.run([sys.executable, "-c", code + "\nimport json, sys; print(json.dumps(sorted(sys.modules)))"],
                          env=env, capture_output=True, text=True, check=True).stdout
     return set(json.loads(out.splitlines()[-1]))
@@ -51,11 +51,11 @@ def test_every_public_name_is_there() -> None:
     assert kinepoly.Scene.__name__ == "Scene"
 
 
-def _solve_modules(scene: str, *options: str) -> set[str]:
+def _solve_modules(scene: str, *options: str, **environment: str) -> set[str]:
     """The modules loaded by ``kinepoly solve scene options`` run in a fresh process through the command line."""
     argv = ["solve", scene, *options]
     return _modules(f"import contextlib, io, kinepoly.cli\nwith contextlib.redirect_stdout(io.StringIO()):\n"
-                    f"    assert kinepoly.cli.main({argv!r}) == 0")
+                    f"    assert kinepoly.cli.main({argv!r}) == 0", **environment)
 
 
 def test_solve_without_centers_loads_neither_their_modules_nor_a_drawing_library() -> None:
@@ -69,3 +69,11 @@ def test_solve_with_centers_loads_their_modules() -> None:
     loaded = _solve_modules(CENTERS_SIX_BAR, "--json")
     assert CENTER_MODULES <= loaded
     assert not DRAWING_LIBRARIES & loaded
+
+
+def test_a_later_solve_reads_the_catalogue_from_the_cache(tmp_path: Path) -> None:
+    first = _solve_modules(FOUR_BAR, "--json", XDG_CACHE_HOME=str(tmp_path))
+    assert "importlib.resources" in first  # the shipped TOML read, checked, and kept
+    assert (tmp_path / "kinepoly" / "catalogue-en.marshal").is_file()
+    later = _solve_modules(FOUR_BAR, "--json", XDG_CACHE_HOME=str(tmp_path))
+    assert not {"importlib.resources", "tempfile"} & later

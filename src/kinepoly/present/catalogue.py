@@ -26,7 +26,6 @@ import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cache
-from importlib import resources
 from pathlib import Path
 from types import MappingProxyType
 from typing import IO, Any
@@ -84,6 +83,8 @@ def placeholders(message: str) -> set[str]:
 
 def packaged_languages() -> tuple[str, ...]:
     """The codes of the catalogues shipped with kinepoly."""
+    from importlib import resources  # the shipped files are read through it when a catalogue is not cached
+
     folder = resources.files("kinepoly.present").joinpath("messages")
     return tuple(sorted(entry.name[:-5] for entry in folder.iterdir() if entry.name.endswith(".toml")))
 
@@ -120,6 +121,8 @@ def _read(text: str, source: str) -> dict[str, Any]:
 
 
 def _packaged_text(code: str) -> str:
+    from importlib import resources
+
     return resources.files("kinepoly.present").joinpath("messages", f"{code}.toml").read_text(encoding="utf-8")
 
 
@@ -254,6 +257,8 @@ def load_catalogue(lang: str = "en", messages: str | Path | None = None) -> Cata
 
 
 def _checked(lang: str, messages: str | Path | None) -> Catalogue:
+    from importlib import resources
+
     reference = _english()
     languages = packaged_languages()
     if messages is None:
