@@ -9,7 +9,6 @@ from __future__ import annotations
 import contextlib
 import os
 import stat
-import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
@@ -43,6 +42,8 @@ def write_atomically(path: str | os.PathLike[str], write: Callable[[IO[Any]], No
         with open(target, "wb") if binary else open(target, "w", encoding="utf-8", newline="\n") as stream:
             write(stream)
         return
+    import tempfile  # loaded when a file is written: a command that only prints starts without it
+
     # the temporary name shortened: any name the file system holds can be written
     handle, temporary = tempfile.mkstemp(prefix=f".{target.name[:64]}.", suffix=".part", dir=target.parent)
     try:

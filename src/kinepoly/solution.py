@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -23,7 +24,6 @@ from kinepoly.check import (
 )
 from kinepoly.check.analytic import AnalyticSolution, solve_analytic
 from kinepoly.check.compare import CheckReport, Quantity, compare
-from kinepoly.engine.centers import InstantCenters, find_instant_centers, plan_instant_centers
 from kinepoly.engine.construct import Wanted, construct_row
 from kinepoly.engine.contacts import Contact, contact_links
 from kinepoly.engine.groups import PositionPlan
@@ -41,6 +41,9 @@ from kinepoly.model.pose import Pose
 from kinepoly.notice import Notice
 from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
+
+if TYPE_CHECKING:  # Aronhold-Kennedy's modules are loaded only for a scene that asks for instant centers
+    from kinepoly.engine.center_values import InstantCenters
 
 __all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "wanted", "what_is_asked"]
 
@@ -190,13 +193,21 @@ def solve(scene: Scene, *, load_s: float = 0.0) -> Solution:
     frame = localize(scene)  # every coordinate of the solve near the mechanism: translation costs nothing
     inner = mechanism if frame.is_identity else build_mechanism(frame.scene)
     asked = what_is_asked(inner)
-    center_plan = plan_instant_centers(inner) if scene.find.instant_centers else None
+    center_plan = None
+    if scene.find.instant_centers:  # Aronhold-Kennedy's modules are loaded only for a scene that asks for centers
+        from kinepoly.engine.centers import plan_instant_centers
+
+        center_plan = plan_instant_centers(inner)
     plan = make_plan(inner, needed_links(inner, asked) | set(center_plan.links_needed if center_plan else ()))
     built = construct_row(inner, plan, wanted(asked), origin=frame.origin, unit=scene.units.length, record=True)
     positions, pose, velocity, acceleration = built.positions, built.pose, built.velocity, built.acceleration
     t1 = time.perf_counter()
     _finite(inner, velocity, acceleration)
-    centers = find_instant_centers(inner, pose, center_plan, frame.origin) if center_plan else None
+    centers = None
+    if center_plan:
+        from kinepoly.engine.centers import find_instant_centers
+
+        centers = find_instant_centers(inner, pose, center_plan, frame.origin)
     t2 = time.perf_counter()
     where = describe_input(inner)
     transmissions = transmission_angles(positions, plan)

@@ -1,5 +1,6 @@
-"""Start-up: ``import kinepoly`` loads none of the solve (its public names are imported when first used), and
-``kinepoly --version`` reads the package's metadata only when it is given."""
+"""Start-up: ``import kinepoly`` loads none of the solve (its public names are imported when first used),
+``kinepoly --version`` reads the package's metadata only when it is given, and ``kinepoly solve`` loads the
+instant centers' modules only for a scene that asks for centers, and no drawing library at all."""
 
 from __future__ import annotations
 
@@ -11,11 +12,19 @@ from pathlib import Path
 
 import kinepoly
 
-SRC = str(Path(__file__).resolve().parents[2] / "src")
+ROOT = Path(__file__).resolve().parents[2]
+SRC = str(ROOT / "src")
+FOUR_BAR = str(ROOT / "examples" / "four-bar.toml")  # no [find] instant_centers
+CENTERS_SIX_BAR = str(ROOT / "examples" / "centers-six-bar.toml")  # instant_centers = "all"
+
+CENTER_MODULES = {"kinepoly.engine.centers", "kinepoly.engine.kennedy", "kinepoly.engine.center_values",
+                  "kinepoly.engine.center_velocity", "kinepoly.engine.circle_diagram", "kinepoly.present.centers"}
+"""Aronhold-Kennedy's construction and its report: needed only where a scene asks for instant centers."""
+DRAWING_LIBRARIES = {"matplotlib", "shapely", "svgwrite", "ezdxf"}
 
 
-def _modules(code: str) -> set[str]:
-    env = {**os.environ, "PYTHONPATH": SRC}
+def _modules(code: str, **environment: str) -> set[str]:
+    env = {**os.environ, "PYTHONPATH": SRC, **environment}
     out = subprocess.run([sys.executable, "-c", code + "\nimport json, sys; print(json.dumps(sorted(sys.modules)))"],
                          env=env, capture_output=True, text=True, check=True).stdout
     return set(json.loads(out.splitlines()[-1]))
@@ -30,8 +39,41 @@ def test_the_command_line_reads_no_metadata_unless_asked() -> None:
     assert "importlib.metadata" not in _modules("import kinepoly.cli; kinepoly.cli.parser()")
 
 
+def test_building_the_command_line_loads_no_command() -> None:
+    loaded = _modules("import kinepoly.cli; kinepoly.cli.parser()")
+    assert not {"numpy", "kinepoly.present.scales", "kinepoly.scene.loader", "tempfile", "socket"} & loaded
+
+
 def test_every_public_name_is_there() -> None:
     for name in kinepoly.__all__:
         assert getattr(kinepoly, name) is not None
     assert kinepoly.solve.__module__ == "kinepoly.solution"
     assert kinepoly.Scene.__name__ == "Scene"
+
+
+def _solve_modules(scene: str, *options: str, **environment: str) -> set[str]:
+    """The modules loaded by ``kinepoly solve scene options`` run in a fresh process through the command line."""
+    argv = ["solve", scene, *options]
+    return _modules(f"import contextlib, io, kinepoly.cli\nwith contextlib.redirect_stdout(io.StringIO()):\n"
+                    f"    assert kinepoly.cli.main({argv!r}) == 0", **environment)
+
+
+def test_solve_without_centers_loads_neither_their_modules_nor_a_drawing_library() -> None:
+    for options in ((), ("--json",), ("--steps",)):
+        loaded = _solve_modules(FOUR_BAR, *options)
+        assert "kinepoly.solution" in loaded and "kinepoly.present.report" in loaded  # it did solve
+        assert not (CENTER_MODULES | DRAWING_LIBRARIES) & loaded, options
+
+
+def test_solve_with_centers_loads_their_modules() -> None:
+    loaded = _solve_modules(CENTERS_SIX_BAR, "--json")
+    assert CENTER_MODULES <= loaded
+    assert not DRAWING_LIBRARIES & loaded
+
+
+def test_a_later_solve_reads_the_catalogue_from_the_cache(tmp_path: Path) -> None:
+    first = _solve_modules(FOUR_BAR, "--json", XDG_CACHE_HOME=str(tmp_path))
+    assert "importlib.resources" in first  # the shipped TOML read, checked, and kept
+    assert (tmp_path / "kinepoly" / "catalogue-en.marshal").is_file()
+    later = _solve_modules(FOUR_BAR, "--json", XDG_CACHE_HOME=str(tmp_path))
+    assert not {"importlib.resources", "tempfile"} & later

@@ -12,7 +12,9 @@ The work is shared out, one job a module:
 * :mod:`~kinepoly.check.newton`: the dimensionless system, damped Newton for the position,
   and the linear solves, each checked for its condition first;
 * :mod:`~kinepoly.check.start`: the start pose of Newton;
-* :mod:`~kinepoly.check.given`: a ``[given]`` scene, one free body.
+* :mod:`~kinepoly.check.given`: a ``[given]`` scene, one free body;
+* :mod:`~kinepoly.check.rolling`, :mod:`~kinepoly.check.spline_contact`: gear pairs and spline cams (loaded only
+  for a mechanism that has them).
 
 This module puts them together: :func:`solve_analytic` and its :class:`AnalyticSolution`.
 """
@@ -24,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from kinepoly.check.constraints import constraints_of
+from kinepoly.check.constraints import Constraint, constraints_of
 from kinepoly.check.coordinates import (
     J,
     Layout,
@@ -36,7 +38,6 @@ from kinepoly.check.coordinates import (
     plain_float,
     rotation,
 )
-from kinepoly.check.given import RIGID_REL_TOL, solve_given
 from kinepoly.check.newton import (
     NEWTON_REL_TOL,
     SINGULAR_CONDITION,
@@ -46,10 +47,9 @@ from kinepoly.check.newton import (
     singular_error,
     solve_scaled,
 )
-from kinepoly.check.rolling import rolling_constraints
-from kinepoly.check.spline_contact import spline_contacts
 from kinepoly.check.start import complete_start
 from kinepoly.errors import SceneError
+from kinepoly.geom.tolerances import RIGID_REL_TOL
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.link_point import LinkPoint
@@ -201,8 +201,7 @@ def solve_analytic(mechanism: Mechanism, start: dict[str, LinkPose], *, with_acc
     poses0 = complete_start(mechanism, start) if mechanism.scene.gears else {}
     q0 = (np.array([v for link in moving for v in (poses0[link].x, poses0[link].y, poses0[link].theta)])
           if poses0 else None)
-    rolling = rolling_constraints(mechanism, bodies(layout, q0)) if q0 is not None else []
-    system = System((*constraints_of(mechanism), *rolling, *spline_contacts(mechanism)), layout, _where(mechanism),
+    system = System((*constraints_of(mechanism), *_higher_pairs(mechanism, layout, q0)), layout, _where(mechanism),
                     mechanism.scene.source)
     if len(system.row_scale) != layout.n:
         raise SceneError(
@@ -249,8 +248,25 @@ def _solution(
     return AnalyticSolution(poses, omega, alpha, vel, acc, condition, residual)
 
 
+def _higher_pairs(mechanism: Mechanism, layout: IndexedLayout, q0: np.ndarray | None) -> list[Constraint]:
+    """The rows of the gear pairs (their constants taken at ``q0``, given where the mechanism has gears) and of the
+    spline cams; their modules are loaded only for a mechanism that has such pairs."""
+    out: list[Constraint] = []
+    if q0 is not None:
+        from kinepoly.check.rolling import rolling_constraints
+
+        out += rolling_constraints(mechanism, bodies(layout, q0))
+    if any(cam.is_spline for cam in mechanism.scene.cams):
+        from kinepoly.check.spline_contact import spline_contacts
+
+        out += spline_contacts(mechanism)
+    return out
+
+
 def _given_solution(mechanism: Mechanism, *, with_acceleration: bool) -> AnalyticSolution:
     """A ``[given]`` scene's one body (:func:`kinepoly.check.given.solve_given`) as an AnalyticSolution."""
+    from kinepoly.check.given import solve_given  # only a [given] scene has one free body
+
     motion = solve_given(mechanism, with_acceleration=with_acceleration)
     link = motion.link
     return AnalyticSolution(

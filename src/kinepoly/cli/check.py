@@ -19,7 +19,6 @@ from typing import TYPE_CHECKING
 
 from kinepoly.cli.files import PAPER_HELP, emit, output_path, paper_of, scene_file
 from kinepoly.errors import EXIT_OK, EXIT_SCENE, EXIT_WRONG_ANSWERS, SceneError
-from kinepoly.present.scales import A4
 
 if TYPE_CHECKING:
     from kinepoly.homework.answers import Answers
@@ -62,14 +61,17 @@ def _answer_files(folder: Path) -> list[Path]:
 
 
 def run_check(scene_path: str, answers_path: str, *, as_json: bool = False, output: str | None = None,
-              paper: tuple[float, float] = A4) -> int:
+              paper: tuple[float, float] | None = None) -> int:
     """Check one answers file (a table, or JSON) or a folder of them (a class report as CSV, or JSON).
 
-    ``paper`` (width, height in mm) is the drawing's: its kv and ka are those the diagnoses use.
+    ``paper`` (width, height in mm) is the drawing's: its kv and ka are those the diagnoses use (A4 when None).
     """
     from kinepoly.homework.answers import load_answers
     from kinepoly.homework.checking import check, make_checker
     from kinepoly.homework.report import result_json, result_text
+    from kinepoly.present.scales import A4
+
+    drawn = A4 if paper is None else paper
 
     if output is not None:
         folder = Path(answers_path)
@@ -78,13 +80,13 @@ def run_check(scene_path: str, answers_path: str, *, as_json: bool = False, outp
     scene, text = scene_file(scene_path)
     if not Path(answers_path).is_dir():
         answers = load_answers(answers_path, scene)
-        checker = make_checker(scene, [answers], text, paper)
+        checker = make_checker(scene, [answers], text, drawn)
         _warn(checker)
         result = check(answers, checker)
         emit(json.dumps(result_json(result, scene), indent=1, allow_nan=False) if as_json
              else result_text(result, scene), output)
         return EXIT_OK if result.is_all_correct else EXIT_WRONG_ANSWERS
-    return _check_class(scene, text, Path(answers_path), as_json=as_json, output=output, paper=paper)
+    return _check_class(scene, text, Path(answers_path), as_json=as_json, output=output, paper=drawn)
 
 
 def _check_class(scene: Scene, text: str, folder: Path, *, as_json: bool, output: str | None,

@@ -8,13 +8,16 @@ exist yet starts from ``--template``; it is written when the page saves. Ctrl-C 
 from __future__ import annotations
 
 import argparse
-import socket
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from kinepoly.cli.files import PAPER_HELP, paper_of
 from kinepoly.editor import TEMPLATES
 from kinepoly.errors import OutputError, SceneError
+
+if TYPE_CHECKING:
+    import socket
 
 __all__ = ["add_arguments", "run"]
 
@@ -32,6 +35,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def listen(port: int) -> socket.socket:
     """A socket listening on 127.0.0.1 at ``port`` (0: a free one); OutputError when it cannot."""
+    import socket  # loaded by the editor only: the other commands start without it
+
     if not 0 <= port <= 65535:
         raise OutputError(f"--port {port}: expected a port between 0 and 65535 (0 picks a free one)")
     sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)

@@ -39,11 +39,15 @@ def run(args: argparse.Namespace) -> int:
     from kinepoly.present.report import solved, steps_text, table_text
     from kinepoly.present.scales import decide_scales
     from kinepoly.scene.loader import load_scene
+    from kinepoly.solution import solve
 
     paper = paper_of(args.paper)
     t0 = time.perf_counter()
     scene = load_scene(args.scene)
-    solution, result = solved(scene, paper, time.perf_counter() - t0)
+    if args.json and args.method == "polygons":
+        solution, result = solved(scene, paper, time.perf_counter() - t0)
+    else:  # the table and the steps are made from the solution; the loop method makes its own JSON below
+        solution, result = solve(scene, load_s=time.perf_counter() - t0), {}
     derivation: list[str] = []
     if args.method == "loops":
         from kinepoly.loops import loop_method_solution, loops_json

@@ -8,19 +8,27 @@ and numbers kinepoly fills in; a translation may leave one out or move it, but n
 A catalogue is checked whole before anything is drawn: a missing key, a key that English does
 not have, a placeholder English does not have or a brace out of place is exit 2, every problem
 listed as ``FILE:LINE: key: what is wrong``.
+
+A shipped catalogue, once checked, is kept in the user's cache folder (``$XDG_CACHE_HOME/kinepoly``, else
+``~/.cache/kinepoly``) in the standard library's ``marshal`` format, keyed by the size and modification time of
+every shipped file and by the Python version, so that a later start reads it back without parsing and checking
+the TOML again; a cache that cannot be written (a read-only home) or read back is simply not used.
 """
 
 from __future__ import annotations
 
+import marshal
 import math
+import os
 import string
+import sys
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
-from importlib import resources
+from functools import cache
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
+from typing import IO, Any
 
 from kinepoly.errors import CatalogueError, SceneError
 from kinepoly.geom.tolerances import ANGLE_SAME_DEG, PRINTED_ZERO
@@ -75,6 +83,8 @@ def placeholders(message: str) -> set[str]:
 
 def packaged_languages() -> tuple[str, ...]:
     """The codes of the catalogues shipped with kinepoly."""
+    from importlib import resources  # the shipped files are read through it when a catalogue is not cached
+
     folder = resources.files("kinepoly.present").joinpath("messages")
     return tuple(sorted(entry.name[:-5] for entry in folder.iterdir() if entry.name.endswith(".toml")))
 
@@ -111,7 +121,17 @@ def _read(text: str, source: str) -> dict[str, Any]:
 
 
 def _packaged_text(code: str) -> str:
+    from importlib import resources
+
     return resources.files("kinepoly.present").joinpath("messages", f"{code}.toml").read_text(encoding="utf-8")
+
+
+@cache
+def _packaged(code: str) -> tuple[str, Mapping[str, Any]]:
+    """A shipped catalogue's text and its keys, flattened: each shipped file is read and parsed once a process
+    (English is every catalogue's reference as well as a language of its own)."""
+    text = _packaged_text(code)
+    return text, MappingProxyType(_read(text, f"{code}.toml"))
 
 
 def _check(data: dict[str, Any], reference: Mapping[str, str], text: str, source: str) -> list[str]:
@@ -145,8 +165,78 @@ def _check(data: dict[str, Any], reference: Mapping[str, str], text: str, source
 
 
 def _english() -> dict[str, str]:
-    data = _read(_packaged_text("en"), "en.toml")
+    _, data = _packaged("en")
     return {key: value for key, value in data.items() if key not in _META}
+
+
+_CACHE_FORMAT = 1
+"""The layout of a cached catalogue; a cache of another layout is not read."""
+
+_Key = tuple[int, tuple[int, ...], str, tuple[tuple[str, int, int], ...]]
+"""What a cached catalogue is valid for (``_shipped_key``)."""
+
+
+def _cache_file(lang: str) -> Path | None:
+    """Where the checked shipped catalogue ``lang`` is kept between runs (None: no cache folder to use)."""
+    if not (lang.isascii() and lang.isalnum()):
+        return None
+    base = os.environ.get("XDG_CACHE_HOME")
+    if not base:
+        home = os.path.expanduser("~")
+        if home == "~":
+            return None
+        base = os.path.join(home, ".cache")
+    return Path(base, "kinepoly", f"catalogue-{lang}.marshal")
+
+
+def _shipped_key() -> _Key | None:
+    """What a cached catalogue is valid for: the shipped files as they are now (a name, size and modification
+    time each), the Python version and the cache's layout; None where the shipped files are not plain files."""
+    folder = os.path.join(os.path.dirname(os.path.abspath(__file__)), "messages")
+    try:
+        files = sorted((entry.name, entry.stat().st_size, entry.stat().st_mtime_ns) for entry in os.scandir(folder)
+                       if entry.name.endswith(".toml"))
+    except OSError:
+        return None
+    return (_CACHE_FORMAT, (sys.version_info.major, sys.version_info.minor), folder, tuple(files))
+
+
+def _cached(lang: str, key: _Key) -> Catalogue | None:
+    """The catalogue ``lang`` as an earlier run checked it, if the cache holds it for ``key``."""
+    path = _cache_file(lang)
+    if path is None:
+        return None
+    try:
+        stored = marshal.loads(path.read_bytes())
+        if not (isinstance(stored, tuple) and len(stored) == 2 and stored[0] == key):
+            return None
+        code, language, decimal, messages, source = stored[1]
+        if not (all(isinstance(x, str) for x in (code, language, decimal, source)) and isinstance(messages, dict)
+                and all(isinstance(k, str) and isinstance(v, str) for k, v in messages.items())):
+            return None
+    except (OSError, EOFError, ValueError, TypeError):
+        return None
+    return Catalogue(code, language, decimal, MappingProxyType(messages), source)
+
+
+def _keep(lang: str, key: _Key, catalogue: Catalogue) -> None:
+    """Keep the checked ``catalogue`` for the next run; a cache that cannot be written is left out."""
+    path = _cache_file(lang)
+    if path is None:
+        return
+    from kinepoly.atomic import write_atomically
+
+    value = (catalogue.code, catalogue.language, catalogue.decimal, dict(catalogue.messages), catalogue.source)
+    content = marshal.dumps((key, value))
+
+    def write(stream: IO[bytes]) -> None:
+        stream.write(content)
+
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write_atomically(path, write, binary=True)
+    except OSError:
+        pass
 
 
 def load_catalogue(lang: str = "en", messages: str | Path | None = None) -> Catalogue:
@@ -155,6 +245,20 @@ def load_catalogue(lang: str = "en", messages: str | Path | None = None) -> Cata
     Raises CatalogueError naming every problem: an unknown language, a file that cannot be read
     or is not TOML, missing or unknown keys, unknown placeholders, a bad ``extends``.
     """
+    key = _shipped_key() if messages is None else None
+    if key is not None:
+        found = _cached(lang, key)
+        if found is not None:
+            return found
+    catalogue = _checked(lang, messages)
+    if key is not None:
+        _keep(lang, key, catalogue)
+    return catalogue
+
+
+def _checked(lang: str, messages: str | Path | None) -> Catalogue:
+    from importlib import resources
+
     reference = _english()
     languages = packaged_languages()
     if messages is None:
@@ -162,14 +266,16 @@ def load_catalogue(lang: str = "en", messages: str | Path | None = None) -> Cata
             raise CatalogueError(f"--lang {lang}: no such language; expected one of {', '.join(languages)}, or a "
                                  f"catalogue of your own with --messages FILE (copy en.toml from "
                                  f"{resources.files('kinepoly.present').joinpath('messages')} and translate it)")
-        source, text = f"{lang}.toml", _packaged_text(lang)
+        source = f"{lang}.toml"
+        text, parsed = _packaged(lang)
+        data = dict(parsed)
     else:
         source = str(messages)
         try:
             text = read_text(source, "a message catalogue")
         except SceneError as error:
             raise CatalogueError(f"--messages {messages}: cannot read the catalogue: {error}") from None
-    data = _read(text, source)
+        data = _read(text, source)
     problems = _check(data, reference, text, source)
     base: dict[str, Any] = {}
     if "extends" in data:
@@ -177,7 +283,7 @@ def load_catalogue(lang: str = "en", messages: str | Path | None = None) -> Cata
         if parent not in languages:
             problems.append(f"{source}: extends: no such language {parent!r}; expected one of {', '.join(languages)}")
         else:
-            base = _read(_packaged_text(parent), f"{parent}.toml")
+            base = dict(_packaged(parent)[1])
     merged = {**base, **{k: v for k, v in data.items() if k != "extends"}}
     missing = [key for key in reference if key not in merged]
     if missing:

@@ -19,10 +19,8 @@ import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from functools import cache, cached_property
+from typing import TYPE_CHECKING
 
-from kinepoly.engine.center_values import KennedyStep
-from kinepoly.engine.center_velocity import CenterOmega
-from kinepoly.engine.circle_diagram import center_label, pair_name
 from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.steps import Direction, DrawnVector, Step, term_name
 from kinepoly.geom.tolerances import COINCIDENT_REL, SAME_REL
@@ -32,6 +30,10 @@ from kinepoly.present.clean import Noise, noise_of
 from kinepoly.present.scales import PolygonScale
 from kinepoly.scene.link_point import LinkPoint, point_of
 from kinepoly.solution import Solution
+
+if TYPE_CHECKING:  # the instant centers' modules are loaded only for a solution with centers
+    from kinepoly.engine.center_values import KennedyStep
+    from kinepoly.engine.center_velocity import CenterOmega
 
 __all__ = [
     "Context",
@@ -740,6 +742,8 @@ def _links(triangle: str) -> str:
 
 def kennedy_words(step: KennedyStep, say: Catalogue, context: Context) -> tuple[str, str]:
     """A Kennedy step in words: (the two lines the center lies on, where they cross)."""
+    from kinepoly.engine.circle_diagram import center_label
+
     centers = context.solution.centers
     assert centers is not None, "a Kennedy step belongs to a solution with instant centers"
     center = centers.centers[step.center]
@@ -773,6 +777,8 @@ def kennedy_sentence(step: KennedyStep, say: Catalogue, context: Context) -> str
 
 def center_omega_sentence(found: CenterOmega, say: Catalogue, context: Context) -> str:
     """How an angular velocity follows from the instant centers (``kinepoly.engine.center_velocity``)."""
+    from kinepoly.engine.circle_diagram import center_label, pair_name
+
     words = Words(context, say)
     ground = context.solution.mechanism.ground or ""
     p = dict(found.params)

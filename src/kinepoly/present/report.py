@@ -12,7 +12,6 @@ from kinepoly.check.summary import QuantityError
 from kinepoly.engine.steps import Step
 from kinepoly.geom.tolerances import ANGLE_SAME_RAD, LOUD_ERROR, PARALLEL_SIN
 from kinepoly.geom.vec import Vec, norm, unit
-from kinepoly.present.centers import centers_json, centers_steps_text, centers_table, kennedy_steps_json
 from kinepoly.present.clean import Noise, given_angle, noise_of
 from kinepoly.present.phrasing import Context, canonical_terms, canonical_text, english, scale_note, step_sentence
 from kinepoly.present.scales import PolygonScales, decide_scales
@@ -142,10 +141,15 @@ def to_json(solution: Solution, scales: PolygonScales | None = None) -> dict[str
     if polygons:
         out["polygons"] = polygons
     if solution.centers is not None:
+        from kinepoly.present.centers import centers_json  # loaded only for a solution with instant centers
+
         out["instant_centers"] = centers_json(solution.centers)
     context = Context(solution, decided.as_dict())
     out["steps"] = [_step_json(s, decided.get(s.polygon) or 1.0, context) for s in solution.steps]
-    out["steps"] += kennedy_steps_json(solution.centers, context) if solution.centers is not None else []
+    if solution.centers is not None:
+        from kinepoly.present.centers import kennedy_steps_json
+
+        out["steps"] += kennedy_steps_json(solution.centers, context)
     check = solution.check
     out["check"] = {
         "reference": "analytic",
@@ -318,6 +322,8 @@ def table_text(solution: Solution, scales: PolygonScales | None = None) -> str:
                  else ""] for name, v in data["contacts"].items()]
         out += _rows(["contact", f"point ({u})", "normal", f"sliding velocity ({u}/s)"], rows) + [""]
     if solution.centers is not None:
+        from kinepoly.present.centers import centers_table
+
         out += centers_table(solution.centers, u, data["check"]["relative"].get("instant_center"), noise) + [""]
     for kind, poly in data.get("polygons", {}).items():
         per = f"{u}/s" if kind == "velocity" else f"{u}/s^2"
@@ -357,6 +363,8 @@ def steps_text(solution: Solution, scales: PolygonScales | None = None) -> str:
         if step.known:
             out.append("    known: " + "; ".join(f"{canonical_text(t, terms)} ({what})" for t, what in step.known))
     if solution.centers is not None:
+        from kinepoly.present.centers import centers_steps_text
+
         out += centers_steps_text(solution.centers, len(solution.steps) + 1, context)
     return "\n".join(out)
 
