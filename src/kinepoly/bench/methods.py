@@ -20,8 +20,9 @@ from kinepoly.bench.motion import LinkMotion, Trig, evaluate
 from kinepoly.check.analytic import solve_analytic
 from kinepoly.check.compare import compare
 from kinepoly.check.series import slider_crank_series
-from kinepoly.engine.assembly import Continuity, position_at_input
+from kinepoly.engine.assembly import position_at_input
 from kinepoly.engine.construct import construct_row
+from kinepoly.engine.policy import Continuity
 from kinepoly.engine.polygon import CrossLines
 from kinepoly.engine.position import input_values, solve_positions
 from kinepoly.engine.row import pose_row

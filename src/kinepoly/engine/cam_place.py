@@ -11,7 +11,7 @@ and the contact parameter of the kept contact are recorded for the polygons.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -31,7 +31,8 @@ from kinepoly.engine.cam_curves import curve_candidates, curve_contact_rows, deg
 from kinepoly.engine.groups import CamGroup, NewtonGroup
 from kinepoly.engine.inputs import describe_input
 from kinepoly.engine.placement import Failure, Placement
-from kinepoly.engine.policy import Policy
+from kinepoly.engine.policy import Continuity, FamilyContinuity, NearestGuess, Policy
+from kinepoly.errors import AssemblyError
 from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.geom.spline import nearest_parameter
 from kinepoly.model.mechanism import Mechanism, Revolute
@@ -39,8 +40,8 @@ from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.spec import CamSpec
 
-__all__ = ["floating_unreachable", "follow_contact", "guessed_contact", "place_cam", "place_floating_contacts",
-           "seeded_contact"]
+__all__ = ["CamQuestion", "floating_unreachable", "follow_contact", "guessed_contact", "place_cam",
+           "place_floating_contacts", "seeded_contact"]
 
 Vec = tuple[float, float]
 
@@ -84,6 +85,34 @@ def follow_contact(candidates: Candidates, seed_row: int, seed_choice: int) -> I
             choice[row] = int(np.argmin(gaps))
             last = complex(candidates.w[row, choice[row]])
     return choice
+
+
+@dataclass(frozen=True)
+class CamQuestion:
+    """A spline cam's contacts at every row (``candidates``), one to keep per row: the cam kind's answers to the
+    assembly policies (``engine.policy``)."""
+
+    group: CamGroup
+    candidates: Candidates
+
+    def by_guess(self, policy: NearestGuess, mechanism: Mechanism,
+                 placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
+        """The contact that puts the follower's guessed points nearest their guess."""
+        return guessed_contact(mechanism, self.group, self.candidates, policy.guess)
+
+    def by_seed(self, policy: Continuity, mechanism: Mechanism,
+                placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
+        """The seed row's contact (where the solve puts W), followed by continuity."""
+        candidates, row = self.candidates, policy.seed_row
+        if not candidates.found[row].any():
+            return follow_contact(candidates, row, 0), ()
+        seed = seeded_contact(mechanism, self.group, candidates, row, policy.seed_poses())
+        return follow_contact(candidates, row, seed), ()
+
+    def by_label(self, policy: FamilyContinuity, mechanism: Mechanism,
+                 placed: Placement) -> tuple[Ints, tuple[Notice, ...]]:
+        """Not asked: a family with cams is refused (``sweep.family``)."""
+        raise AssertionError(f"group {self.group.name}: a family with cams is not swept")
 
 
 def seeded_contact(mechanism: Mechanism, group: CamGroup, candidates: Candidates, seed_row: int,
@@ -172,10 +201,10 @@ def place_cam(mechanism: Mechanism, group: CamGroup, placed: Placement, policy: 
     ok, failures = placed.ok, placed.failures
     missing = ok & ~candidates.found.any(axis=1)
     if missing.any():
-        policy.unreachable(_where(mechanism, cam) + _unreachable(group))
+        policy.cannot_close(lambda: AssemblyError(_where(mechanism, cam) + _unreachable(group)))
         failures = (*failures, Failure(group.name, cam.point or "", missing, lambda _: _unreachable(group)))
         ok = ok & ~missing
-    choice, notices = policy.contact(mechanism, group, candidates, replace(placed, ok=ok))
+    choice, notices = policy.assemble(mechanism, CamQuestion(group, candidates), replace(placed, ok=ok))
     u = candidates.parameter(choice)
     placed = replace(placed, poses={**placed.poses, group.link: candidates.pose(choice)}, ok=ok, failures=failures,
                      notices=(*placed.notices, *notices))
@@ -194,7 +223,7 @@ def _curve_recorded(mechanism: Mechanism, group: str, cam: CamSpec, u: Reals, v:
     ok, failures = placed.ok, placed.failures
     bad = ok & bad
     if bad.any():
-        policy.unreachable(_where(mechanism, cam) + why)
+        policy.cannot_close(lambda: AssemblyError(_where(mechanism, cam) + why))
         failures = (*failures, Failure(group, follower_centre_label(cam), bad, lambda _: why))
         ok = ok & ~bad
     return replace(placed, ok=ok, failures=failures,
@@ -209,7 +238,7 @@ def _recorded(mechanism: Mechanism, group: str, cam: CamSpec, u: Reals, placed: 
     undercut = ok & _undercut(cam, rows.curvature)
     if undercut.any():
         why = _concave(cam, rows.curvature, mechanism.scene.units.length)
-        policy.unreachable(_where(mechanism, cam) + why(int(np.flatnonzero(undercut)[0])))
+        policy.cannot_close(lambda: AssemblyError(_where(mechanism, cam) + why(int(np.flatnonzero(undercut)[0]))))
         failures = (*failures, Failure(group, cam.point or "", undercut, why))
         ok = ok & ~undercut
     marks = {**placed.marks, centre_label(cam): rows.centre, contact_label(cam): rows.point}

@@ -11,7 +11,7 @@ centres r2 + r3 apart, as the scene itself must).
 
 Where the position plan is made of dyads, carried dyads and drive groups, the plan runs once for every
 row of every member (``model.family``): each member's rows follow, from the row at the scene's own
-input, the assembly the scene's own solve takes there (the same label, ``engine.assembly.seed_labels``:
+input, the assembly the scene's own solve takes there (the same label, ``engine.policy.FamilyContinuity``:
 an open four-bar stays open). A mechanism with groups solved by Newton's method (triads, cylinders
 inside larger groups, planet groups) is swept member by member, each member a scene of its own solved
 as ``sweep`` solves it; so is a geared mechanism (a gear pair is placed by rolling). Scenes with cams are
@@ -28,9 +28,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from kinepoly.engine.assembly import FamilyContinuity, seed_labels
+from kinepoly.engine.carry import drive_values
 from kinepoly.engine.groups import CarriedDyad, DriveGroup, Dyad
-from kinepoly.engine.position import Positions, solve_positions
+from kinepoly.engine.policy import FamilyContinuity
+from kinepoly.engine.position import Positions, input_values, solve_positions
 from kinepoly.errors import KinepolyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.array_pose import ArrayPose
@@ -210,8 +211,9 @@ def _batch(prepared: PreparedSweep, dimensions: Dimensions, grid: InputGrid) -> 
     """Every member's rows in one run of the plan and the construction."""
     n, count = len(grid.values), dimensions.count
     mechanism = dimensions.mechanism(prepared.mechanism, n)
-    policy = FamilyContinuity(grid.seed_row, n, seed_labels(prepared.mechanism, prepared.plan, prepared.seed),
-                              grid.periodic)
+    base = prepared.mechanism
+    policy = FamilyContinuity(grid.seed_row, n, grid.periodic, base, prepared.seed,
+                              drive_values(base, input_values(base)))
     internal = np.tile(grid.internal, count)
     positions = solve_positions(mechanism, prepared.plan, internal, policy)
     rows = InputGrid(np.tile(grid.values, count), internal, np.tile(grid.shown, count), grid.seed_row,

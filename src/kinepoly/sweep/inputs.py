@@ -32,9 +32,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from kinepoly.engine.assembly import Continuity
 from kinepoly.engine.centrode import mechanism_size
 from kinepoly.engine.groups import NewtonGroup, PositionPlan
+from kinepoly.engine.policy import Continuity
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals

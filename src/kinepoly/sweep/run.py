@@ -29,12 +29,13 @@ import numpy as np
 import numpy.typing as npt
 
 from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
-from kinepoly.engine.assembly import Continuity, position_at_input
+from kinepoly.engine.assembly import position_at_input
 from kinepoly.engine.centrode import frame_centrodes
 from kinepoly.engine.circle_diagram import pair_name
 from kinepoly.engine.group import NEAR_SINGULAR_CONDITION, SINGULAR_CONDITION
 from kinepoly.engine.groups import NewtonGroup, PositionPlan
 from kinepoly.engine.plan import make_plan
+from kinepoly.engine.policy import Continuity
 from kinepoly.engine.polygon import JointSolve, LineCrossing
 from kinepoly.engine.position import Failure, Positions, solve_positions
 from kinepoly.engine.sliders import slider_motion

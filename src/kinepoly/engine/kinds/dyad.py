@@ -9,6 +9,7 @@ from dataclasses import replace
 import numpy as np
 
 from kinepoly.engine.closures import Choice, Closure, close_dyad, other_side
+from kinepoly.engine.dyad_assembly import DyadQuestion, closing_error
 from kinepoly.engine.groups import Dyad, free_joints, joint_kind, slide_roles, two_slide_roles
 from kinepoly.engine.kind import Kind, Later, Placed
 from kinepoly.engine.lines import (
@@ -238,7 +239,7 @@ def place(mechanism: Mechanism, group: Dyad, placed: Placement, policy: Policy, 
                                                              closure.near[1])))
     if not closure.ok.all():
         bad = placed.ok & ~closure.ok
-        policy.failed(mechanism, closure, bad)
+        policy.cannot_close(lambda: closing_error(mechanism, closure))
         placed = replace(placed, ok=placed.ok & closure.ok,
                          failures=(*placed.failures, Failure(group.name, closure.joint, bad, closure.why)))
     choice: Choice = 0
@@ -248,7 +249,7 @@ def place(mechanism: Mechanism, group: Dyad, placed: Placement, policy: Policy, 
         def carried_through(label: int, base: Placement = base, closure: Closure = closure) -> Placement:
             return later(replace(base, poses={**base.poses, **closure.place(label)}))
 
-        chosen = policy.choose(mechanism, closure, placed, carried_through)
+        chosen = policy.assemble(mechanism, DyadQuestion(closure, carried_through), placed)
         if isinstance(chosen, Placement):
             return chosen, True
         choice = chosen

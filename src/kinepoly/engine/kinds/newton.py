@@ -10,6 +10,7 @@ from kinepoly.engine.cam_place import place_floating_contacts
 from kinepoly.engine.group import acceleration_by_linear_solve, velocity_by_linear_solve
 from kinepoly.engine.groups import NewtonGroup, PlanetGroup
 from kinepoly.engine.kind import Kind, Later, Placed
+from kinepoly.engine.newton_assembly import NewtonQuestion
 from kinepoly.engine.placement import Placement
 from kinepoly.engine.policy import Policy
 from kinepoly.engine.results import AccelerationContext, VelocityContext
@@ -51,7 +52,7 @@ def find(mechanism: Mechanism, known: set[str]) -> NewtonGroup | None:
 def place(mechanism: Mechanism, group: NewtonGroup, placed: Placement, policy: Policy, later: Later) -> Placed:
     """The group by Newton's method, each row started where the policy says; then any floating follower's
     contact on its cam."""
-    placed = policy.newton(mechanism, group, placed)
+    placed = policy.assemble(mechanism, NewtonQuestion(group), placed)
     if group.cams:
         placed = place_floating_contacts(mechanism, group, placed, policy)
     return placed, False
