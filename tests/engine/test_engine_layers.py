@@ -14,7 +14,8 @@ DRIVERS = {"plan", "position", "velocity", "acceleration", "assembly", "construc
 READERS = {"row", "sliders", "transmission", "centrode", "centers", "kennedy",
                  "center_values", "center_velocity", "circle_diagram", "finite_pole"}
 """The readers of what the drivers give (docs/architecture.md): they may import the drivers."""
-GROUP_TYPES = {"Dyad", "CarriedDyad", "DriveGroup", "GearGroup", "CamGroup", "NewtonGroup", "PlanetGroup"}
+GROUP_TYPES = {"Dyad", "CarriedDyad", "DriveGroup", "GearGroup", "CamGroup", "NewtonGroup", "PlanetGroup",
+               "TriadGroup"}
 
 
 def _module(path: Path) -> str:

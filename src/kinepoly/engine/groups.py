@@ -20,6 +20,7 @@ __all__ = [
     "PlanConstants",
     "PositionPlan",
     "SlideRoles",
+    "TriadGroup",
     "TwoSlideRoles",
     "far_side",
     "free_joints",
@@ -226,6 +227,13 @@ class NewtonGroup:
 @dataclass(frozen=True)
 class CarriedDyad(Dyad):
     """A carried RRR dyad (see ``Dyad``): its ``carrier`` and ``drive`` are given."""
+
+
+@dataclass(frozen=True)
+class TriadGroup(NewtonGroup):
+    """A class-3 group (a triad: a ternary link and three legs, a leg with a driven joint or a floating follower's
+    contact among them): placed by damped Newton as a ``NewtonGroup``, its polygons constructed through its Assur
+    point (``engine.triad``)."""
 
 
 @dataclass(frozen=True)

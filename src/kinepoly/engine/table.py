@@ -9,9 +9,19 @@ from __future__ import annotations
 
 from typing import Any
 
-from kinepoly.engine.groups import CamGroup, CarriedDyad, DriveGroup, Dyad, GearGroup, Group, NewtonGroup, PlanetGroup
+from kinepoly.engine.groups import (
+    CamGroup,
+    CarriedDyad,
+    DriveGroup,
+    Dyad,
+    GearGroup,
+    Group,
+    NewtonGroup,
+    PlanetGroup,
+    TriadGroup,
+)
 from kinepoly.engine.kind import Kind
-from kinepoly.engine.kinds import cam, carried, drive, dyad, gear, newton, planet
+from kinepoly.engine.kinds import cam, carried, drive, dyad, gear, newton, planet, triad
 
 __all__ = ["KINDS", "kind_of"]
 
@@ -22,6 +32,7 @@ KINDS: dict[type, Kind[Any]] = {
     Dyad: dyad.KIND,
     CarriedDyad: carried.KIND,
     PlanetGroup: planet.KIND,
+    TriadGroup: triad.KIND,
     NewtonGroup: newton.KIND,
 }
 

@@ -1,11 +1,10 @@
 """Newton group kind: the links left when no other kind finds a group, placed together by damped Newton as
 the policy starts it (``engine.newton``), a floating follower's contact after (``engine.cam_place``). Their
-polygons through the Assur point where the group is a triad (``engine.triad``), else by one linear solve of
-the joint equations per row (``engine.group``)."""
+polygons by one linear solve of the joint equations per row (``engine.group``); a triad is the triad kind's
+(``kinds.triad``), placed as here."""
 
 from __future__ import annotations
 
-from kinepoly.engine import triad as triads
 from kinepoly.engine.cam_place import place_floating_contacts
 from kinepoly.engine.group import acceleration_by_linear_solve, velocity_by_linear_solve
 from kinepoly.engine.groups import NewtonGroup, PlanetGroup
@@ -59,21 +58,13 @@ def place(mechanism: Mechanism, group: NewtonGroup, placed: Placement, policy: P
 
 
 def velocity(state: VelocityContext, group: NewtonGroup) -> None:
-    """Through the Assur point where the group is a triad, else by one linear solve per row."""
-    triad = triads.triad_of(state.polygon.mechanism, group)
-    if triad is not None:
-        triads.velocity_by_assur_point(state.polygon, triad, state.sliding, state.equivalent)
-    else:
-        velocity_by_linear_solve(state.polygon, group, state.sliding)
+    """By one linear solve of the group's joint equations per row."""
+    velocity_by_linear_solve(state.polygon, group, state.sliding)
 
 
 def acceleration(ctx: AccelerationContext, group: NewtonGroup) -> None:
     """As ``velocity`` constructs it."""
-    triad = triads.triad_of(ctx.b.mechanism, group)
-    if triad is not None:
-        triads.acceleration_by_assur_point(ctx, triad)
-    else:
-        acceleration_by_linear_solve(ctx, group)
+    acceleration_by_linear_solve(ctx, group)
 
 
 KIND: Kind[NewtonGroup] = Kind(find, place, velocity, acceleration)
