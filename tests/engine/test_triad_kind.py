@@ -5,6 +5,7 @@ Newton's method keeps the linear solve of its joint equations."""
 from __future__ import annotations
 
 import pytest
+from tests.scenes import EXAMPLES
 
 import kinepoly
 from kinepoly.engine import table
@@ -12,7 +13,6 @@ from kinepoly.engine.groups import NewtonGroup, TriadGroup
 from kinepoly.engine.kinds import newton, triad
 from kinepoly.engine.plan import make_plan
 from kinepoly.model.mechanism import build_mechanism
-from tests.scenes import EXAMPLES
 
 TRIADS = ["triad", "triad-slot", "spline-cam-floating-triad", "kc0-six-bar", "platform-lift"]
 
