@@ -14,7 +14,8 @@ from kinepoly.engine.kinds import newton, triad
 from kinepoly.engine.plan import make_plan
 from kinepoly.model.mechanism import build_mechanism
 
-TRIADS = ["triad", "triad-slot", "spline-cam-floating-triad", "kc0-six-bar", "platform-lift"]
+TRIADS = ["triad", "triad-slot", "spline-cam-floating-triad", "spline-cam-floating-sleeve", "spline-cam-floating-flat",
+          "kc0-six-bar", "platform-lift"]
 
 
 @pytest.mark.parametrize("name", TRIADS)
