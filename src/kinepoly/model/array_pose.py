@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -37,6 +38,19 @@ def is_origin(local: tuple[float, float]) -> bool:
     """Whether the link's own coordinates are (0, 0) for every member."""
     x, y = local
     return not isinstance(x, np.ndarray) and not isinstance(y, np.ndarray) and x == 0.0 and y == 0.0
+
+
+def _member_span(local_a: tuple[float, float], local_b: tuple[float, float]) -> tuple[Points, int] | None:
+    """b - a one per member where either point is a family's (``model.family.RowPoint``), with its rows per member;
+    None for two points of one mechanism."""
+    a, b = getattr(local_a, "members", None), getattr(local_b, "members", None)
+    if a is None and b is None:
+        return None
+    varied: Any = local_a if a is not None else local_b
+    each = int(varied.rows_each)
+    first = a if a is not None else complex(local_a[0], local_a[1])
+    second = b if b is not None else complex(local_b[0], local_b[1])
+    return np.asarray(second - first), each
 
 
 @dataclass(frozen=True)
@@ -102,6 +116,12 @@ def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, flo
     that radius), so the span need not be measured: the rotation is span / local.
     """
     span = world_b - world_a
+    members = _member_span(local_a, local_b)
+    if members is not None:  # a family's link (model.family): its shape's factor per member, repeated
+        local, each = members
+        factor = local.conjugate() / (abs(local) * abs(local)) if rigid else (local / abs(local)).conjugate()
+        rotation = span * np.repeat(factor, each) if rigid else span * (1.0 / length(span)) * np.repeat(factor, each)
+        return pose_from_point(local_a, world_a, rotation)
     local = local_point((local_b[0] - local_a[0], local_b[1] - local_a[1]))
     if rigid:
         rotation = span * (local.conjugate() / (abs(local) * abs(local)))

@@ -27,13 +27,16 @@ class RowPoint(tuple[Reals, Reals]):
     """A point's own coordinates (x, y) at every row of a family, with x + iy (``rows``) made once."""
 
     rows: Points
+    members: Points
+    """x + iy, one per member."""
+    rows_each: int
 
     @classmethod
     def of(cls, members: Points, rows_each: int) -> RowPoint:
         """The members' x + iy (one each), repeated over each member's rows."""
         rows = np.repeat(members, rows_each)
         point = cls((rows.real, rows.imag))
-        point.rows = rows
+        point.rows, point.members, point.rows_each = rows, members, rows_each
         return point
 
 
