@@ -118,10 +118,10 @@ def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, flo
     span = world_b - world_a
     members = _member_span(local_a, local_b)
     if members is not None:  # a family's link (model.family): its shape's factor per member, repeated
-        local, each = members
-        factor = local.conjugate() / (abs(local) * abs(local)) if rigid else (local / abs(local)).conjugate()
-        rotation = span * np.repeat(factor, each) if rigid else span * (1.0 / length(span)) * np.repeat(factor, each)
-        return pose_from_point(local_a, world_a, rotation)
+        shape, each = members
+        factor = shape.conjugate() / (abs(shape) * abs(shape)) if rigid else (shape / abs(shape)).conjugate()
+        turned = span * np.repeat(factor, each) if rigid else span * (1.0 / length(span)) * np.repeat(factor, each)
+        return pose_from_point(local_a, world_a, turned)
     local = local_point((local_b[0] - local_a[0], local_b[1] - local_a[1]))
     if rigid:
         rotation = span * (local.conjugate() / (abs(local) * abs(local)))
