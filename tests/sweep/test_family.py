@@ -382,3 +382,22 @@ def test_a_rack_has_no_radius_to_vary() -> None:
     with pytest.raises(SceneError, match="has a rack"):
         sweep_family(_scene("rack-pinion"), radii={kinepoly.load_scene(EXAMPLES / "rack-pinion.toml").gears[0].name:
                                                   [[40.0, 60.0]]}, steps=12)
+
+
+def test_a_large_family_runs_in_batches_of_whole_members(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Batches of two members (a small limit of rows) give the one batch's values, statuses and members."""
+    from kinepoly.sweep import family as module
+
+    scene = _scene("four-bar")
+    points = {"A@2": [[40.0, 0.0], [75.0, 0.0], [38.0, 0.0], [42.0, 0.0], [90.0, 0.0]]}
+    whole = sweep_family(scene, points, steps=36)
+    monkeypatch.setattr(module, "_CHUNK_ROWS", 80)
+    parts = sweep_family(scene, points, steps=36)
+    assert len(parts._results) == 3 and parts._per == 2 and len(whole._results) == 1
+    assert np.array_equal(parts.status, whole.status)
+    for a, b in zip(parts.columns, whole.columns, strict=True):
+        assert a.name == b.name and np.array_equal(a.values, b.values) and np.array_equal(a.valid, b.valid)
+    for k in range(5):
+        one, other = parts.member(k), whole.member(k)
+        assert one.warnings == other.warnings and one.notices == other.notices
+        assert one.skeleton == other.skeleton and parts.member_scene(k) == whole.member_scene(k)

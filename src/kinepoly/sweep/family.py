@@ -24,6 +24,7 @@ import dataclasses
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -46,6 +47,9 @@ from kinepoly.sweep.run import PreparedSweep, execute_rows, gap_notices, prepare
 
 __all__ = ["Dimensions", "FamilyColumn", "FamilyResult", "member_scene", "read_dimensions", "sweep_family"]
 
+_CHUNK_ROWS = 1 << 20
+"""At most this many rows (members times rows each) run in one batch, about 0.7 GB of arrays at their peak; a
+larger family runs in several batches of whole members."""
 _BATCHED = (Dyad, CarriedDyad, DriveGroup)
 """The group kinds a family runs in one batch (their closures are closed forms whose dimensions may vary by row)."""
 
@@ -77,7 +81,9 @@ class FamilyResult:
     notices: tuple[Notice, ...] = ()
     """What the scene's own sweep says of the range (every member is swept over the scene's range)."""
     timing: dict[str, float] = field(default_factory=dict)
-    _members: tuple[SweepResult, ...] | SweepResult = field(default=(), repr=False, compare=False)
+    _results: tuple[SweepResult, ...] = field(default=(), repr=False, compare=False)
+    """Batched: the batches' results, ``_per`` members each; else each member's own sweep."""
+    _per: int = 1
     _grid: InputGrid | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -94,9 +100,9 @@ class FamilyResult:
         """Member ``k`` as a sweep result of its own (columns, statuses, warnings), as ``sweep`` gives it for
         ``self.member_scene(k)`` over the family's range."""
         self._check(k)
-        if isinstance(self._members, tuple):
-            return self._members[k]
-        return _member_of_batch(self, self._members, k)
+        if not self.batched:
+            return self._results[k]
+        return _member_of_batch(self, self._results[k // self._per], k, k % self._per)
 
     def member_scene(self, k: int) -> Scene:
         """Member ``k`` as a scene of its own: the scene with the member's points, its ``[guess]`` moved to where
@@ -104,11 +110,11 @@ class FamilyResult:
         member's assembly (the family's: the scene's own, by label)."""
         self._check(k)
         scene = self.dimensions.scene(self.scene, k)
-        if isinstance(self._members, tuple):
+        if not self.batched:
             return scene  # swept member by member: each from the scene's own [guess]
-        grid, positions = self._grid, self._members.positions
+        grid, positions = self._grid, self._results[k // self._per].positions
         assert grid is not None and positions is not None
-        row = k * len(grid.values) + grid.seed_row
+        row = (k % self._per) * len(grid.values) + grid.seed_row
         guess = []
         for name, xy in scene.guess:
             at = complex(positions.point(name)[row]) if positions.ok[row] else complex(*xy)
@@ -151,6 +157,12 @@ class Dimensions:
                         for s in scene.sliders)
         return dataclasses.replace(scene, links=tuple(link_of(link) for link in scene.links), sliders=sliders,
                                    gears=tuple(gear_of(gear) for gear in scene.gears))
+
+    def part(self, first: int, stop: int) -> Dimensions:
+        """Members ``first`` to ``stop`` (not included) alone."""
+        return Dimensions({key: xy[first:stop] for key, xy in self.points.items()},
+                          {key: xy[first:stop] for key, xy in self.slides.items()}, stop - first,
+                          {key: r[first:stop] for key, r in self.radii.items()})
 
     def mechanism(self, base: Mechanism, rows_each: int) -> FamilyMechanism:
         """The members' mechanism over their rows, ``rows_each`` to a member."""
@@ -195,16 +207,25 @@ def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike] | None = None
                 else (start, stop)
             return _member_by_member(scene, dimensions, steps, ends, grid, t0)
         t1 = time.perf_counter()
-        batch = _batch(prepared, dimensions, grid)
+        per = max(1, _CHUNK_ROWS // len(grid.values))
+        batches = tuple(_batch(prepared, dimensions.part(first, min(first + per, count)), grid)
+                        for first in range(0, count, per))
     t2 = time.perf_counter()
     rows = int(grid.shown.sum())
-    columns = tuple(FamilyColumn(c.name, c.kind, c.values.reshape(count, rows), c.valid.reshape(count, rows))
-                    for c in batch.columns)
-    inputs = Column(batch.input.name, "input", batch.input.values[:rows], batch.input.valid[:rows])
+    columns = tuple(FamilyColumn(c.name, c.kind, _joined([b.columns[j].values for b in batches], count, rows),
+                                 _joined([b.columns[j].valid for b in batches], count, rows))
+                    for j, c in enumerate(batches[0].columns))
+    first_input = batches[0].input
+    inputs = Column(first_input.name, "input", first_input.values[:rows], first_input.valid[:rows])
     timing = {"prepare_s": prepared.prepare_s, "range_s": t1 - t0, "execute_s": t2 - t1,
               "total_s": prepared.prepare_s + t2 - t0}
-    return FamilyResult(scene, dimensions, inputs, columns, batch.status.reshape(count, rows), True, grid.notices,
-                        timing, batch, grid)
+    return FamilyResult(scene, dimensions, inputs, columns, _joined([b.status for b in batches], count, rows), True,
+                        grid.notices, timing, batches, per, grid)
+
+
+def _joined(parts: list[npt.NDArray[Any]], count: int, rows: int) -> npt.NDArray[Any]:
+    """The batches' values of one quantity as (members, rows)."""
+    return (parts[0] if len(parts) == 1 else np.concatenate(parts)).reshape(count, rows)
 
 
 def _batch(prepared: PreparedSweep, dimensions: Dimensions, grid: InputGrid) -> SweepResult:
@@ -221,20 +242,21 @@ def _batch(prepared: PreparedSweep, dimensions: Dimensions, grid: InputGrid) -> 
     return execute_rows(mechanism, prepared, rows, positions, gaps=False)
 
 
-def _member_of_batch(family: FamilyResult, batch: SweepResult, k: int) -> SweepResult:
+def _member_of_batch(family: FamilyResult, batch: SweepResult, k: int, local: int) -> SweepResult:
+    """Member ``k``, the ``local``-th member of ``batch``."""
     grid = family._grid
     assert grid is not None
     rows = len(family.input.values)
-    shown = slice(k * rows, (k + 1) * rows)
+    shown = slice(local * rows, (local + 1) * rows)
     columns = tuple(Column(c.name, c.kind, c.values[k], c.valid[k]) for c in family.columns)
-    warnings = {row - k * rows: text for row, text in batch.warnings.items() if shown.start <= row < shown.stop}
+    warnings = {row - local * rows: text for row, text in batch.warnings.items() if shown.start <= row < shown.stop}
     ok = np.ones(len(grid.values), np.bool_)
     ok[grid.shown] = family.status[k] < STATUS.index("cannot-assemble")
     notices = tuple(gap_notices(grid, ok, family.input.name, _input_unit(family.scene)))
     scene = family.member_scene(k)
     return SweepResult(scene, family.input, columns, family.status[k], warnings, notices, grid.periodic,
                        float(grid.values[grid.seed_row]), grid.seed_row,
-                       positions=_member_positions(batch, scene, k, len(grid.values)), shown=grid.shown)
+                       positions=_member_positions(batch, scene, local, len(grid.values)), shown=grid.shown)
 
 
 def _member_positions(batch: SweepResult, scene: Scene, k: int, rows_each: int) -> Positions:
