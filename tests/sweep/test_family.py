@@ -391,7 +391,7 @@ def test_a_large_family_runs_in_batches_of_whole_members(monkeypatch: pytest.Mon
     scene = _scene("four-bar")
     points = {"A@2": [[40.0, 0.0], [75.0, 0.0], [38.0, 0.0], [42.0, 0.0], [90.0, 0.0]]}
     whole = sweep_family(scene, points, steps=36)
-    monkeypatch.setattr(module, "_CHUNK_ROWS", 80)  # two members of 37 rows (36 and the seed's) a batch
+    monkeypatch.setattr(module, "_CHUNK_ROWS", 80)  # two members of 36 rows a batch
     parts = sweep_family(scene, points, steps=36)
     assert len(parts._results) == 3 and parts._per == 2 and len(whole._results) == 1
     assert np.array_equal(parts.status, whole.status)
