@@ -40,8 +40,8 @@ from kinepoly.model.family import FamilyMechanism
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.notice import Notice
 from kinepoly.scene.link_point import LinkPoint
-from kinepoly.scene.spec import GearSpec, LinkSpec, PitchCircle, Scene, SliderInput
-from kinepoly.sweep.inputs import InputGrid, input_grid
+from kinepoly.scene.spec import GearSpec, LinkSpec, PitchCircle, Scene
+from kinepoly.sweep.inputs import InputGrid, input_grid, input_unit
 from kinepoly.sweep.result import STATUS, Column, Kind, SweepResult
 from kinepoly.sweep.run import PreparedSweep, execute_rows, gap_notices, prepare_sweep, prepared_sweep, run_sweep
 
@@ -253,7 +253,7 @@ def _member_of_batch(family: FamilyResult, batch: SweepResult, k: int, local: in
     warnings = {row - local * rows: text for row, text in batch.warnings.items() if shown.start <= row < shown.stop}
     ok = np.ones(len(grid.values), np.bool_)
     ok[grid.shown] = family.status[k] < STATUS.index("cannot-assemble")
-    notices = tuple(gap_notices(grid, ok, family.input.name, _input_unit(family.scene)))
+    notices = tuple(gap_notices(grid, ok, family.input.name, input_unit(family.scene)))
     scene = family.member_scene(k)
     return SweepResult(scene, family.input, columns, family.status[k], warnings, notices, grid.periodic,
                        float(grid.values[grid.seed_row]), grid.seed_row,
@@ -268,10 +268,6 @@ def _member_positions(batch: SweepResult, scene: Scene, k: int, rows_each: int) 
     found = batch.positions
     poses = {link: ArrayPose(pose.origin[rows], pose.rotation[rows], pose.still) for link, pose in found.poses.items()}
     return Positions(Mechanism(scene), poses, found.ok[rows], values=tuple(v[rows] for v in found.values))
-
-
-def _input_unit(scene: Scene) -> str:
-    return scene.units.length if isinstance(scene.input, SliderInput) else scene.units.angle
 
 
 def _member_by_member(scene: Scene, dimensions: Dimensions, steps: int, ends: tuple[float, float], grid: InputGrid,

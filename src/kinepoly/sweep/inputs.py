@@ -42,10 +42,10 @@ from kinepoly.geom.tolerances import ANGLE_SAME_RAD, NEWTON_CLOSED_REL, ROUNDING
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
-from kinepoly.scene.spec import LinkInput, PitchCircle, SliderInput
+from kinepoly.scene.spec import LinkInput, PitchCircle, Scene, SliderInput
 
 __all__ = ["CYCLE_TURNS", "FULL_TURN_CHECK_ROWS", "MAX_STEPS", "DefaultRange", "InputGrid", "default_range",
-           "full_turn_grid", "input_grid", "input_name"]
+           "full_turn_grid", "input_grid", "input_name", "input_unit"]
 
 MAX_STEPS = 2_000_000
 """The most rows a sweep takes (memory grows with rows times quantities)."""
@@ -75,6 +75,11 @@ class InputGrid:
     notices: tuple[Notice, ...] = ()
     near_dead: dict[int, str] = field(default_factory=dict)
     """Rows at an end of the range put just inside a dead point (``_newton_margin``), with their warning."""
+
+
+def input_unit(scene: Scene) -> str:
+    """The unit of the swept input: the scene's angle unit for a link, its length unit for a slider."""
+    return scene.units.angle if isinstance(scene.input, LinkInput) else scene.units.length
 
 
 def input_name(mechanism: Mechanism) -> str:

@@ -60,6 +60,7 @@ from kinepoly.sweep.inputs import (
     full_turn_grid,
     input_grid,
     input_name,
+    input_unit,
 )
 from kinepoly.sweep.result import CANNOT_ASSEMBLE as _CANNOT
 from kinepoly.sweep.result import NEAR_SINGULAR as _NEAR
@@ -428,9 +429,8 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
     sines = velocity.line_sines if velocity is not None else None
     for transmission in transmission_angles(positions, plan, sines):
         out.add(f"mu_{transmission.point}", "transmission", _angle_unit(scene, transmission.angle))
-    unit = scene.units.angle if isinstance(scene.input, LinkInput) else scene.units.length
     if not every_ok and gaps:
-        notices += gap_notices(grid, ok, name, unit)
+        notices += gap_notices(grid, ok, name, input_unit(scene))
     _overflow_flags(flags, ok, out)
     shown = grid.shown
     every = bool(shown.all())
