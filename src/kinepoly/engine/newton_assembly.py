@@ -87,7 +87,7 @@ class NewtonQuestion:
     def by_seed(self, policy: Continuity, mechanism: Mechanism, placed: Placement) -> Placement:
         """Each row from the rows before it, from the seed row forward and then backward, on the seed's
         assembly (``engine.newton_walk``); a row that does not close, or closes only in another assembly
-        beyond a dead point, is marked and skipped."""
+        beyond a dead point, is marked and skipped (with ``run_only``, the walk that way stops there)."""
         group, seed_row = self.group, policy.seed_row
         ok = placed.ok
         n = len(ok)
@@ -112,10 +112,14 @@ class NewtonQuestion:
                 if policy.progress is not None and done % 64 == 0:
                     policy.progress(done, n)
                 if not ok[row]:
+                    if policy.run_only:
+                        break
                     walk.gap()
                     continue
                 found, elsewhere[row] = (seed, False) if row == seed_row else walk.row(row)
                 if found is None:
+                    if policy.run_only:
+                        break
                     continue
                 for link, pose in found.items():
                     origin[link][row] = complex(pose.x, pose.y)

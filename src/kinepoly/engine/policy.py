@@ -91,6 +91,10 @@ class Continuity:
     periodic: bool
     progress: Callable[[int, int], None] | None = None
     guess: Mapping[str, Vec] = field(default_factory=dict)
+    run_only: bool = False
+    """Only the run of rows about the seed row that close is wanted (a range's search, ``sweep.inputs``): a kind
+    that walks row by row from the seed may stop each way at the first row that does not close, the rows beyond it
+    left not closing."""
 
     def seed_poses(self) -> Mapping[str, LinkPose]:
         return self.seed() if callable(self.seed) else self.seed

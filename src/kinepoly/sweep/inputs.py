@@ -148,8 +148,12 @@ def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) ->
 
 
 def _evaluate(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row: int, seed: dict[str, LinkPose],
-              periodic: bool) -> Positions:
-    return solve_positions(mechanism, plan, _internal(mechanism, values), Continuity(seed_row, seed, periodic))
+              periodic: bool, run_only: bool = False) -> Positions:
+    """The positions at ``values``; ``run_only``: only the rows that close without a gap about the seed row are
+    wanted (a row-by-row walk stops at the first row that does not close: a Newton group's range search solves
+    its run and one row each way, not the rows beyond)."""
+    return solve_positions(mechanism, plan, _internal(mechanism, values),
+                           Continuity(seed_row, seed, periodic, run_only=run_only))
 
 
 @dataclass(frozen=True)
@@ -270,7 +274,7 @@ def _edge(mechanism: Mechanism, plan: PositionPlan, inside: float, outside: floa
     start = inside
     for _ in range(_ZOOM_ROUNDS):
         values = np.linspace(inside, outside, _ZOOM + 1)
-        found = _evaluate(mechanism, plan, values, 0, seed, periodic=False)
+        found = _evaluate(mechanism, plan, values, 0, seed, periodic=False, run_only=True)
         ok = found.ok if reach is None else reach.within(mechanism, found)
         last = int(np.argmin(ok)) - 1 if not ok.all() else len(values) - 1
         if last < 0:
@@ -311,7 +315,7 @@ def _default_range(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, Lin
         reach = 10.0 * size
         shown = np.linspace(seed_value - reach, seed_value + reach, 4001)
         values, _, seed_row = _with_seed(shown, seed_value, False, None)
-        found = _evaluate(mechanism, plan, values, seed_row, seed, periodic=False)
+        found = _evaluate(mechanism, plan, values, seed_row, seed, periodic=False, run_only=True)
     if not found.ok[seed_row]:
         raise AssemblyError(f"the scene's own input ({seed_value:.6g}) does not close in the sweep's arrays; "
                             "give --from and --to")
