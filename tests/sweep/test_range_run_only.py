@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 import kinepoly
-from kinepoly.engine import newton_assembly
+from kinepoly.engine.newton_walk import Walk
 from kinepoly.engine.groups import NewtonGroup
 from kinepoly.scene.spec import GivenInput
 from kinepoly.sweep import inputs, prepare_sweep
@@ -30,16 +30,16 @@ def _search(name: str, monkeypatch: pytest.MonkeyPatch, whole: bool) -> tuple[in
     seed = prepared.seed
     evaluate = inputs._evaluate
     rows = [0]
-    walk_row = newton_assembly.Walk.row
+    walk_row = Walk.row
 
-    def counting(self: newton_assembly.Walk, row: int) -> object:
+    def counting(self: Walk, row: int) -> object:
         rows[0] += 1
         return walk_row(self, row)
 
     def evaluate_whole(*args: object, run_only: bool = False, **kwargs: object) -> object:
         return evaluate(*args, **kwargs)  # type: ignore[arg-type]
 
-    monkeypatch.setattr(newton_assembly.Walk, "row", counting)
+    monkeypatch.setattr(Walk, "row", counting)
     if whole:
         monkeypatch.setattr(inputs, "_evaluate", evaluate_whole)
     found = inputs.default_range(prepared.mechanism, prepared.plan, seed)
