@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 import kinepoly
-from kinepoly.engine.newton_walk import Walk
 from kinepoly.engine.groups import NewtonGroup
+from kinepoly.engine.newton_walk import Walk
 from kinepoly.scene.spec import GivenInput
 from kinepoly.sweep import inputs, prepare_sweep
 
