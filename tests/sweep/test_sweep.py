@@ -130,6 +130,16 @@ def test_transmission_angle_is_the_acute_angle_between_coupler_and_rocker() -> N
         assert mu.values[k] == pytest.approx(expected, abs=1e-9)
 
 
+def test_a_slot_through_its_pivot_transmits_at_90_degrees_at_every_row() -> None:
+    """The shaper's block A rides in a slot through the lever's pivot B0: A's path about B0 is square to the slot at
+    every row, so mu_A is 90 degrees exactly. (Read as the arcsine of the lines' sine, it lost up to 2e-6 degrees
+    here, where the arcsine's slope grows without limit.)"""
+    result = sweep(kinepoly.loads_scene((EXAMPLES / "shaper.toml").read_text()), steps=3600)
+    mu = result.column("mu_A")
+    assert mu.valid.sum() == result.rows
+    assert np.abs(mu.values - 90.0).max() < 1e-12
+
+
 def test_parallelogram_never_flips_to_the_anti_parallelogram() -> None:
     text = four_bar(100, 40, 100, 40, 60, 10, 0, guess_b=(120, 35))
     result = sweep(kinepoly.loads_scene(text), steps=360)

@@ -29,7 +29,6 @@ class VelocityResult:
 
     polygon: Polygon
     sliding: dict[str, Points]
-    line_sines: dict[str, Reals]
     equivalent: dict[str, Points] = field(default_factory=dict)
     """Each spline cam's equivalent link, by pair (``engine.cam_polygons``): omega of the link K W (its real
     part), or for a flat face the velocity of the block at K over the face."""
@@ -46,11 +45,10 @@ class VelocityResult:
 @dataclass
 class VelocityContext:
     """The velocity polygon being built and what the groups find besides its tips and rates: the sliding
-    velocities by slider, the sines of the crossings by group, the equivalent links by cam pair."""
+    velocities by slider, the equivalent links by cam pair."""
 
     polygon: Polygon
     sliding: dict[str, Points] = field(default_factory=dict)
-    sines: dict[str, Reals] = field(default_factory=dict)
     equivalent: dict[str, Points] = field(default_factory=dict)
 
 

@@ -54,8 +54,7 @@ class Transmission:
 
 
 def _describe(positions: Positions, dyad: Dyad) -> tuple[Callable[[], tuple[Points, Points]], str, str, str, str]:
-    """The dyad's two velocity directions (made when asked: a sweep has the sines already), its point and
-    joint, and the words of the angle."""
+    """The dyad's two velocity directions (made when asked), its point and joint, and the words of the angle."""
     point = positions.point
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
@@ -81,23 +80,20 @@ def _describe(positions: Positions, dyad: Dyad) -> tuple[Callable[[], tuple[Poin
             f"sliders {a.name} and {b.name}", f"the lines of sliders {a.name} and {b.name} are parallel")
 
 
-def transmission_angles(positions: Positions, plan: PositionPlan,
-                        line_sines: dict[str, Reals] | None = None) -> list[Transmission]:
-    """The transmission angle of every dyad of the plan, in the plan's order.
+def transmission_angles(positions: Positions, plan: PositionPlan) -> list[Transmission]:
+    """The transmission angle of every dyad of the plan, in the plan's order, a solve's and a sweep's alike.
 
-    ``line_sines``: the sines the velocity construction met, by group name, when it ran.
+    It is the angle whose tangent is |cross| / |dot| of the two directions: well conditioned everywhere. (The
+    arcsine of the crossing's sine, which the construction has already, loses half the digits near 90 degrees,
+    where its slope grows without limit: up to 2e-6 degrees there.) A direction of no length (two points of a
+    link in one place) is taken as 90 degrees.
     """
     out = []
     for group in plan.groups:
         if isinstance(group, Dyad):
             directions, point, joint, between, at_zero = _describe(positions, group)
-            sine = None if line_sines is None else line_sines.get(group.name)
-            if sine is not None:
-                angle = np.abs(sine)
-                np.arcsin(np.minimum(angle, 1.0, out=angle), out=angle)
-            else:  # a direction of no length (two points of a link in one place) is taken as 90 degrees
-                first, second = directions()
-                turn = np.arctan2(np.abs(cross(first, second)), np.abs(dot(first, second)))
-                angle = np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
+            first, second = directions()
+            turn = np.arctan2(np.abs(cross(first, second)), np.abs(dot(first, second)))
+            angle = np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
             out.append(Transmission(group.name, point, joint, between, at_zero, angle))
     return out

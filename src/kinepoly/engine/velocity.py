@@ -94,4 +94,4 @@ def construct_velocity(positions: Positions, plan: PositionPlan, wanted: tuple[t
         kind_of(group).velocity(state, group)
     for link, point in wanted:
         polygon.tip(link, point)
-    return VelocityResult(polygon, state.sliding, state.sines, state.equivalent)
+    return VelocityResult(polygon, state.sliding, state.equivalent)

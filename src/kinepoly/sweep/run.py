@@ -426,8 +426,7 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
         for column, kind, values, valid in series_columns(mechanism, positions, grid.seed_row, velocity, acceleration,
                                                           slider not in asked.sliders):
             out.add(column, kind, values, valid)  # type: ignore[arg-type]
-    sines = velocity.line_sines if velocity is not None else None
-    for transmission in transmission_angles(positions, plan, sines):
+    for transmission in transmission_angles(positions, plan):
         out.add(f"mu_{transmission.point}", "transmission", _angle_unit(scene, transmission.angle))
     if not every_ok and gaps:
         notices += gap_notices(grid, ok, name, input_unit(scene))

@@ -78,7 +78,7 @@ def drive_geometry(polygon: Polygon, dyad: CarriedDyad) -> tuple[Points, Points 
 def velocity(state: VelocityContext, dyad: CarriedDyad) -> None:
     """A carried RRR dyad: the drive's relative velocity is laid from the carrier's known tip, then the
     line perpendicular to the carrier's span; the second link's line as in any RRR dyad."""
-    polygon, sliding, sines = state.polygon, state.sliding, state.sines
+    polygon, sliding = state.polygon, state.sliding
     i, j, carrier, drive, (p1, p2, p3), (k1, k2) = carried_parts(dyad)
     at, pin, slide = drive_geometry(polygon, dyad)
     rel = relative_velocity(drive, i, at, pin, slide)
@@ -111,7 +111,6 @@ def velocity(state: VelocityContext, dyad: CarriedDyad) -> None:
     else:
         sliding[drive.joint.name] = np.asarray(drive.rate(1) * slide_direction(polygon.positions, drive.joint))
     read_rate(polygon, j, p3, p2, crossing.along_second())
-    sines[dyad.name] = crossing.sin_angle
 
 
 def acceleration(ctx: AccelerationContext, dyad: CarriedDyad) -> None:

@@ -67,7 +67,7 @@ def find(mechanism: Mechanism, known: set[str]) -> Dyad | None:
 
 
 def velocity(state: VelocityContext, dyad: Dyad) -> None:
-    polygon, sliding, sines = state.polygon, state.sliding, state.sines
+    polygon, sliding = state.polygon, state.sliding
     mech, i, j = polygon.mechanism, dyad.first, dyad.second
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
@@ -141,7 +141,6 @@ def velocity(state: VelocityContext, dyad: Dyad) -> None:
                                   parallel(polygon, f"v_{point}/{a2}", t.second_slider, t.side2, point)))
         slide_rel(polygon, t.first_slider, t.first_relative, point, sliding)
         slide_rel(polygon, t.second_slider, j, point, sliding)
-    sines[dyad.name] = crossing.sin_angle
 
 
 def acceleration(ctx: AccelerationContext, dyad: Dyad) -> None:
