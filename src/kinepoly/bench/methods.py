@@ -92,16 +92,8 @@ class Method:
 
 def with_input(mechanism: Mechanism, t: float, guess: Guess | None = None) -> Mechanism:
     """The mechanism with its input at ``t`` (theta in rad or s), and optionally another [guess]."""
-    scene = mechanism.scene
-    inp = scene.input
-    if isinstance(inp, LinkInput):
-        new_input: LinkInput | SliderInput = replace(inp, angle_rad=float(t))
-    elif isinstance(inp, SliderInput):
-        new_input = replace(inp, s=float(t))
-    else:
-        raise TypeError("the bench needs a scene driven by [input]")
-    scene = replace(scene, input=new_input, guess=scene.guess if guess is None else guess)
-    return replace(mechanism, scene=scene)
+    scene = mechanism.scene.at_input(float(t))
+    return replace(mechanism, scene=scene if guess is None else replace(scene, guess=guess))
 
 
 def _moved(spec: LinkInput | SliderInput, tau: float) -> LinkInput | SliderInput:

@@ -61,6 +61,7 @@ __all__ = [
     "SINGULAR_CONDITION",
     "AnalyticSolution",
     "solve_analytic",
+    "velocity_condition",
 ]
 
 
@@ -195,7 +196,29 @@ def solve_analytic(mechanism: Mechanism, start: dict[str, LinkPose], *, with_acc
     """
     if mechanism.ground is None or isinstance(mechanism.scene.input, GivenInput):
         return _given_solution(mechanism, with_acceleration=with_acceleration)
+    layout, system, q, residual = _closed(mechanism, start)
+    jac = system.scaled_jacobian(q)
+    condition = system.condition(jac)  # each group's own, block by block (linear in the number of groups)
+    if condition > SINGULAR_CONDITION:
+        raise singular_error(system, condition)
+    q_dot = solve_scaled(system, jac, system.nu())
+    q_ddot = solve_scaled(system, jac, system.gamma(q, q_dot)) if with_acceleration else None
+    return _solution(layout, q, q_dot, q_ddot, condition, residual)
+
+
+def velocity_condition(mechanism: Mechanism, start: dict[str, LinkPose]) -> float:
+    """The condition number k of the dimensionless velocity equations at the scene's input, the position closed by
+    Newton from ``start`` as ``solve_analytic`` closes it (which raises where k is above SINGULAR_CONDITION: this
+    gives it, for the error estimate of a position that close to a dead point, ``check.estimate``)."""
+    _, system, q, _ = _closed(mechanism, start)
+    return system.condition(system.scaled_jacobian(q))
+
+
+def _closed(mechanism: Mechanism, start: dict[str, LinkPose]) -> tuple[IndexedLayout, System, np.ndarray, float]:
+    """The layout and the equations of a mechanism driven by [input], and its position closed by Newton from
+    ``start``, with the final residual."""
     ground = mechanism.ground
+    assert ground is not None
     moving = tuple(name for name in mechanism.link_names if name != ground)
     layout = IndexedLayout(moving, ground, mechanism_size(mechanism))
     poses0 = complete_start(mechanism, start) if mechanism.scene.gears else {}
@@ -213,14 +236,7 @@ def solve_analytic(mechanism: Mechanism, start: dict[str, LinkPose], *, with_acc
         poses0 = complete_start(mechanism, start)
         q0 = np.array([v for link in moving for v in (poses0[link].x, poses0[link].y, poses0[link].theta)])
     q, residual = newton(system, q0)
-
-    jac = system.scaled_jacobian(q)
-    condition = system.condition(jac)  # each group's own, block by block (linear in the number of groups)
-    if condition > SINGULAR_CONDITION:
-        raise singular_error(system, condition)
-    q_dot = solve_scaled(system, jac, system.nu())
-    q_ddot = solve_scaled(system, jac, system.gamma(q, q_dot)) if with_acceleration else None
-    return _solution(layout, q, q_dot, q_ddot, condition, residual)
+    return layout, system, q, residual
 
 
 def _solution(

@@ -46,6 +46,7 @@ __all__ = [
     "crossings",
     "estimate_errors",
     "normwise_error",
+    "polygon_estimate",
 ]
 
 C_CROSSING = 4.0
@@ -110,9 +111,24 @@ class ErrorEstimate:
 
 
 def _crossing_term(found: Crossing | None) -> float:
-    if found is None:
-        return 0.0
-    return C_CROSSING * UNIT_ROUNDOFF / max(abs(found.sin_angle), TINY_POSITIVE)
+    return 0.0 if found is None else _sine_term(found.sin_angle)
+
+
+def _sine_term(sin_angle: float) -> float:
+    return C_CROSSING * UNIT_ROUNDOFF / max(abs(sin_angle), TINY_POSITIVE)
+
+
+def _condition_term(polygon: str, k: float) -> float:
+    """The k term of the velocities (``polygon`` "velocity") or of the accelerations."""
+    return (C_VELOCITY if polygon == "velocity" else C_ACCELERATION) * UNIT_ROUNDOFF * k * k
+
+
+def polygon_estimate(polygon: str, condition_number: float, sin_angle: float) -> float:
+    """The estimate of one polygon's quantities (``polygon``: "velocity" or "acceleration") at a position whose
+    velocity equations have ``condition_number`` and where a crossing of that polygon meets at ``sin_angle``: the
+    larger of the two terms, as ``estimate_errors`` takes them (a sweep's row warns with it)."""
+    k = max(condition_number, 1.0) if math.isfinite(condition_number) else math.inf
+    return max(_condition_term(polygon, k), _sine_term(sin_angle))
 
 
 def estimate_errors(condition_number: float, steps: Sequence[Step], kinds: Iterable[str],
@@ -127,8 +143,8 @@ def estimate_errors(condition_number: float, steps: Sequence[Step], kinds: Itera
             worst[found.polygon] = found
     terms = {
         "position": C_POSITION * u * k,
-        "velocity": max(C_VELOCITY * u * k * k, _crossing_term(worst.get("velocity"))),
-        "acceleration": max(C_ACCELERATION * u * k * k, _crossing_term(worst.get("acceleration")),
+        "velocity": max(_condition_term("velocity", k), _crossing_term(worst.get("velocity"))),
+        "acceleration": max(_condition_term("acceleration", k), _crossing_term(worst.get("acceleration")),
                             _crossing_term(worst.get("velocity"))),
     }
     relative = {kind: max(terms[_KIND_CLASS[kind]], (floor or {}).get(kind, 0.0))

@@ -50,11 +50,10 @@ _CAPTION_SHARE = 0.55
 
 
 def _input_at(scene: Scene, value: float) -> LinkInput | SliderInput:
-    inp = scene.input
-    if isinstance(inp, LinkInput):
-        return dataclasses.replace(inp, angle_rad=math.radians(value) if scene.units.angle == "deg" else value)
-    assert isinstance(inp, SliderInput)
-    return dataclasses.replace(inp, s=value)
+    radians = isinstance(scene.input, LinkInput) and scene.units.angle == "deg"
+    found = scene.at_input(math.radians(value) if radians else value).input
+    assert isinstance(found, LinkInput | SliderInput)
+    return found
 
 
 def _swept(frames: Frames, k: int, scene: Scene) -> dict[str, complex]:

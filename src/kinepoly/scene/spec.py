@@ -7,6 +7,7 @@ later stages can still point a user at the right place.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass, field
 from typing import Literal
@@ -265,6 +266,16 @@ class Scene:
 
     def link(self, name: str) -> LinkSpec:
         return self._links_by_name[name]  # KeyError for an unknown name
+
+    def at_input(self, value: float) -> Scene:
+        """This scene with its first input at ``value``: theta in radians for a link, s for a slider (its rates
+        kept)."""
+        inp = self.input
+        if isinstance(inp, LinkInput):
+            return dataclasses.replace(self, input=dataclasses.replace(inp, angle_rad=value))
+        if isinstance(inp, SliderInput):
+            return dataclasses.replace(self, input=dataclasses.replace(inp, s=value))
+        raise TypeError("a [given] scene has no input to set")
 
     @functools.cached_property
     def _links_by_name(self) -> dict[str, LinkSpec]:

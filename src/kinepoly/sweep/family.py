@@ -37,7 +37,7 @@ from kinepoly.errors import KinepolyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.family import FamilyMechanism
-from kinepoly.model.mechanism import Mechanism
+from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.notice import Notice
 from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import GearSpec, LinkSpec, PitchCircle, Scene
@@ -240,7 +240,14 @@ def _batch(prepared: PreparedSweep, dimensions: Dimensions, grid: InputGrid) -> 
     positions = solve_positions(mechanism, prepared.plan, internal, policy)
     rows = InputGrid(np.tile(grid.values, count), internal, np.tile(grid.shown, count), grid.seed_row,
                      grid.periodic)
-    return execute_rows(mechanism, prepared, rows, positions, gaps=False)
+    members: dict[int, Mechanism] = {}
+
+    def member(row: int) -> Mechanism:  # a row's own member, for the estimate of a near-singular row's error
+        k = row // n
+        if k not in members:
+            members[k] = build_mechanism(dimensions.scene(base.scene, k))
+        return members[k]
+    return execute_rows(mechanism, prepared, rows, positions, gaps=False, member=member)
 
 
 def _member_of_batch(family: FamilyResult, batch: SweepResult, k: int, local: int) -> SweepResult:

@@ -22,12 +22,13 @@ import cmath
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
 
 import numpy as np
 import numpy.typing as npt
 
+from kinepoly.check.estimate import polygon_estimate
 from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
 from kinepoly.engine.assembly import position_at_input
 from kinepoly.engine.centrode import frame_centrodes
@@ -41,7 +42,7 @@ from kinepoly.engine.position import Failure, Positions, solve_positions
 from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.transmission import transmission_angles
 from kinepoly.engine.velocity import VelocityResult, construct_velocity
-from kinepoly.errors import AssemblyError, SceneError, SingularityError
+from kinepoly.errors import AssemblyError, KinepolyError, SceneError, SingularityError
 from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Mechanism, build_mechanism
@@ -98,9 +99,47 @@ class _Flags:
         return {k: "; ".join(v) for k, v in out.items()}
 
 
-def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineCrossing | JointSolve]) -> None:
+class _RowCondition:
+    """The condition number k of a row's dimensionless velocity equations, as the solve's check finds it
+    (``check.analytic``), for the rows whose warning gives an error estimate (a few: near a dead point); None
+    where the check does not close there. ``member``: the mechanism of a row (a family's member's);
+    ``polygons``: the polygons the sweep builds ("velocity", and "acceleration" where it builds that too)."""
+
+    def __init__(self, positions: Positions, inputs: Reals, member: Callable[[int], Mechanism],
+                 polygons: tuple[str, ...]) -> None:
+        self.positions = positions
+        self.inputs = inputs
+        self.member = member
+        self.polygons = polygons
+        self.found: dict[int, float | None] = {}
+
+    def estimate(self, row: int, own: float, sine: float = 1.0) -> str:
+        """A near-singular row's estimated relative error, in words: each polygon's, the larger of ``own`` (the
+        row's crossing, or joint solve) and the solve's estimate with the row's k (``check.estimate``); ``own``
+        alone where the check does not close."""
+        k = self(row)
+        if k is None:
+            return f"relative error about {own:.1g}"
+        return "relative error about " + ", ".join(
+            f"{max(own, polygon_estimate(polygon, k, sine)):.1g} ({_PLURAL[polygon]})" for polygon in self.polygons)
+
+    def __call__(self, row: int) -> float | None:
+        if row not in self.found:
+            from kinepoly.check.analytic import velocity_condition  # only a sweep that warns needs the check
+
+            member = self.member(row)
+            at_row = replace(member, scene=member.scene.at_input(float(self.inputs[row])))
+            try:
+                self.found[row] = velocity_condition(at_row, self.positions.row(row))
+            except KinepolyError:
+                self.found[row] = None
+        return self.found[row]
+
+
+def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineCrossing | JointSolve],
+                    condition: _RowCondition) -> None:
     """Singular and near-singular rows, as ``PolygonBuilder.cross_lines`` (and ``construct.group``) tell them
-    (``every``: whether every row is ``ok``)."""
+    (``every``: whether every row is ``ok``), a near-singular row with its estimated error (``condition``)."""
     for crossing in crossings:
         if isinstance(crossing, JointSolve):
             where = f"group {crossing.group}"
@@ -108,7 +147,7 @@ def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineC
             near = ok & ~singular & (crossing.condition > NEAR_SINGULAR_CONDITION)
             flags.raise_to(singular, _SINGULAR, f"singular: the joint equations of {where} are singular, so its "
                            "velocity and acceleration are not determined")
-            flags.raise_to(near, _NEAR, _condition_text(where, crossing.condition))
+            flags.raise_to(near, _NEAR, _condition_text(where, crossing.condition, condition))
             continue
         if every and (float(crossing.sin_angle.min()) >= NEAR_SINGULAR_SIN
                       or float(crossing.sin_angle.max()) <= -NEAR_SINGULAR_SIN) \
@@ -119,24 +158,33 @@ def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineC
         singular = ok & ~(sine > PARALLEL_SIN)
         flags.raise_to(singular, _SINGULAR, f"singular: the direction lines of {where} are parallel, so its "
                        "velocity and acceleration are not determined (a dead point or a change point)")
-        flags.raise_to(ok & ~singular & (sine < NEAR_SINGULAR_SIN), _NEAR, _near_text(where, sine))
+        flags.raise_to(ok & ~singular & (sine < NEAR_SINGULAR_SIN), _NEAR,
+                       _near_text(where, sine, condition))
         flags.raise_to(ok & ~singular & ~np.isfinite(crossing.along), _SINGULAR,
                        f"singular: the {crossing.kind} of {crossing.what} overflowed")
 
 
-def _near_text(where: str, sine: Reals) -> object:
+def _near_text(where: str, sine: Reals, condition: _RowCondition) -> object:
+    """The warning of a row whose lines cross at ``sine``, with the estimate of its error: the crossing's own
+    rounding, and the position's, which near a dead point the nearly parallel lines amplify (the same text for the
+    velocity and the acceleration polygon's crossing of the same lines, so that the row says it once)."""
     def text(row: int) -> str:
         s = float(sine[row])
         return (f"near-singular: the direction lines of {where} meet at {math.degrees(math.asin(min(1.0, s))):.3g} "
-                f"deg; relative error about {4.0 * UNIT_ROUNDOFF / max(s, TINY_POSITIVE):.1g}")
+                f"deg; {condition.estimate(row, 4.0 * UNIT_ROUNDOFF / max(s, TINY_POSITIVE), s)}")
     return text
 
 
-def _condition_text(where: str, condition: Reals) -> object:
+_PLURAL = {"velocity": "velocities", "acceleration": "accelerations"}
+
+
+def _condition_text(where: str, joints: Reals, condition: _RowCondition) -> object:
+    """The warning of a row whose joint equations have the condition number ``joints``, with the estimate of its
+    error: the joint solve's own, or the velocity equations' where that is larger."""
     def text(row: int) -> str:
-        c = float(condition[row])
-        return (f"near-singular: the joint equations of {where} have condition number {c:.2g}; relative error "
-                f"about {c * UNIT_ROUNDOFF:.1g}")
+        c = float(joints[row])
+        return (f"near-singular: the joint equations of {where} have condition number {c:.2g}; "
+                f"{condition.estimate(row, c * UNIT_ROUNDOFF)}")
     return text
 
 
@@ -388,10 +436,11 @@ def _prepared(scene: Scene, centrode: str | None, series: bool) -> PreparedSweep
 
 
 def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid, positions: Positions,
-                 gaps: bool = True) -> SweepResult:
+                 gaps: bool = True, member: Callable[[int], Mechanism] | None = None) -> SweepResult:
     """The polygons and the columns of the rows ``grid`` over the positions found there (``mechanism``: the
     prepared one, or a family's, ``model.family``); ``gaps``: say where the input's range does not assemble
-    (a family says it member by member)."""
+    (a family says it member by member); ``member``: the mechanism of a row, where it is not ``mechanism`` (a
+    family's member's, for the error estimates of near-singular rows)."""
     scene, centrode, plan, asked = mechanism.scene, prepared.centrode, prepared.plan, prepared.asked
     flags = _Flags(np.zeros(len(grid.values), np.int8))
     for failure in positions.failures:
@@ -406,12 +455,15 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
     every_ok = bool(ok.all())
     velocity = acceleration = None
     higher = bool(scene.cams or scene.gears)  # a follower's s-v-a and the gear ratios need the polygons
+    accelerations = bool(asked.needs_acceleration or scene.cams or prepared.series)
+    condition = _RowCondition(positions, grid.internal, member or (lambda _: mechanism),
+                              ("velocity", "acceleration") if accelerations else ("velocity",))
     if asked.needs_velocity or centrode is not None or higher or prepared.series:
         velocity = construct_velocity(positions, plan, asked.velocity)
-        _crossing_flags(flags, ok, every_ok, velocity.polygon.crossings)
-    if (asked.needs_acceleration or scene.cams or prepared.series) and velocity is not None:
+        _crossing_flags(flags, ok, every_ok, velocity.polygon.crossings, condition)
+    if accelerations and velocity is not None:
         acceleration = construct_acceleration(velocity, plan, asked.acceleration)
-        _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings)
+        _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings, condition)
     name = input_name(mechanism)
     out = ColumnBuilder(mechanism, positions)
     _columns(out, prepared.column_names, asked, velocity, acceleration, name)
