@@ -22,7 +22,7 @@ import numpy as np
 from kinepoly.engine.groups import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.engine.position import Positions
 from kinepoly.engine.velocity import slide_direction
-from kinepoly.geom.arrays import Points, Reals, cross, dot, length
+from kinepoly.geom.arrays import Points, Reals, length
 from kinepoly.model.mechanism import Revolute
 from kinepoly.scene.spec import SliderSpec
 
@@ -54,23 +54,26 @@ class Transmission:
 
 
 def _describe(positions: Positions, dyad: Dyad) -> tuple[Callable[[], tuple[Points, Points]], str, str, str, str]:
-    """The dyad's two velocity directions (made when asked), its point and joint, and the words of the angle."""
-    point = positions.point
+    """The dyad's two velocity directions (made when asked), its point and joint, and the words of the angle. A
+    direction square to a link is the one its velocity construction drew (``Positions.chord``, made once)."""
+    def square(start: str, end: str) -> Points:
+        return positions.chord(start, end)[1]
+
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point
         second = dyad.second_joint
         if isinstance(second, Revolute):
             p3 = second.point
-            return (lambda: (1j * (point(p2) - point(p1)), 1j * (point(p2) - point(p3))), p2, p2,
+            return (lambda: (square(p1, p2), square(p3, p2)), p2, p2,
                     f"{p1}{p2} and {p3}{p2}", f"the links {p1}{p2} and {p3}{p2} are in line")
-        return (lambda: (1j * (point(p2) - point(p1)), slide_direction(positions, second)), p2, p2,
+        return (lambda: (square(p1, p2), slide_direction(positions, second)), p2, p2,
                 f"{p1}{p2} and the normal to slider {second.name}",
                 f"the link {p1}{p2} is square to slider {second.name}'s line")
     if dyad.kind == "RPR":
         r = slide_roles(dyad)
         q, p, name = r.guide_pin, r.block_pin, r.slider.name
-        return (lambda: (1j * (point(p) - point(q)), slide_direction(positions, r.slider)), p, p,
+        return (lambda: (square(q, p), slide_direction(positions, r.slider)), p, p,
                 f"the normal to slider {name} and the path of {p} about {q}",
                 f"slider {name}'s line is square to {q}{p}")
     t = two_slide_roles(dyad, positions.mechanism)
@@ -93,7 +96,8 @@ def transmission_angles(positions: Positions, plan: PositionPlan) -> list[Transm
         if isinstance(group, Dyad):
             directions, point, joint, between, at_zero = _describe(positions, group)
             first, second = directions()
-            turn = np.arctan2(np.abs(cross(first, second)), np.abs(dot(first, second)))
+            product = np.conjugate(first) * second  # its imaginary part the cross product, its real part the dot
+            turn = np.arctan2(np.abs(product.imag), np.abs(product.real))
             angle = np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
             out.append(Transmission(group.name, point, joint, between, at_zero, angle))
     return out
