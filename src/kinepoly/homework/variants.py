@@ -16,6 +16,12 @@ the input values, all rounded to numbers a student can draw. It is kept only if
   number is at most ten times the original's;
 * its solve carries no near-singular warning and its cross-check is clean.
 
+The draws are judged a batch at a time through the family engine (``sweep.family.member_placer``: every draw a
+member at its own input, the plan run once for all), in as few engine calls as the mechanism has dyads, plus one;
+a draw is solved alone, by the path above, only where a direct solve would land it in the other assembly, or the
+two assemblies weigh alike (``_judged``). Scenes with cams, gears or groups solved by Newton's method, which a
+family does not run in one batch, are judged draw by draw by that path. Either way the same draws are kept.
+
 Cams and gears are drawn and written as the user wrote them (``homework.higher_pairs``): a pair's
 lengths take the factor of the link that carries them, and with gears every link takes the same one
 (``GEARS_NOTE``), so that each pair's centre distance stays the sum (difference) of its radii.
