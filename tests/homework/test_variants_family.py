@@ -108,3 +108,26 @@ def test_a_draw_whose_direct_solve_lands_in_the_other_assembly_is_left_to_the_pa
         assert verdict is None or verdict is False
         old = _by_the_path(scene, numbers, original, 30.0)
         assert _by_the_family(scene, numbers, verdict, original, 30.0) == old
+
+
+DRIVEN_SLIDER_CRANK = (EXAMPLES / "slider-crank.toml").read_text().split("[input]")[0] + (
+    '[input]\nslider = "14"\ns = 130\ns_dot = -500\n[guess]\nA = [20, 35]\n'
+    '[find]\nvelocity = ["A", "C"]\nomega = ["3", "2"]\n')
+
+
+@pytest.mark.parametrize("name, lengths, least, seed", [
+    ("four-bar", (0.7, 1.3), 45.0, 3), ("centers-six-bar", (0.7, 1.3), 40.0, 5), ("shaper", (0.6, 1.4), 30.0, 1),
+    ("toggle-press", (0.5, 1.5), 30.0, 2), ("driven slider-crank", (0.8, 1.2), 30.0, 4)])
+def test_make_variants_writes_what_the_path_of_solves_writes(monkeypatch: pytest.MonkeyPatch, name: str,
+                                                             lengths: tuple[float, float], least: float,
+                                                             seed: int) -> None:
+    scene = (kinepoly.loads_scene(DRIVEN_SLIDER_CRANK, "driven.toml") if name == "driven slider-crank"
+             else kinepoly.load_scene(EXAMPLES / f"{name}.toml"))
+    ranges = default_ranges(scene)
+    ranges = Ranges({link: Range(*lengths) for link in ranges.factors}, ranges.inputs)
+    original = variants._solved(scene)
+    assert original is not None and variants._family(as_written(scene), original) is not None
+    made = variants.make_variants(scene, ranges, 8, seed, min_transmission_deg=least)
+    monkeypatch.setattr(variants, "_family", lambda *_: None)
+    alone = variants.make_variants(scene, ranges, 8, seed, min_transmission_deg=least)
+    assert [(v.scene_text, v.answers_text) for v in made] == [(v.scene_text, v.answers_text) for v in alone]
