@@ -131,3 +131,40 @@ def test_make_variants_writes_what_the_path_of_solves_writes(monkeypatch: pytest
     monkeypatch.setattr(variants, "_family", lambda *_: None)
     alone = variants.make_variants(scene, ranges, 8, seed, min_transmission_deg=least)
     assert [(v.scene_text, v.answers_text) for v in made] == [(v.scene_text, v.answers_text) for v in alone]
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(name=st.sampled_from(FAMILY_SCENES), seed=st.integers(0, 10**6), which=st.integers(0, 1))
+def test_the_family_weighs_the_assemblies_as_a_direct_solve_does(name: str, seed: int, which: int) -> None:
+    """From a pose of the other assembly of one dyad (its inner joint mirrored), a direct solve lands some draws
+    there: the family leaves every such draw to the path of solves, and what it reaches itself is the direct
+    solve's pose."""
+    import dataclasses
+
+    import numpy as np
+
+    scene = as_written(kinepoly.load_scene(EXAMPLES / f"{name}.toml"))
+    original = variants._solved(scene)
+    assert original is not None
+    family = variants._family(scene, original)
+    assert family is not None
+    dyad = family.dyads[which % len(family.dyads)]
+    start = variants._numbers(scene)
+    own = np.array([start.inputs[0][1]])
+    mirrored = family.placer.place(variants._dimensions(scene, [start]), own, frozenset({dyad.name}))
+    if not mirrored.ok[0]:
+        return
+    away = tuple((n, (float(mirrored.point(n)[0].real), float(mirrored.point(n)[0].imag))) for n, _ in family.guess)
+    weighed = dataclasses.replace(family, guess=away)
+    ranges = default_ranges(scene)
+    ranges = Ranges({link: Range(0.95, 1.05) for link in ranges.factors}, ranges.inputs)
+    rng = random.Random(seed)
+    batch = [variants._draw(rng, scene, ranges) for _ in range(8)]
+    for numbers, verdict in zip(batch, variants._judged(weighed, scene, batch, 0.0), strict=True):
+        direct = variants._solved(variants._scene(scene, numbers, away))
+        if direct is None or direct.signature != original.signature:
+            assert verdict is None or verdict is False
+        elif verdict:
+            size = variants._size(scene)
+            points = dict(direct.guess())
+            assert all(abs(complex(*points[n]) - complex(*xy)) <= 1e-9 * size for n, xy in verdict)

@@ -419,6 +419,7 @@ def _judged(family: _Family, base: Scene, batch: list[_Numbers], min_transmissio
     for dyad in family.dyads:
         other = placer.place(dimensions, inputs, frozenset({dyad.name}))
         if all(np.array_equal(found.poses[link].origin, other.poses[link].origin, equal_nan=True)
+               and np.array_equal(found.poses[link].rotation, other.poses[link].rotation, equal_nan=True)
                for link in dyad.links):
             continue  # a dyad of one assembly (two slides): nothing to choose
         mine = guess_distances(guess, found.mechanism, {link: found.poses[link] for link in dyad.links})
