@@ -7,8 +7,9 @@ student plus the comparing, and a variant costs a few solves (drawn, written, re
 
 Then ``kinepoly variants --n 30`` (``run_variants``, the files written to a temporary folder) of the four-bar and
 of two six-bars, its draws judged through the family engine (a few engine calls for all of them) and by the path
-of solves from the original that scenes with cams keep (a solve or more per draw), interleaved, with their ratio;
-the two write the same files.
+of solves from the original that scenes with cams keep (a solve or more per draw), interleaved, with their ratio,
+how many scenes each solved (the path: one or more per draw, and one per variant written; the family: the one
+per variant written, and the draws it leaves to the path), and whether the two wrote the same files.
 """
 
 from __future__ import annotations
@@ -72,33 +73,42 @@ def main() -> None:
         print(f"{what:<28} {1e3 * seconds:9.3g} {1e3 * seconds / items:12.3g} {seconds / items / solve_s:16.3g}")
 
 
-def variants_class(scene: Path, by_the_path: bool, lengths: str | None, least: float) -> dict[str, str]:
+def variants_class(scene: Path, by_the_path: bool, lengths: str | None, least: float) -> tuple[dict[str, str], int]:
     """``kinepoly variants SCENE --n 30 --seed 7 [--lengths LO,HI] [--min-transmission DEG]``: the files it
-    writes, by name."""
-    with tempfile.TemporaryDirectory() as folder, contextlib.redirect_stdout(io.StringIO()):
+    writes, by name, and how many scenes it solved."""
+    solved = variants._solved
+    count = [0]
+
+    def counted(scene: kinepoly.Scene) -> object:
+        count[0] += 1
+        return solved(scene)
+
+    with tempfile.TemporaryDirectory() as folder, contextlib.redirect_stdout(io.StringIO()), \
+            mock.patch.object(variants, "_solved", counted):
         with mock.patch.object(variants, "_family", lambda *_: None) if by_the_path else contextlib.nullcontext():
             run_variants(str(scene), 30, 7, folder, {"lengths": lengths}, least)
-        return {p.name: p.read_text() for p in sorted(Path(folder).iterdir())}
+        return {p.name: p.read_text() for p in sorted(Path(folder).iterdir())}, count[0]
 
 
 def variants_family(rounds: int = 3) -> None:
     print(f"\nkinepoly variants --n 30 --seed 7: draws judged by the family engine or by the path of solves "
           f"(best of {rounds}, interleaved)")
-    print(f"{'scene':<18} {'options':<38} {'path of solves ms':>18} {'family ms':>10} {'ratio':>6}  same files")
+    print(f"{'scene':<16} {'options':<38} {'path ms':>8} {'family ms':>10} {'ratio':>6} {'solves':>13}  same files")
     for name, lengths, least in (("four-bar", None, 30.0), ("centers-six-bar", None, 30.0), ("shaper", None, 30.0),
                                  ("four-bar", "0.7,1.3", 45.0), ("centers-six-bar", "0.7,1.3", 45.0)):
         scene = ROOT / "examples" / f"{name}.toml"
         options = "" if lengths is None else f"--lengths {lengths} --min-transmission {least:g}"
         times: dict[bool, list[float]] = {True: [], False: []}
-        made: dict[bool, dict[str, str]] = {}
+        made: dict[bool, tuple[dict[str, str], int]] = {}
         for _ in range(rounds):
             for by_the_path in (True, False):
                 start = time.perf_counter()
                 made[by_the_path] = variants_class(scene, by_the_path, lengths, least)
                 times[by_the_path].append(time.perf_counter() - start)
         old, new = min(times[True]), min(times[False])
-        print(f"{name:<18} {options:<38} {1e3 * old:18.0f} {1e3 * new:10.0f} {old / new:6.2f}  "
-              f"{made[True] == made[False]}")
+        solves = f"{made[True][1]} -> {made[False][1]}"
+        print(f"{name:<16} {options:<38} {1e3 * old:8.0f} {1e3 * new:10.0f} {old / new:6.2f} {solves:>13}  "
+              f"{made[True][0] == made[False][0]}")
 
 
 if __name__ == "__main__":
