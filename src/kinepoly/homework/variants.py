@@ -414,7 +414,7 @@ def _judged(family: _Family, base: Scene, batch: list[_Numbers], min_transmissio
     for transmission in transmission_angles(found, placer.plan):
         rejected |= np.degrees(transmission.angle) < min_transmission_deg - _ANGLE_MARGIN_DEG
     guess = dict(family.guess)
-    far = max(math.hypot(*xy) for _, xy in family.guess)
+    far = max((math.hypot(*xy) for _, xy in family.guess), default=0.0)
     unsure = np.zeros(len(batch), np.bool_)
     for dyad in family.dyads:
         other = placer.place(dimensions, inputs, frozenset({dyad.name}))
