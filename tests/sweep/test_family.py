@@ -401,3 +401,48 @@ def test_a_large_family_runs_in_batches_of_whole_members(monkeypatch: pytest.Mon
         one, other = parts.member(k), whole.member(k)
         assert one.warnings == other.warnings and one.notices == other.notices
         assert one.skeleton == other.skeleton and parts.member_scene(k) == whole.member_scene(k)
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(name=st.sampled_from(["four-bar", "slider-crank", "shaper", "centers-six-bar", "dump-body"]),
+       seed=st.integers(0, 10**6), members=st.integers(1, 6))
+def test_members_each_at_its_own_input_are_their_solves(name: str, seed: int, members: int) -> None:
+    """``member_placer``: member k with its own points and slide lines at its own input is the solve of its scene
+    at that input, in the scene's own assembly (the solve's, from [guess] at the family's); flipped, its dyad in the
+    other assembly."""
+    import dataclasses
+
+    from kinepoly.engine.groups import Dyad
+    from kinepoly.scene.spec import LinkInput
+    from kinepoly.sweep.family import Dimensions, member_placer
+
+    scene = _scene(name)
+    placer = member_placer(scene)
+    assert placer is not None
+    rng = np.random.default_rng(seed)
+    factors = {link.name: rng.uniform(0.95, 1.05, members) for link in scene.links}
+    points = {(link.name, p.name): np.outer(factors[link.name], p.local) for link in scene.links for p in link.points}
+    slides = {s.name: np.outer(factors[s.guide], s.through) for s in scene.sliders}
+    dimensions = Dimensions(points, slides, members)
+    link_input = isinstance(scene.input, LinkInput)
+    own = scene.input.angle_rad if isinstance(scene.input, LinkInput) else getattr(scene.input, "s", 0.0)
+    inputs = own + (rng.uniform(-0.2, 0.2, members) if link_input else rng.uniform(-2.0, 2.0, members))
+    found = placer.place(dimensions, inputs)
+    dyad = next(g for g in placer.plan.groups if isinstance(g, Dyad))
+    flipped = placer.place(dimensions, inputs, frozenset({dyad.name}))
+    names = [p.name for link in scene.links if link.name != scene.ground for p in link.points]
+    for k in range(members):
+        if not found.ok[k]:
+            continue
+        at = {n: complex(found.point(n)[k]) for n in names}
+        member = dimensions.scene(scene, k)
+        given = {"angle_rad": float(inputs[k])} if link_input else {"s": float(inputs[k])}
+        member = dataclasses.replace(member, input=dataclasses.replace(scene.input, **given),  # type: ignore[arg-type]
+                                     guess=tuple((n, (z.real, z.imag)) for n, z in at.items()))
+        solved = kinepoly.solve(member)
+        size = max(abs(z) for z in at.values())
+        for n, z in at.items():
+            assert abs(complex(*solved.position(n)) - z) <= 1e-9 * size, (n, k)
+        inner = dyad.inner.point if hasattr(dyad.inner, "point") else None
+        if inner is not None and flipped.ok[k]:
+            assert abs(complex(flipped.point(inner)[k]) - at[inner]) > 1e-6 * size

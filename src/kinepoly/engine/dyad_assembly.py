@@ -24,13 +24,15 @@ from kinepoly.engine.inputs import describe_input
 from kinepoly.engine.placement import Placement
 from kinepoly.engine.policy import Continuity, FamilyContinuity, NearestGuess, guess_coordinate
 from kinepoly.errors import AssemblyError, KinepolyError, SingularityError
+from kinepoly.geom.arrays import Reals
 from kinepoly.geom.tolerances import ROUNDING_REL, SAME_REL
+from kinepoly.geom.vec import Vec
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 
-__all__ = ["DyadQuestion", "closing_error"]
+__all__ = ["DyadQuestion", "closing_error", "guess_distances"]
 
 
 def closing_error(mechanism: Mechanism, closure: Closure) -> KinepolyError:
@@ -100,20 +102,28 @@ class DyadQuestion:
         seed = policy.seed
         own = close_dyad(policy.base, {link: ArrayPose.of_rows([pose]) for link, pose in seed.items()},
                          closure.dyad, policy.values)
+        label = _seed_label(own, seed, 0)
+        if closure.dyad.name in policy.flipped:
+            label = 1 - label
         labels = follow_members(closure.telling[0], closure.telling[1], placed.ok, policy.rows_each, policy.seed_row,
-                                _seed_label(own, seed, 0), policy.periodic, closure.gap)
+                                label, policy.periodic, closure.gap)
         return labels if isinstance(labels, int) else np.asarray(labels == 0)
 
 
 def _score(policy: NearestGuess, mechanism: Mechanism, poses: Mapping[str, ArrayPose]) -> float:
-    total = 0.0
+    return float(guess_distances(policy.guess, mechanism, poses)[0])
+
+
+def guess_distances(guess: Mapping[str, Vec], mechanism: Mechanism, poses: Mapping[str, ArrayPose]) -> Reals:
+    """At every row, the sum of the squared distances of the guessed points of the links ``poses`` places from their
+    guess: what a solve (``NearestGuess``) weighs two assemblies by, the smaller taken."""
+    total: Reals = np.zeros(len(next(iter(poses.values())).origin))
     for link, pose in poses.items():
         for point in mechanism.scene.link(link).points:
-            if point.name in policy.guess:
-                at = complex(pose.world(point.local)[0])
-                g = policy.guess[point.name]
-                d = abs(at - complex(g[0], g[1]))
-                total += d * d
+            if point.name in guess:
+                g = guess[point.name]
+                d = np.abs(pose.world(mechanism.local(link, point.name)) - complex(g[0], g[1]))
+                total = total + d * d
     return total
 
 

@@ -110,7 +110,8 @@ class Continuity:
 class FamilyContinuity:
     """A family's policy: every member's row ``seed_row`` (of its ``rows_each``) takes the assembly of the label
     the scene's own solve takes (found on ``base``, the scene's mechanism, at its solve's poses ``seed`` and its
-    inputs' values ``values`` there), and the member's other rows follow it continuously."""
+    inputs' values ``values`` there), and the member's other rows follow it continuously; the dyads named in
+    ``flipped`` take the other label (their other assembly, the groups after them placed on it)."""
 
     seed_row: int
     rows_each: int
@@ -118,6 +119,7 @@ class FamilyContinuity:
     base: Mechanism
     seed: Mapping[str, LinkPose]
     values: tuple[Reals, ...] = ()
+    flipped: frozenset[str] = frozenset()
 
     def assemble(self, mechanism: Mechanism, question: Question[T], placed: Placement) -> T:
         return question.by_label(self, mechanism, placed)

@@ -66,9 +66,9 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
 
 def _unit_turns(mechanism: Mechanism, inputs: Reals) -> Points:
     """e^(i theta) at every row, its parts written in place: the same bits as np.exp(1j * theta), without its
-    complex temporaries. A family's members share their inputs (``model.family``): one member's are worked out and
-    repeated."""
-    each = mechanism.rows_each if isinstance(mechanism, FamilyMechanism) else len(inputs)
+    complex temporaries. A family's members that share their inputs (``model.family``): one member's are worked out
+    and repeated."""
+    each = mechanism.rows_each if isinstance(mechanism, FamilyMechanism) and mechanism.shared_inputs else len(inputs)
     one = inputs[:each]
     rotation = np.empty(len(one), np.complex128)
     np.cos(one, out=rotation.real)

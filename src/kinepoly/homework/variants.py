@@ -16,6 +16,12 @@ the input values, all rounded to numbers a student can draw. It is kept only if
   number is at most ten times the original's;
 * its solve carries no near-singular warning and its cross-check is clean.
 
+The draws are judged a batch at a time through the family engine (``sweep.family.member_placer``: every draw a
+member at its own input, the plan run once for all), in as few engine calls as the mechanism has dyads, plus one;
+a draw is solved alone, by the path above, only where a direct solve would land it in the other assembly, or the
+two assemblies weigh alike (``_judged``). Scenes with cams, gears or groups solved by Newton's method, which a
+family does not run in one batch, are judged draw by draw by that path. Either way the same draws are kept.
+
 Cams and gears are drawn and written as the user wrote them (``homework.higher_pairs``): a pair's
 lengths take the factor of the link that carries them, and with gears every link takes the same one
 (``GEARS_NOTE``), so that each pair's centre distance stays the sum (difference) of its radii.
@@ -34,7 +40,13 @@ import random
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Literal
 
+import numpy as np
+
+from kinepoly.engine.dyad_assembly import guess_distances
+from kinepoly.engine.groups import Dyad
+from kinepoly.engine.transmission import transmission_angles
 from kinepoly.errors import AssemblyError, KinepolyError, SceneError
 from kinepoly.geom.tolerances import SAME_REL, TRACKED_REL
 from kinepoly.geom.vec import norm, unit
@@ -55,6 +67,7 @@ from kinepoly.scene.loader import loads_scene
 from kinepoly.scene.reader_state import polar_point
 from kinepoly.scene.spec import GivenInput, LinkInput, LinkSpec, PointSpec, Scene
 from kinepoly.solution import Solution, solve
+from kinepoly.sweep.family import Dimensions, MemberPlacer, member_placer
 
 __all__ = ["DEFAULT_MIN_TRANSMISSION_DEG", "GEARS_NOTE", "Variant", "make_variants"]
 
@@ -66,8 +79,17 @@ _STEP_DEG = 15.0  # the largest turn of the input per step of a path
 _STEP_FACTOR = 0.05  # the largest relative change of a length per step
 _CONDITION_GROWTH = 10.0
 _TRACKED = TRACKED_REL  # a read-back variant's points lie this close (relative to its size) to the tracked pose
+_LEAST_BATCH = 8  # the fewest draws judged together by the family engine
+_ANGLE_MARGIN_DEG = 1e-6  # a transmission angle this close to the least is left to the solve to judge
+_WEIGH_MARGIN = 1e-9
+"""Two assemblies whose guessed points' squared distances differ by less than this times the square of (four times)
+their reach are left to the solve to weigh (it weighs them alike within 1e-12 of a smaller square)."""
 
 Vec = tuple[float, float]
+Guess = tuple[tuple[str, Vec], ...]
+"""Moving points where they are, by name: a variant's ``[guess]`` before rounding."""
+Verdict = Guess | Literal[False] | None
+"""A draw judged by the family: rejected (False), reached there (``Guess``), or left to the path of solves (None)."""
 
 
 @dataclass(frozen=True)
@@ -257,7 +279,7 @@ class _Solved:
     def condition(self) -> float:
         return float(self.solution.check.condition_number)
 
-    def guess(self) -> tuple[tuple[str, Vec], ...]:
+    def guess(self) -> Guess:
         """Every point of a moving, solved link (but not of the frame), where it is."""
         scene, pose = self.solution.scene, self.solution.pose
         frame = set(scene.link(scene.ground).point_names) if scene.ground else set()
@@ -330,6 +352,93 @@ def _reach(base: Scene, start: _Numbers, end: _Numbers, original: _Solved) -> _S
 
 
 # --------------------------------------------------------------------------------------------
+# Judging many draws at once, through the family engine
+
+
+@dataclass(frozen=True, eq=False)
+class _Family:
+    """What judging a scene's draws as one family needs: the placer of its members (``sweep.family``), the dyads
+    of its plan, and the original's moving points (a direct solve's ``[guess]``) by name, in the solve's order."""
+
+    placer: MemberPlacer
+    dyads: tuple[Dyad, ...]
+    guess: tuple[tuple[str, Vec], ...]
+
+
+def _family(scene: Scene, original: _Solved) -> _Family | None:
+    """The family engine's judge of ``scene``'s draws; None where it cannot judge them: cams, gears, groups solved
+    by Newton's method, or a dyad whose velocity construction the original's solve does not show (its assembly
+    and transmission angle are then none of the variant's checks)."""
+    if original.has_linear_solve:
+        return None
+    placer = member_placer(scene, frozenset(original.solution.pose.links))
+    if placer is None:
+        return None
+    dyads = tuple(group for group in placer.plan.groups if isinstance(group, Dyad))
+    if len(dyads) != len(original.crossings):
+        return None
+    return _Family(placer, dyads, original.guess())
+
+
+def _dimensions(base: Scene, batch: list[_Numbers]) -> Dimensions:
+    """The draws' link points and slide lines as one family, a member a draw."""
+    points = {(link.name, p.name): np.array([numbers.points[i][j] for numbers in batch], np.float64)
+              for i, link in enumerate(base.links) for j, p in enumerate(link.points)}
+    slides = {s.name: np.array([numbers.through[i] for numbers in batch], np.float64)
+              for i, s in enumerate(base.sliders)}
+    return Dimensions(points, slides, len(batch))
+
+
+def _judged(family: _Family, base: Scene, batch: list[_Numbers], min_transmission_deg: float) -> list[Verdict]:
+    """Each draw of ``batch`` judged as the path of solves (``_reach``) would judge it, in a few engine calls.
+
+    Every draw is placed at its own input in the original's assembly (each dyad on the original's label, the
+    family's ``FamilyContinuity``); and, once per dyad, with that dyad alone on its other label. A direct solve
+    from the original's pose (``_reach``'s first) weighs a dyad's two assemblies by how near their guessed points
+    lie to that pose (``guess_distances``) and takes the nearer. So a draw is
+
+    * rejected (False) where it does not close in the original's assembly, or a transmission angle there is below
+      ``min_transmission_deg``: no solve reaches it in the original's assembly (its crossings' signs are the
+      labels), or the one that does fails the angle;
+    * reached (its moving points) where, dyad after dyad, the original's assembly is clearly the nearer: the
+      direct solve lands there;
+    * left to the path of solves (None) where the two weigh nearly alike or the other is nearer.
+
+    What the solve of the written variant checks (notices, every angle, the pose) is checked after, as for any.
+    """
+    placer = family.placer
+    dimensions = _dimensions(base, batch)
+    inputs = np.array([numbers.inputs[0][1] for numbers in batch], np.float64)
+    found = placer.place(dimensions, inputs)
+    rejected = ~found.ok
+    for transmission in transmission_angles(found, placer.plan):
+        rejected |= np.degrees(transmission.angle) < min_transmission_deg - _ANGLE_MARGIN_DEG
+    guess = dict(family.guess)
+    far = max((math.hypot(*xy) for _, xy in family.guess), default=0.0)
+    unsure = np.zeros(len(batch), np.bool_)
+    for dyad in family.dyads:
+        other = placer.place(dimensions, inputs, frozenset({dyad.name}))
+        if all(np.array_equal(found.poses[link].origin, other.poses[link].origin, equal_nan=True)
+               and np.array_equal(found.poses[link].rotation, other.poses[link].rotation, equal_nan=True)
+               for link in dyad.links):
+            continue  # a dyad of one assembly (two slides): nothing to choose
+        mine = guess_distances(guess, found.mechanism, {link: found.poses[link] for link in dyad.links})
+        theirs = guess_distances(guess, other.mechanism, {link: other.poses[link] for link in dyad.links})
+        scale = 4.0 * (far + np.sqrt(mine) + np.sqrt(theirs))
+        unsure |= ~(mine + _WEIGH_MARGIN * scale * scale < theirs)
+    verdicts: list[Verdict] = []
+    for k in range(len(batch)):
+        if rejected[k]:
+            verdicts.append(False)
+        elif unsure[k]:
+            verdicts.append(None)
+        else:
+            verdicts.append(tuple((name, (float(found.point(name)[k].real), float(found.point(name)[k].imag)))
+                                  for name, _ in family.guess))
+    return verdicts
+
+
+# --------------------------------------------------------------------------------------------
 # The variants
 
 
@@ -338,15 +447,17 @@ def _key(solved: _Solved) -> tuple[tuple[AnswerKey, Value], ...]:
     return tuple((key, values[key]) for key in asked_keys(values))
 
 
-def _same_pose(first: _Solved, second: _Solved, size: float) -> bool:
+def _same_pose(first: _Solved, reached: Guess, size: float) -> bool:
     points = dict(first.guess())
-    return all(math.dist(points[name], spot) <= _TRACKED * size for name, spot in second.guess() if name in points)
+    return all(math.dist(points[name], spot) <= _TRACKED * size for name, spot in reached if name in points)
 
 
-def _written(base: Scene, name: str, index: int, numbers: _Numbers, reached: _Solved,
+def _written(base: Scene, name: str, index: int, numbers: _Numbers, reached: Guess,
              header: str, original: _Solved, min_transmission_deg: float) -> Variant | None:
+    """The variant ``numbers`` written with ``reached`` (its moving points where it is reached, in the original's
+    assembly) as its ``[guess]``, read back and solved: None unless that solve is good and in the same pose."""
     spot = _rounder(_length_exponent(base) - 1)
-    guess = tuple((point, (spot(x), spot(y))) for point, (x, y) in reached.guess())
+    guess = tuple((point, (spot(x), spot(y))) for point, (x, y) in reached)
     title = f"{base.title} (variant {index})"
     text = scene_toml(_written_scene(base, numbers, guess, title), header)
     scene = loads_scene(text, f"{name}.toml")
@@ -381,18 +492,30 @@ def make_variants(scene: Scene, ranges: Ranges, count: int, seed: int, *, stem: 
     width = max(2, len(str(count)))
     rng = random.Random(seed)
     start = _numbers(scene)
+    family = _family(scene, original)
     seen: set[_Numbers] = set()
     variants: list[Variant] = []
-    draws = 0
-    while len(variants) < count and draws < _DRAWS_PER_VARIANT * count:
+    draws, limit = 0, _DRAWS_PER_VARIANT * count
+    ahead: list[tuple[_Numbers, Verdict]] = []  # drawn, in the order drawn, and judged together
+    while len(variants) < count and draws < limit:
+        if not ahead:
+            size = 1 if family is None else min(limit - draws, max(_LEAST_BATCH, 2 * (count - len(variants))))
+            batch = [_draw(rng, scene, ranges) for _ in range(size)]
+            ahead = list(zip(batch, [None] * size if family is None else
+                             _judged(family, scene, batch, min_transmission_deg), strict=True))[::-1]
+        numbers, verdict = ahead.pop()
         draws += 1
-        numbers = _draw(rng, scene, ranges)
         if numbers in seen:
             continue
         seen.add(numbers)
-        reached = _reach(scene, start, numbers, original)
-        if reached is None or not _is_good(reached, original, min_transmission_deg):
+        if verdict is False:
             continue
+        reached = verdict
+        if reached is None:  # the family cannot tell (or cannot run it): the path of solves from the original
+            solved = _reach(scene, start, numbers, original)
+            if solved is None or not _is_good(solved, original, min_transmission_deg):
+                continue
+            reached = solved.guess()
         index = len(variants) + 1
         name = f"{stem}-{index:0{width}d}"
         header = (f"Variant {index} of {Path(scene.source).name}, made by kinepoly variants (seed {seed}); "

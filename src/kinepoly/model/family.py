@@ -49,6 +49,9 @@ class FamilyMechanism(Mechanism):
     rows_each: int = 1
     slides: Mapping[str, Points] = field(default_factory=dict)
     """The slide lines that differ between the members: each member's ``through`` (x + iy), keyed by slider."""
+    shared_inputs: bool = True
+    """Every member over the same inputs (a family sweep: one member's input rows are worked out and repeated);
+    False where each row has an input of its own."""
 
     @cached_property
     def _rows(self) -> dict[tuple[str, str], RowPoint]:

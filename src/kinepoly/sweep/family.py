@@ -30,7 +30,8 @@ import numpy as np
 import numpy.typing as npt
 
 from kinepoly.engine.carry import drive_values
-from kinepoly.engine.groups import CarriedDyad, DriveGroup, Dyad
+from kinepoly.engine.groups import CarriedDyad, DriveGroup, Dyad, PositionPlan
+from kinepoly.engine.plan import make_plan
 from kinepoly.engine.policy import FamilyContinuity
 from kinepoly.engine.position import Positions, input_values, solve_positions
 from kinepoly.errors import KinepolyError, SceneError
@@ -38,14 +39,24 @@ from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.array_pose import ArrayPose
 from kinepoly.model.family import FamilyMechanism
 from kinepoly.model.mechanism import Mechanism, build_mechanism
+from kinepoly.model.pose import LinkPose
 from kinepoly.notice import Notice
 from kinepoly.scene.link_point import LinkPoint
 from kinepoly.scene.spec import GearSpec, LinkSpec, PitchCircle, Scene
 from kinepoly.sweep.inputs import InputGrid, input_grid, input_unit
 from kinepoly.sweep.result import STATUS, Column, Kind, SweepResult
-from kinepoly.sweep.run import PreparedSweep, execute_rows, gap_notices, prepare_sweep, prepared_sweep, run_sweep
+from kinepoly.sweep.run import (
+    PreparedSweep,
+    execute_rows,
+    gap_notices,
+    prepare_sweep,
+    prepared_sweep,
+    run_sweep,
+    seed_poses,
+)
 
-__all__ = ["Dimensions", "FamilyColumn", "FamilyResult", "member_scene", "read_dimensions", "sweep_family"]
+__all__ = ["Dimensions", "FamilyColumn", "FamilyResult", "MemberPlacer", "member_placer", "member_scene",
+           "read_dimensions", "sweep_family"]
 
 _CHUNK_ROWS = 1 << 17
 """At most this many rows (members times rows each) run in one batch, under 0.1 GB of arrays at their peak; a
@@ -165,10 +176,12 @@ class Dimensions:
                           {key: xy[first:stop] for key, xy in self.slides.items()}, stop - first,
                           {key: r[first:stop] for key, r in self.radii.items()})
 
-    def mechanism(self, base: Mechanism, rows_each: int) -> FamilyMechanism:
-        """The members' mechanism over their rows, ``rows_each`` to a member."""
+    def mechanism(self, base: Mechanism, rows_each: int, shared_inputs: bool = True) -> FamilyMechanism:
+        """The members' mechanism over their rows, ``rows_each`` to a member (``shared_inputs``: every member over
+        the same inputs; False: each row at an input of its own)."""
         return FamilyMechanism(base.scene, {key: xy[:, 0] + 1j * xy[:, 1] for key, xy in self.points.items()},
-                               rows_each, {name: xy[:, 0] + 1j * xy[:, 1] for name, xy in self.slides.items()})
+                               rows_each, {name: xy[:, 0] + 1j * xy[:, 1] for name, xy in self.slides.items()},
+                               shared_inputs)
 
 
 def member_scene(scene: Scene, points: Mapping[str, npt.ArrayLike], k: int,
@@ -222,6 +235,40 @@ def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike] | None = None
               "total_s": prepared.prepare_s + t2 - t0}
     return FamilyResult(scene, dimensions, inputs, columns, _joined([b.status for b in batches], count, rows), True,
                         grid.notices, timing, batches, per, grid)
+
+
+@dataclass(frozen=True, eq=False)
+class MemberPlacer:
+    """Places a family's members each at an input of its own (one row a member), in one run of the position plan;
+    made once for a scene by ``member_placer``."""
+
+    mechanism: Mechanism
+    plan: PositionPlan
+    seed: Mapping[str, LinkPose]
+    """The scene's own assembly at its own input (its solve's), whose labels the members take."""
+
+    def place(self, dimensions: Dimensions, inputs: Reals, flipped: frozenset[str] = frozenset()) -> Positions:
+        """Member k with its dimensions at ``inputs[k]`` (the scene's first input: theta in radians, or s), every
+        dyad on the label of the scene's own assembly but those named in ``flipped``, on the other; ``ok`` False
+        where a member does not close so."""
+        base = self.mechanism
+        policy = FamilyContinuity(0, 1, False, base, self.seed, drive_values(base, input_values(base)), flipped)
+        with np.errstate(all="ignore"):
+            members = dimensions.mechanism(base, 1, shared_inputs=False)
+            return solve_positions(members, self.plan, np.asarray(inputs, np.float64), policy)
+
+
+def member_placer(scene: Scene, links: frozenset[str] | None = None) -> MemberPlacer | None:
+    """A placer of ``scene``'s members, each at its own input, through the groups that place ``links`` (every
+    link without them); None where a family cannot run in one batch: cams, gears, or groups solved by Newton's
+    method in the plan."""
+    if scene.cams:
+        return None
+    mechanism = build_mechanism(scene)
+    plan = make_plan(mechanism, None if links is None else set(links))
+    if not all(type(group) in _BATCHED for group in plan.groups):
+        return None
+    return MemberPlacer(mechanism, plan, seed_poses(mechanism, plan))
 
 
 def _joined(parts: list[npt.NDArray[Any]], count: int, rows: int) -> npt.NDArray[Any]:
