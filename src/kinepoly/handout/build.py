@@ -80,6 +80,7 @@ def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float], as
     width, height = size
     inner = width - 2 * (MARGIN_MM + GAP_MM)
     frame = band_frame(solution, (width, height), 0.0, asked, readable)
+    whole = frame.layout  # the drawing on the whole page, where each frame with a band starts
     scales = scales_of(frame.layout)
     handout = handout_content(solution, say, scales, loops)
     heights: dict[Page, float] = {}  # a page's text is set once per paper, however often the scales settle
@@ -93,11 +94,14 @@ def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float], as
         need = max(height_of(page) for page in handout.pages)
         if need > _MOST_BAND * (height - 2 * MARGIN_MM):
             return f"the handout's text needs {need:.0f} mm of the page's {height:.0f}"
-        if frame.band < need or scales_of(frame.layout) != scales:
-            frame = band_frame(solution, (width, height), max(need, frame.band), asked, readable)
-            if scales_of(frame.layout) != scales:
-                scales = scales_of(frame.layout)
-                handout = handout_content(solution, say, scales, loops)
+        grown = frame.band < need  # else the frame is the one a band of its height makes: laid out once
+        if grown:
+            frame = band_frame(solution, (width, height), need, asked, readable, whole)
+        if scales_of(frame.layout) != scales:
+            scales = scales_of(frame.layout)
+            handout = handout_content(solution, say, scales, loops)
+            continue
+        if grown:
             continue
         return frame, handout
     return "the handout's layout does not settle on this paper"
