@@ -8,7 +8,7 @@ making room for the band changed a scale.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -75,11 +75,14 @@ def _paper_name(paper: str | tuple[float, float]) -> str:
 
 
 def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float], asked: tuple[float, float],
-               readable: dict[str, Any], loops: LoopSolution | None = None) -> tuple[Frame, Handout] | str:
-    """The frame and the content on a page of ``size`` at the scales of the paper ``asked``, or why they do not fit."""
+               readable: dict[str, Any],
+               loops: LoopSolution | None = None) -> tuple[Frame, Handout] | Callable[[], str]:
+    """The frame and the content on a page of ``size`` at the scales of the paper ``asked``, or why they do not fit
+    (told when asked: a page whose text is too long decides it, the longest is measured only for the message)."""
     width, height = size
     inner = width - 2 * (MARGIN_MM + GAP_MM)
     frame = band_frame(solution, (width, height), 0.0, asked, readable)
+    whole = frame.layout  # the drawing on the whole page, where each frame with a band starts
     scales = scales_of(frame.layout)
     handout = handout_content(solution, say, scales, loops)
     heights: dict[Page, float] = {}  # a page's text is set once per paper, however often the scales settle
@@ -89,18 +92,23 @@ def _frame_for(solution: Solution, say: Catalogue, size: tuple[float, float], as
             heights[page] = band_height(page, inner, drawn_kinds(frame), say)
         return heights[page]
 
+    most = _MOST_BAND * (height - 2 * MARGIN_MM)
     for _ in range(6):
+        if any(height_of(page) > most for page in handout.pages):  # the problem page's, first, on a long chain
+            pages = handout.pages
+            return lambda: f"the handout's text needs {max(map(height_of, pages)):.0f} mm of the page's {height:.0f}"
         need = max(height_of(page) for page in handout.pages)
-        if need > _MOST_BAND * (height - 2 * MARGIN_MM):
-            return f"the handout's text needs {need:.0f} mm of the page's {height:.0f}"
-        if frame.band < need or scales_of(frame.layout) != scales:
-            frame = band_frame(solution, (width, height), max(need, frame.band), asked, readable)
-            if scales_of(frame.layout) != scales:
-                scales = scales_of(frame.layout)
-                handout = handout_content(solution, say, scales, loops)
+        grown = frame.band < need  # else the frame is the one a band of its height makes: laid out once
+        if grown:
+            frame = band_frame(solution, (width, height), need, asked, readable, whole)
+        if scales_of(frame.layout) != scales:
+            scales = scales_of(frame.layout)
+            handout = handout_content(solution, say, scales, loops)
+            continue
+        if grown:
             continue
         return frame, handout
-    return "the handout's layout does not settle on this paper"
+    return lambda: "the handout's layout does not settle on this paper"
 
 
 def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
@@ -117,10 +125,10 @@ def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
     readable = readable_values(solution, size)  # the scales are the paper asked's on every paper tried
     fallback: tuple[Frame, Handout, str] | None = None
     best: tuple[Frame, Handout, str] | None = None
-    why = ""
+    why: Callable[[], str] = str
     for name, paper in papers:
         chosen = _frame_for(solution, say, paper, size, readable, loops)
-        if isinstance(chosen, str):
+        if callable(chosen):
             why = chosen
             if best is None:
                 continue
@@ -137,7 +145,7 @@ def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
             break  # every label free, or so many crowded that their polygon's points crowd, at any paper
     fallback = best or fallback
     if fallback is None:
-        raise HandoutError(f"{why} even on A0; the handout cannot be laid out")  # a text longer than A0
+        raise HandoutError(f"{why()} even on A0; the handout cannot be laid out")  # a text longer than A0
     return fallback
 
 

@@ -65,14 +65,16 @@ def _bottom(layout: Layout) -> float:
 
 
 def band_frame(solution: Solution, page: tuple[float, float], band: float,
-               scales_paper: tuple[float, float] | None = None, readable: dict[str, Any] | None = None) -> Frame:
+               scales_paper: tuple[float, float] | None = None, readable: dict[str, Any] | None = None,
+               whole: Layout | None = None) -> Frame:
     """The drawing for a page of size ``page`` with ``band`` mm of text at its foot (0: none).
 
     With a band the page keeps its size and the drawing's paper is made shorter until the band
     fits (the layout's notes may change its title block, so a few rounds settle it); without
     one the drawing keeps the whole paper and the page loses the title block's strip. The polygons'
     scales are those decided for ``scales_paper`` (the paper asked for; ``page`` when None); ``readable``
-    the solution's readable values at them (``render.sheet.readable_values``), made once per handout.
+    the solution's readable values at them (``render.sheet.readable_values``), made once per handout;
+    ``whole`` the layout on the whole page at those scales when the caller has it (a frame without a band's).
     """
     asked = scales_paper or page
     width, height = page
@@ -81,7 +83,7 @@ def band_frame(solution: Solution, page: tuple[float, float], band: float,
         shift = MARGIN_MM - _bottom(layout)
         return Frame(layout, page, shift, width, height + shift, 0.0)
     paper_height = height
-    layout = layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked, readable=readable)
+    layout = whole or layout_sheet(solution, (width, paper_height), grow=False, scales_paper=asked, readable=readable)
     for _ in range(4):
         shift = MARGIN_MM + band + GAP_MM - _bottom(layout)
         wanted = height - shift

@@ -385,9 +385,14 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
     title block's text out (a handout writes its own). ``draft``: every label at the first place the
     search tries, not searched clear of the rest (``render.labels.draft_place``): the same sheet but
     for where its labels sit, made in a fraction of the time (the editor's, while the user drags).
+    The whole drawing (no ``step``, not a draft) is built once per ``labels``: asked again, it is the same sheet.
     """
     layout = layout if layout is not None else layout_sheet(solution, paper)
     labels = labels if labels is not None else layout.labels
+    whole = (_WHOLE, title_block) if step is None and not draft else None
+    kept = labels.parts.get(whole) if whole is not None else None
+    if isinstance(kept, Sheet):
+        return kept  # built already on this layout (to count its crowded labels, or for an earlier page)
     layers: dict[str, list[Item]] = {name: [] for name in LAYERS}
     requests: list[Request] = []
     mech_panel = layout.panel("mechanism")
@@ -427,7 +432,15 @@ def build_sheet(solution: Solution, paper: str | tuple[float, float] = "A4", *, 
     for name, placed in labelled.items():
         layers[name] += placed
     title = solution.scene.title if step is None else f"{solution.scene.title}: step {step}"
-    return Sheet(layout.width, layout.height, title, tuple(Layer(name, tuple(layers[name])) for name in LAYERS))
+    sheet = Sheet(layout.width, layout.height, title, tuple(Layer(name, tuple(layers[name])) for name in LAYERS))
+    if whole is not None:
+        labels.parts[whole] = sheet
+    return sheet
+
+
+_WHOLE = "whole sheet"
+"""The key in ``LabelCache.parts`` of the whole drawing's sheet (with and without its title block's text): built
+once per layout, whether to count its crowded labels (``crowded``), to draw it or to show it on a handout's page."""
 
 
 def step_count(solution: Solution) -> int:
