@@ -23,7 +23,7 @@ __all__ = ["RIGHT", "AccelerationContext", "AccelerationResult", "Rules", "Veloc
            "along_normal", "along_slide", "normals_step", "record_crossing", "slide_label"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class VelocityResult:
     """The velocity polygon at every row: tips, omegas, sliding velocities, crossings and steps."""
 
@@ -43,7 +43,7 @@ class VelocityResult:
         return self.polygon.rate
 
 
-@dataclass
+@dataclass(repr=False)
 class VelocityContext:
     """The velocity polygon being built and what the groups find besides its tips and rates: the sliding
     velocities by slider, the sines of the crossings by group, the equivalent links by cam pair."""
@@ -54,7 +54,7 @@ class VelocityContext:
     equivalent: dict[str, Points] = field(default_factory=dict)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Rules:
     """How the known terms are laid: ``normal`` -1 toward the center (right), +1 away;
     ``coriolis`` 1 as it is (right), 0 left out, -1 reversed."""
@@ -66,7 +66,7 @@ class Rules:
 RIGHT = Rules()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class AccelerationResult:
     """The acceleration polygon at every row: tips, alphas, sliding accelerations, Coriolis terms, steps."""
 
