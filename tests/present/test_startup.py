@@ -10,6 +10,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 import kinepoly
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -24,6 +26,9 @@ DRAWING_LIBRARIES = {"matplotlib", "shapely", "svgwrite", "ezdxf"}
 OTHER_COMMANDS = {f"kinepoly.cli.{name}" for name in ("draw", "check", "variants", "bench", "sweep", "handout",
                                                       "animate", "edit")} | {"kinepoly.editor"}
 """What the other commands import when they are run: a solve loads none of it."""
+OTHER_KINDS = {f"kinepoly.engine.kinds.{kind}" for kind in ("gear", "cam", "planet", "triad", "newton")} | {
+    "kinepoly.engine.triad", "kinepoly.engine.planet", "kinepoly.engine.cam_place", "kinepoly.engine.newton_assembly"}
+"""The group kinds a four-bar has none of, and their constructions: loaded for a mechanism that has such a group."""
 MESSAGE_ONLY = {"difflib"}
 """Loaded for a message about a bad scene (a did-you-mean), not for a good one."""
 
@@ -75,6 +80,14 @@ def test_solve_loads_no_other_command() -> None:
         loaded = _solve_modules(FOUR_BAR, *options)
         assert "kinepoly.cli.solve" in loaded and "kinepoly.present.report" in loaded  # it did solve
         assert not (OTHER_COMMANDS | MESSAGE_ONLY) & loaded, options
+        assert "kinepoly.engine.kinds.dyad" in loaded and not OTHER_KINDS & loaded, options
+
+
+@pytest.mark.parametrize(("example", "kinds"), [("planetary-free-arm", {"gear", "planet"}),
+                                               ("triad", {"triad", "newton"}), ("metu-cam", {"cam"})])
+def test_solve_loads_the_kinds_its_mechanism_has(example: str, kinds: set[str]) -> None:
+    loaded = _solve_modules(str(ROOT / "examples" / f"{example}.toml"))
+    assert {f"kinepoly.engine.kinds.{kind}" for kind in kinds} <= loaded
 
 
 def test_solve_with_centers_loads_their_modules() -> None:
