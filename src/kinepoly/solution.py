@@ -80,7 +80,7 @@ class Inside:
     pose: Pose
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Solution:
     """Everything ``kinepoly solve`` reports for one scene."""
 

@@ -43,6 +43,15 @@ def test_every_command_has_a_description_and_shows_its_defaults(capsys: pytest.C
             assert "default" in (action.help or "") or f"(default: {action.default}" in text, action.dest
 
 
+@pytest.mark.parametrize("name", COMMANDS)
+def test_a_run_gives_its_command_the_options_the_whole_parser_has(capsys: pytest.CaptureFixture[str],
+                                                                  name: str) -> None:
+    """A run gives only its own command its options (the others are not imported); its help is the full parser's."""
+    code, out, _ = run(capsys, name, "--help")
+    assert code == 0
+    assert out == _commands(parser())[name].format_help()
+
+
 def test_check_help_lists_every_exit_status() -> None:
     text = _commands(parser())["check"].format_help()
     for status in ("0", "1", "2", "3"):

@@ -1,6 +1,6 @@
 """Start-up: ``import kinepoly`` loads none of the solve (its public names are imported when first used),
 ``kinepoly --version`` reads the package's metadata only when it is given, and ``kinepoly solve`` loads the
-instant centers' modules only for a scene that asks for centers, and no drawing library at all."""
+instant centers' modules only for a scene that asks for centers, no drawing library at all, and no other command."""
 
 from __future__ import annotations
 
@@ -9,6 +9,8 @@ import os
 import subprocess
 import sys
 from pathlib import Path
+
+import pytest
 
 import kinepoly
 
@@ -21,6 +23,14 @@ CENTER_MODULES = {"kinepoly.engine.centers", "kinepoly.engine.kennedy", "kinepol
                   "kinepoly.engine.center_velocity", "kinepoly.engine.circle_diagram", "kinepoly.present.centers"}
 """Aronhold-Kennedy's construction and its report: needed only where a scene asks for instant centers."""
 DRAWING_LIBRARIES = {"matplotlib", "shapely", "svgwrite", "ezdxf"}
+OTHER_COMMANDS = {f"kinepoly.cli.{name}" for name in ("draw", "check", "variants", "bench", "sweep", "handout",
+                                                      "animate", "edit")} | {"kinepoly.editor"}
+"""What the other commands import when they are run: a solve loads none of it."""
+OTHER_KINDS = {f"kinepoly.engine.kinds.{kind}" for kind in ("gear", "cam", "planet", "triad", "newton")} | {
+    "kinepoly.engine.triad", "kinepoly.engine.planet", "kinepoly.engine.cam_place", "kinepoly.engine.newton_assembly"}
+"""The group kinds a four-bar has none of, and their constructions: loaded for a mechanism that has such a group."""
+MESSAGE_ONLY = {"difflib"}
+"""Loaded for a message about a bad scene (a did-you-mean), not for a good one."""
 
 
 def _modules(code: str, **environment: str) -> set[str]:
@@ -63,6 +73,21 @@ def test_solve_without_centers_loads_neither_their_modules_nor_a_drawing_library
         loaded = _solve_modules(FOUR_BAR, *options)
         assert "kinepoly.solution" in loaded and "kinepoly.present.report" in loaded  # it did solve
         assert not (CENTER_MODULES | DRAWING_LIBRARIES) & loaded, options
+
+
+def test_solve_loads_no_other_command() -> None:
+    for options in ((), ("--json",), ("--steps",)):
+        loaded = _solve_modules(FOUR_BAR, *options)
+        assert "kinepoly.cli.solve" in loaded and "kinepoly.present.report" in loaded  # it did solve
+        assert not (OTHER_COMMANDS | MESSAGE_ONLY) & loaded, options
+        assert "kinepoly.engine.kinds.dyad" in loaded and not OTHER_KINDS & loaded, options
+
+
+@pytest.mark.parametrize(("example", "kinds"), [("planetary-free-arm", {"gear", "planet"}),
+                                               ("triad", {"triad", "newton"}), ("metu-cam", {"cam"})])
+def test_solve_loads_the_kinds_its_mechanism_has(example: str, kinds: set[str]) -> None:
+    loaded = _solve_modules(str(ROOT / "examples" / f"{example}.toml"))
+    assert {f"kinepoly.engine.kinds.{kind}" for kind in kinds} <= loaded
 
 
 def test_solve_with_centers_loads_their_modules() -> None:

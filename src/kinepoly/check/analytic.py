@@ -70,7 +70,7 @@ __all__ = [
 # --------------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class AnalyticSolution:
     """Poses, velocities and accelerations of every link at one instant, analytically.
 

@@ -20,7 +20,7 @@ import numpy as np
 __all__ = ["SparseMatrix", "block_condition", "blocks_of", "solve_blocks", "window_condition"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class SparseMatrix:
     """An m x n matrix by its nonzero entries (coordinates and values; no zero is stored)."""
 
@@ -52,7 +52,7 @@ class SparseMatrix:
         return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Blocks:
     """The block triangular form: ``match[i]`` is the column on row i's diagonal; ``order`` the blocks (each a
     list of rows) in the order they are solved (a block uses only the columns of blocks before it)."""

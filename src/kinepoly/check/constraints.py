@@ -52,7 +52,7 @@ def _put(out: np.ndarray, layout: Layout, link: str, d_r: np.ndarray, d_theta: n
         out[:, k + 2] += d_theta
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class _Pin:
     """Revolute: r_i + A_i p_i - r_j - A_j p_j = 0.
 
@@ -84,7 +84,7 @@ class _Pin:
         return np.asarray(bi.omega**2 * (bi.A @ self.p_i) - bj.omega**2 * (bj.A @ self.p_j), dtype=float)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class _AngleOffset:
     """theta_a - theta_b - offset = 0, modulo a turn (a slider's block turns with its guide).
 
@@ -112,7 +112,7 @@ class _AngleOffset:
         return np.zeros(1)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class _LineCoordinate:
     """u . d - target = 0 with u = A_g u_g, d = r_b + A_b s_b - r_g - A_g t_g.
 
@@ -168,7 +168,7 @@ class _LineCoordinate:
         return np.array([self.target_ddot - quadratic])
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class _AngleDriver:
     """theta_link - theta_base - angle = 0, modulo a turn: Phi_q 1 by theta_link, -1 by theta_base;
     nu = omega; gamma = alpha (the base is the frame, whose theta is 0, or a moving link)."""

@@ -60,7 +60,7 @@ def as_pair(v: np.ndarray) -> Vec:
 
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Layout:
     """Which columns of q belong to which link, the ground, and the mechanism's size L."""
 
@@ -77,7 +77,7 @@ class Layout:
         return 3 * len(self.moving)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Body:
     """One link's place and motion: r, theta, A(theta), omega, r_dot (zeros for the ground).
 

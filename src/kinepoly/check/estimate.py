@@ -66,7 +66,7 @@ _KIND_CLASS = {"position": "position", "angle": "position", "velocity": "velocit
 """Which term bounds each kind; ``instant_center`` is an omega found from the instant centers."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Crossing:
     """One intersection step of a polygon: what it found and the sine of its lines' angle."""
 
@@ -94,7 +94,7 @@ def crossings(steps: Iterable[Step]) -> list[Crossing]:
     return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ErrorEstimate:
     """The estimated normwise relative error of each kind, and what it was made of."""
 

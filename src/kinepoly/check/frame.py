@@ -27,7 +27,7 @@ FAR_FACTOR = 4.0
 """A link is re-anchored when its largest coordinate exceeds this many times its extent."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class LocalFrame:
     """A scene with its links re-anchored, and how to go back to the user's frames.
 

@@ -47,7 +47,7 @@ WINDOW = 60
 with the groups next to it (``check.blocks.window_condition``): linear in a chain's length."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class System:
     """The constraints of a mechanism with the scaling that makes Phi_q dimensionless.
 
@@ -133,7 +133,7 @@ class System:
         return np.concatenate([c.gamma(b) for c in self.constraints])
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class IndexedLayout(Layout):
     """A Layout whose columns are looked up in a table (``Layout.column`` scans the links: quadratic in a chain)."""
 

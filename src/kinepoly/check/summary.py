@@ -21,7 +21,7 @@ from kinepoly.check.frame import LocalFrame
 __all__ = ["AccuracyReport", "QuantityError", "assess"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class QuantityError:
     """One quantity: both values (positions in the user's frame), difference, estimate, relative errors."""
 
@@ -35,7 +35,7 @@ class QuantityError:
     componentwise: float | None
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class AccuracyReport:
     """Per-quantity errors, per-kind normwise, componentwise and estimated relative errors."""
 

@@ -2,7 +2,8 @@
 
 One module per command, each with ``add_arguments(parser)`` and ``run(args) -> int`` (the exit
 status): ``solve``, ``draw``, ``check``, ``variants``, ``bench``, ``sweep``, ``handout``, ``animate``, ``edit``. The
-modules import their heavy dependencies inside ``run``, so building the parser stays cheap;
+modules import their heavy dependencies inside ``run``, so building the parser stays cheap; a run imports only the
+module of the command it runs, and gives only that command's parser its options (``parser()`` has them all);
 ``files`` writes a file whole or not at all.
 
 Exit status: 0 solved; 1 an answer was wrong (``check``); 2 the scene or the command is wrong;
@@ -17,9 +18,10 @@ import os
 import signal
 import sys
 import threading
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
+from importlib import import_module
+from typing import Any
 
-from kinepoly.cli import animate, bench, check, draw, edit, handout, solve, sweep, variants
 from kinepoly.errors import EXIT_INTERNAL, EXIT_SCENE, KinepolyError, error_text, internal_error_text
 
 __all__ = ["EXIT_INTERNAL", "EXIT_INTERRUPTED", "EXIT_TERMINATED", "HelpFormatter", "error_text", "internal_error_text",
@@ -38,24 +40,22 @@ class _Terminated(BaseException):
 def _terminate(signum: int, frame: object) -> None:
     raise _Terminated
 
-_COMMANDS: tuple[tuple[str, str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]],
-                 ...] = (
-    ("solve", "solve a scene: a table, the JSON of the contract, or the steps", solve.add_arguments, solve.run),
-    ("draw", "draw the mechanism and its polygons: SVG, DXF, PNG, PDF, and the construction step by step",
-     draw.add_arguments, draw.run),
-    ("check", "check a student's answers and diagnose the mistakes", check.add_arguments, check.run),
-    ("variants", "randomised versions of a problem with answer keys", variants.add_arguments, variants.run),
+_COMMANDS: tuple[tuple[str, str], ...] = (
+    ("solve", "solve a scene: a table, the JSON of the contract, or the steps"),
+    ("draw", "draw the mechanism and its polygons: SVG, DXF, PNG, PDF, and the construction step by step"),
+    ("check", "check a student's answers and diagnose the mistakes"),
+    ("variants", "randomised versions of a problem with answer keys"),
     ("bench", ("error against run time of the construction and other methods (closed forms, finite differences, "
-               "GEOS), against a 50-digit reference; --sweep over a full turn"), bench.add_arguments, bench.run),
-    ("sweep", "the input over a turn or a range: a CSV of the asked quantities, their plots, centrodes",
-     sweep.add_arguments, sweep.run),
+               "GEOS), against a 50-digit reference; --sweep over a full turn")),
+    ("sweep", "the input over a turn or a range: a CSV of the asked quantities, their plots, centrodes"),
     ("handout", ("a teaching handout: the problem, the construction step by step, the answers; PDF or one web "
-                 "page; en, tr, ro or your own"), handout.add_arguments, handout.run),
+                 "page; en, tr, ro or your own")),
     ("animate", ("the mechanism moving over a sweep with its polygons at fixed scales: GIF, MP4 (ffmpeg) or one "
-                 "web page"), animate.add_arguments, animate.run),
+                 "web page")),
     ("edit", ("edit a scene in the browser: drag its points and its input and see the polygons follow; save keeps "
-              "the file's comments"), edit.add_arguments, edit.run),
+              "the file's comments")),
 )
+"""Each command's name and help; its module ``kinepoly.cli.<name>`` has its options and its run."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -110,20 +110,39 @@ _EXIT_STATUS = ("exit status: 0 solved; 1 an answer was wrong (check); 2 the sce
 
 def parser() -> argparse.ArgumentParser:
     """The whole command line (the README's table of options is generated from it: tools/cli_options.py)."""
-    return _parser()
+    return _parser(every_command=True)
 
 
-def _parser() -> argparse.ArgumentParser:
+class _Commands(argparse._SubParsersAction):  # type: ignore[type-arg]
+    """The subcommands: the command named on the command line has its module imported and its parser given its
+    options when it is parsed, so that a run imports and builds only the command it runs."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: Any,
+                 option_string: str | None = None) -> None:
+        name = values[0]
+        command = self.choices.get(name) if isinstance(self.choices, dict) else None
+        if command is not None and command.get_default("run") is None:
+            _give_options(name, command)
+        super().__call__(parser, namespace, values, option_string)
+
+
+def _give_options(name: str, command: argparse.ArgumentParser) -> None:
+    module = import_module(f"kinepoly.cli.{name}")
+    module.add_arguments(command)
+    command.set_defaults(run=module.run)
+
+
+def _parser(every_command: bool = False) -> argparse.ArgumentParser:
     parser = _Parser(prog="kinepoly", description="Velocity and acceleration polygons of planar mechanisms, "
                      "constructed as the graphical method draws them and checked analytically.",
                      epilog=_EXIT_STATUS, formatter_class=HelpFormatter)
     parser.add_argument("--version", action=_Version, nargs=0, help="show program's version number and exit")
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    for name, help_text, add_arguments, run in _COMMANDS:
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser, action=_Commands)
+    for name, help_text in _COMMANDS:
         command = sub.add_parser(name, help=help_text, description=help_text[0].upper() + help_text[1:] + ".",
                                  formatter_class=HelpFormatter)
-        add_arguments(command)
-        command.set_defaults(run=run)
+        if every_command:
+            _give_options(name, command)
     return parser
 
 

@@ -13,7 +13,6 @@ scales are those of ``kinepoly draw`` and ``kinepoly handout`` on the same ``--p
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 
@@ -61,6 +60,8 @@ def run(args: argparse.Namespace) -> int:
         result["loops"] = loops_json(loops)
     scales = decide_scales(solution, paper)
     if args.json:
+        import json
+
         print(json.dumps(result, indent=1, allow_nan=False))
     elif args.steps:
         print(steps_text(solution, scales) if not derivation else "\n".join(derivation))

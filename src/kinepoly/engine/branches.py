@@ -41,7 +41,7 @@ def _keep(c: tuple[Points, Points], label: int) -> Bools:
     return out
 
 
-@dataclass
+@dataclass(repr=False)
 class _Walk:
     """One walk along a sequence of rows (seed first): labels in sequence order."""
 

@@ -98,7 +98,7 @@ def _offset_point(spline: PeriodicSpline, rho: float, u: Reals) -> Points:
     return np.asarray(frame.point + rho * frame.normal)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Candidates:
     """Every contact at every row, padded to ``width`` columns: the parameter, whether it exists, and the
     follower's pose each one gives (``origin``, ``rotation``), with W's place."""
@@ -238,7 +238,7 @@ def _flat_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, Arr
     return Candidates(u, ok, origin, rotation, point)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ProfileContactRows:
     """The chosen contact at every row, in the frame: the parameter, the contact point Q, the centre of
     curvature K, the unit normal from the cam's side to the follower's, the curvature (1/length, positive

@@ -87,7 +87,7 @@ def follow_contact(candidates: Candidates, seed_row: int, seed_choice: int) -> I
     return choice
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class CamQuestion:
     """A spline cam's contacts at every row (``candidates``), one to keep per row: the cam kind's answers to the
     assembly policies (``engine.policy``)."""

@@ -45,7 +45,7 @@ def pick(choice: Choice, first: Points, second: Points) -> Points:
     return np.asarray(np.where(choice, first, second))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Closure:
     """A dyad closed over rows.
 

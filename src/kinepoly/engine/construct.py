@@ -35,7 +35,7 @@ __all__ = ["Construction", "Wanted", "construct_row"]
 Vec = tuple[float, float]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Wanted:
     """What to construct: (link, point) tips of each polygon, whether each polygon is needed, sliders."""
 
@@ -46,7 +46,7 @@ class Wanted:
     sliders: tuple[str, ...]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Construction:
     """Row 0 constructed: the positions (arrays), the pose, the polygons and the asked sliders' motion."""
 

@@ -37,7 +37,7 @@ LinkVelocity = Callable[[str, Points], Points | None]
 """The velocity of the point at ``Points`` (frame) as a point of link ``str``, at every row; None where unknown."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Contact:
     """One pair's contact: the point (frame), the unit normal (cam side to follower side) and, where the
     velocity polygon was built, the sliding velocity along the tangent."""
@@ -47,7 +47,7 @@ class Contact:
     sliding_velocity: Vec | None
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ContactRows:
     """One pair's contact at every row: the point (frame), the unit normal (cam or first gear's side to the
     other's) and, where the velocity polygon was built, the sliding velocity along the tangent."""
@@ -141,7 +141,7 @@ def contacts_over_rows(mechanism: Mechanism, poses: dict[str, ArrayPose], veloci
     return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class FollowerCoordinate:
     """What a cam designer plots for a follower: its angle (pinned to the frame at ``pivot``) or its slider
     on the frame (``slider``)."""

@@ -32,7 +32,7 @@ from kinepoly.scene.spec import SliderSpec
 __all__ = ["Leg", "acceleration_terms", "finish_acceleration", "finish_velocity", "velocity_terms"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Leg:
     """One leg of a triad (see ``engine.triad``): its kind, its own link, the point Q, the known link it joins,
     the outer pin K (a pin or slot leg) and the slider (a slide or slot leg)."""

@@ -43,7 +43,7 @@ def closing_error(mechanism: Mechanism, closure: Closure) -> KinepolyError:
     return AssemblyError(f"cannot assemble joint {closure.joint} of group {name} at {where}: {closure.why(0)}")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class DyadQuestion:
     """A dyad closed over rows (``closure``) and ``later``: its assembly ``k`` carried through the groups after it."""
 

@@ -31,7 +31,7 @@ from kinepoly.scene.spec import GearSpec, PitchCircle, PitchLine
 __all__ = ["Mesh", "Rolled", "anchor_row", "free_delta", "mesh", "pitch_label", "place_rolling"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Rolled:
     """A gear placed by rolling: its delta (unwrapped) and the angle of the pitch point it was measured
     at, less that mesh's phase, at every row."""
@@ -40,7 +40,7 @@ class Rolled:
     aim: Reals
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Mesh:
     """One pair at every row: the pitch point, each side's unit m (centre to P; for a line the unit
     normal from the circle's centre toward it) and tangent t, and the contact normal (side 0 to side 1)."""

@@ -34,7 +34,7 @@ def joint_kind(joint: Joint) -> str:
     return "R" if isinstance(joint, Revolute) else "P"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Dyad:
     """Two links solved together in closed form.
 
@@ -72,7 +72,7 @@ class Dyad:
         return f"{self.first}-{self.second} ({self.kind})"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class DriveGroup:
     """One link placed on a known one by a driven joint between them (a motor on a link, a cylinder)."""
 
@@ -92,7 +92,7 @@ class DriveGroup:
         return f"{self.link} on {self.known} ({self.drive.name} driven)"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class _HigherPairGroup:
     """One link placed on a known one through a higher pair: ``link`` is held by one ``joint`` to the known
     ``carrier``; ``known`` carries the other element of the pair."""
@@ -110,7 +110,7 @@ class _HigherPairGroup:
         return (self.known, self.carrier)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class GearGroup(_HigherPairGroup):
     """A gear placed by rolling on a known gear: ``link`` is pinned at its pitch centre to the known
     ``carrier`` (the frame, an arm), or is a rack sliding on it; ``known`` carries the other pitch curve."""
@@ -122,7 +122,7 @@ class GearGroup(_HigherPairGroup):
         return f"{self.link} rolling on {self.known} (gears {self.gear.name})"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class CamGroup(_HigherPairGroup):
     """A spline cam's follower placed on the known cam link by its contact: ``link`` (the follower) is held
     by one ``joint`` to the known ``carrier``, a pin (a pivoted rocker) or a slider whose block it is (a
@@ -135,7 +135,7 @@ class CamGroup(_HigherPairGroup):
         return f"{self.link} on cam {self.known} (cam {self.cam.name})"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class SlideRoles:
     """Who is who in an RPR dyad: the guide turns about its pin ``guide_pin`` on ``guide_known``;
     the block is pinned at ``block_pin`` to ``block_known``; the unknown tip is block_pin@guide."""
@@ -149,7 +149,7 @@ class SlideRoles:
     block_known: str
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class TwoSlideRoles:
     """Who is who in a PRP or RPP dyad: ``point`` of ``moving`` is where the two slide lines cross.
 
@@ -200,7 +200,7 @@ def two_slide_roles(dyad: Dyad, mechanism: Mechanism) -> TwoSlideRoles:
     return TwoSlideRoles(inner_slider, second, point, j, i, far_side(second, j), j, pin.point, far_side(pin, i))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class NewtonGroup:
     """Links that form no dyad: solved together by damped Newton from the guess. ``drives``: the inputs
     that drive joints of the group (each one more equation); ``cams``: the spline cams whose follower floats
@@ -224,19 +224,19 @@ class NewtonGroup:
                             | {x for gear in self.gears for x in gear.links if x not in self.links}))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class CarriedDyad(Dyad):
     """A carried RRR dyad (see ``Dyad``): its ``carrier`` and ``drive`` are given."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class TriadGroup(NewtonGroup):
     """A class-3 group (a triad: a ternary link and three legs, a leg with a driven joint or a floating follower's
     contact among them): placed by damped Newton as a ``NewtonGroup``, its polygons constructed through its Assur
     point (``engine.triad``)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class PlanetGroup(NewtonGroup):
     """A group holding gears that no dyad and no single pair places: a planet on an arm that no input drives,
     placed by rolling (``engine.planet``), the only such group this version places."""
@@ -245,7 +245,7 @@ class PlanetGroup(NewtonGroup):
 Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
 
 
-@dataclass
+@dataclass(repr=False)
 class PlanConstants:
     """What constructing a plan's polygons finds that does not depend on the rows, kept by its first construction
     for the next ones (``engine.polygon``): the frame's points with the links that have each, and each image of a
@@ -259,7 +259,7 @@ class PlanConstants:
     """None: the image is built row by row (a corner of its triangle slides on the link)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class PositionPlan:
     """Links known from the input, then the groups in order."""
 

@@ -30,7 +30,7 @@ Placed = tuple[Placement, bool]
 """The placement, and whether the groups after this one are placed in it too."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Kind(Generic[G]):
     """The four functions of one group kind (see the module)."""
 

@@ -318,7 +318,7 @@ def _cut(step: Reals, links: int, reach: float | None) -> float:
     return min(1.0, _CREEP * reach / move) if move > 0.0 else 1.0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class RowClosure:
     """What Newton's method made of one row: the group's poses (None where it does not close), the final
     joint residual, and the sign of the Jacobian's determinant there (0 where it is not square)."""

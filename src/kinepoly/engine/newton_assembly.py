@@ -43,7 +43,7 @@ _FAR_GUESS = 0.25
 """Further than this share from the guess, the solve says so (``far-from-guess``)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class NewtonQuestion:
     """A group placed by Newton's method: where each row starts."""
 

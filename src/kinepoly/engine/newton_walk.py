@@ -46,7 +46,7 @@ def _between(a: LinkPose, b: LinkPose, t: float) -> LinkPose:
                     a.theta + t * math.remainder(b.theta - a.theta, math.tau))
 
 
-@dataclass
+@dataclass(repr=False)
 class Walk:
     """One pass of the sweep over rows in order, from the seed row (``history``: its row and points)."""
 

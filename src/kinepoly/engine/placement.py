@@ -18,7 +18,7 @@ from kinepoly.notice import Notice
 __all__ = ["Failure", "Placement", "Positions"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Failure:
     """Rows where one group cannot be assembled (rows where an earlier group failed are not among them)."""
 
@@ -28,7 +28,7 @@ class Failure:
     why: Callable[[int], str]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Placement:
     """What placing some groups gave: poses, the rows that closed, failures, rough rows, warnings."""
 
@@ -55,7 +55,7 @@ class Placement:
         return {index: float(values[row]) for index, values in enumerate(self.values)}
 
 
-@dataclass
+@dataclass(repr=False)
 class Positions:
     """Poses of every link of the plan at every row; ``ok`` where all of them could be placed."""
 

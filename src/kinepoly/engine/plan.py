@@ -18,7 +18,7 @@ plan is made backwards from what is asked: only the groups on the path to an ask
 from __future__ import annotations
 
 from kinepoly.engine.groups import Group, PositionPlan
-from kinepoly.engine.table import KINDS
+from kinepoly.engine.table import kinds_for
 from kinepoly.model.mechanism import Mechanism, Revolute
 
 __all__ = ["make_plan"]
@@ -45,8 +45,10 @@ def _all_groups(mechanism: Mechanism) -> tuple[tuple[str, ...], list[Group]]:
     driven = _frame_drives(mechanism)
     known: set[str] = {mechanism.ground, *driven} if mechanism.ground is not None else set(mechanism.link_names)
     groups: list[Group] = []
-    while True:
-        group: Group | None = next((found for kind in KINDS.values() if (found := kind.find(mechanism, known))), None)
+    every = set(mechanism.link_names)
+    while not known >= every:  # a kind finds a group only among links not yet known
+        group: Group | None = next((found for kind in kinds_for(mechanism)
+                                    if (found := kind.find(mechanism, known))), None)
         if group is None:
             break
         groups.append(group)

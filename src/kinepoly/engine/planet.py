@@ -42,7 +42,7 @@ from kinepoly.scene.spec import GearSpec, PitchCircle
 __all__ = ["Planet", "place_planet", "planet_of"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Planet:
     """The arm (pinned at ``pivot`` to the known link ``base``), the planet (pinned to the arm at ``pin``, its
     pitch centre) and the two pairs it meshes known gears in."""
@@ -93,7 +93,7 @@ def _not_built(mechanism: Mechanism, group: NewtonGroup, why: str) -> SceneError
                       "centred on the arm's pivot (drive the arm, or another link of the group, otherwise)")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class _Mesh:
     """One mesh of the planet with a known gear: g = c R / rho, and alpha, beta (rad)."""
 

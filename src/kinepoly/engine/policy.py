@@ -61,7 +61,7 @@ class Policy(Protocol):
         """Rows of a group do not close: a solve raises ``error()``, a sweep marks them."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class NearestGuess:
     """The solve's policy (row 0 of a batch of one): nearest the ``[guess]``."""
 
@@ -76,7 +76,7 @@ class NearestGuess:
         raise error()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Continuity:
     """The sweep's policy: row ``seed_row`` takes the assembly of ``seed``; the others follow it.
 
@@ -106,7 +106,7 @@ class Continuity:
         """Rows that do not close are marked by the executor; nothing to raise."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class FamilyContinuity:
     """A family's policy: every member's row ``seed_row`` (of its ``rows_each``) takes the assembly of the label
     the scene's own solve takes (found on ``base``, the scene's mechanism, at its solve's poses ``seed`` and its

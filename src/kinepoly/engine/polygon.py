@@ -54,7 +54,7 @@ def sense(rate: float) -> str:
     return "ccw" if rate > 0 else ("cw" if rate < 0 else "zero")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class LineCrossing:
     """Two direction lines crossed at every row: the group, the tip found, the sine of their angle,
     and how far along the first line they cross (every later value of the polygon is a sum of
@@ -67,7 +67,7 @@ class LineCrossing:
     along: Reals
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class JointSolve:
     """A group's joint equations solved at every row (no two lines): the condition number of each row."""
 

@@ -23,7 +23,7 @@ __all__ = ["RIGHT", "AccelerationContext", "AccelerationResult", "Rules", "Veloc
            "along_normal", "along_slide", "normals_step", "record_crossing", "slide_label"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class VelocityResult:
     """The velocity polygon at every row: tips, omegas, sliding velocities, crossings and steps."""
 
@@ -42,7 +42,7 @@ class VelocityResult:
         return self.polygon.rate
 
 
-@dataclass
+@dataclass(repr=False)
 class VelocityContext:
     """The velocity polygon being built and what the groups find besides its tips and rates: the sliding
     velocities by slider, the equivalent links by cam pair."""
@@ -52,7 +52,7 @@ class VelocityContext:
     equivalent: dict[str, Points] = field(default_factory=dict)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Rules:
     """How the known terms are laid: ``normal`` -1 toward the center (right), +1 away;
     ``coriolis`` 1 as it is (right), 0 left out, -1 reversed."""
@@ -64,7 +64,7 @@ class Rules:
 RIGHT = Rules()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class AccelerationResult:
     """The acceleration polygon at every row: tips, alphas, sliding accelerations, Coriolis terms, steps."""
 

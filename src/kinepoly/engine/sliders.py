@@ -20,7 +20,7 @@ from kinepoly.scene.spec import SliderSpec
 __all__ = ["SliderMotion", "slider_motion"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class SliderMotion:
     """A slider's s at every row, and where the polygons were constructed s_dot, s_ddot and Coriolis."""
 

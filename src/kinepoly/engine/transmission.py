@@ -29,7 +29,7 @@ from kinepoly.scene.spec import SliderSpec
 __all__ = ["Transmission", "transmission_angles"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Transmission:
     """The transmission angle of one dyad at every row, and what it is between.
 

@@ -53,7 +53,7 @@ from kinepoly.scene.spec import SliderSpec
 __all__ = ["Leg", "Triad", "acceleration_by_assur_point", "triad_of", "velocity_by_assur_point"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Triad:
     """A class-3 group: ``ternary`` held by three legs; ``assur`` names its Assur point."""
 
@@ -155,7 +155,7 @@ def _floating_triad(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
 # -- the construction, shared by both polygons ----------------------------------------------------
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class _LegLine:
     """A leg's own line in the polygon (through the known tip, after its known terms, along e), and
     where Q is on the mechanism."""
@@ -166,7 +166,7 @@ class _LegLine:
     vectors: tuple[DrawnVector, ...]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class _Built:
     """One choice of the third leg m, at every row: the tip of S, of each Q (as a point of T), how far
     along each leg's own line (the leg's rate or slide), T's rate, and the sines of the crossings."""

@@ -60,7 +60,7 @@ def turn(angle_rad: float) -> complex:
     return complex(np.cos(angle_rad), np.sin(angle_rad))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Crossing:
     """Where two families of lines cross, row by row: through1 + along_first * direction1.
 

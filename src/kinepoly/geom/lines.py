@@ -19,7 +19,7 @@ class ParallelLinesError(ArithmeticError):
     """Two lines that should cross in a point are parallel (they meet only at infinity)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Line:
     """The line through ``through`` along ``direction`` (any non-zero length)."""
 
@@ -28,7 +28,7 @@ class Line:
     label: str = ""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Intersection:
     """Where two lines cross: homogeneous (x, y, w) relative to ``origin``.
 

@@ -50,7 +50,7 @@ _BISECTIONS = 200
 """Most halvings of a bracket; each root is settled after about 50 (see ``roots_along``)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class PeriodicSpline:
     """A closed periodic cubic spline: ``knots[k]`` is the parameter of point k (``knots[n]`` the
     period), and piece k is ``coefficients[k, 0] + coefficients[k, 1] t + ... + coefficients[k, 3] t^3``."""
@@ -99,7 +99,7 @@ class PeriodicSpline:
 
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class CurveFrame:
     """The curve's local frame at an array of parameters."""
 

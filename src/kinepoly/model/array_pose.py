@@ -53,7 +53,7 @@ def _member_span(local_a: tuple[float, float], local_b: tuple[float, float]) -> 
     return np.asarray(second - first), each
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ArrayPose:
     """A link's place in the frame at every row."""
 

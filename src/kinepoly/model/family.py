@@ -40,7 +40,7 @@ class RowPoint(tuple[Reals, Reals]):
         return point
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class FamilyMechanism(Mechanism):
     """The scene's mechanism whose points ``varied`` (keyed (link, point), each member's x + iy) differ between
     the members, whose rows come ``rows_each`` to a member, every member over the same inputs."""

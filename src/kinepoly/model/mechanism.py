@@ -24,7 +24,7 @@ Vec = tuple[float, float]
 T = TypeVar("T")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Revolute:
     """A pin: ``point`` is a point of both ``links``."""
 
@@ -48,7 +48,7 @@ def joint_links(joint: Joint) -> tuple[str, str]:
     return (joint.block, joint.guide)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Drive:
     """One input as the joint it drives: ``moving`` turns (about ``joint``'s pin) or slides (the block of
     ``joint``) on ``base``, which is the frame or a moving link. ``index`` 0 is the first input, the one
@@ -79,7 +79,7 @@ class Drive:
         return self.spec.s_dot if order == 1 else self.spec.s_ddot
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Mechanism:
     """The links (points in their own frames), the joints, the ground and the input of a scene."""
 

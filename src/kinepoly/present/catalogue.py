@@ -41,7 +41,7 @@ _META = ("language", "code", "decimal", "extends")
 """Keys about the catalogue itself, outside the messages (``extends`` only in a file of a teacher's)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Catalogue:
     """The messages of one language, keyed ``section.name``; ``decimal`` is its decimal mark."""
 

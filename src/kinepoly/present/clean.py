@@ -86,7 +86,7 @@ def given_angle(radians: float, unit: str) -> float:
     return degrees + 0.0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Noise:
     """The absolute error floor of each kind (the unit of the kind: mm, rad, mm/s, ...)."""
 

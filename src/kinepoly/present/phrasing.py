@@ -75,7 +75,7 @@ def equivalent_name(params: Mapping[str, object], say: Catalogue) -> str:
     return say.say("higher_pairs.named_link", name=f"{params['centre']}{params['point']}")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Context:
     """What a step's sentence needs besides the step: the solution it belongs to and the scales it is drawn at.
 

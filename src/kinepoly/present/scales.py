@@ -87,7 +87,7 @@ def polygon_room(paper: tuple[float, float]) -> tuple[float, float]:
     return max(width - 2.0 * _SIDE_MM, 1.0), max(height - 2.0 * _SIDE_MM - _TITLE_MM, 1.0)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class PolygonScale:
     """One polygon's scale in mm of paper per unit of the polygon (mm per mm/s, mm per mm/s²)."""
 
@@ -110,7 +110,7 @@ class PolygonScale:
         return self.value < self.wanted * (1.0 - ROUNDING_REL)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class PolygonScales:
     """kv and ka of one solution on one paper."""
 

@@ -95,7 +95,7 @@ def round_step(target: float) -> float:
     return nice_floor(target)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Content:
     """What a panel must show: its physical bounding box, the scale it wants (None: free), padding."""
 
@@ -118,7 +118,7 @@ class Content:
         return max(min(scales), 0.0)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Panel:
     """A panel of the page: ``rect`` (x0, y0, x1, y1) in paper mm, ``scale`` paper mm per unit."""
 

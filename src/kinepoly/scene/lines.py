@@ -8,7 +8,6 @@ the key path written or open on it. Problems are then placed at ``FILE:LINE``.
 
 from __future__ import annotations
 
-import json
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -24,7 +23,7 @@ in the text: each prefix of a key is a key of the map) and noted in ``LineMap.to
 refuses it before tomllib, whose memory grows with the square of a key's depth, reads it."""
 
 
-@dataclass
+@dataclass(repr=False)
 class LineMap:
     """The first line of each key path, and the key path written or open on each line."""
 
@@ -47,7 +46,7 @@ class LineMap:
         return None
 
 
-@dataclass
+@dataclass(repr=False)
 class _ScanState:
     lines: LineMap = field(default_factory=LineMap)
     table: KeyPath = ()
@@ -241,4 +240,6 @@ def _decode_key(raw: str) -> str:
 
 def dotted(path: KeyPath) -> str:
     """The key path as written in a message; a key with a character that cannot be printed is quoted and escaped."""
+    import json  # loaded for a message only, not on every start
+
     return ".".join(part if part.isprintable() else json.dumps(part) for part in path) if path else "(file)"

@@ -7,8 +7,6 @@ helpers here write values as TOML would and suggest the name a user probably mea
 
 from __future__ import annotations
 
-import difflib
-import json
 import math
 from collections.abc import Callable, Collection, Iterable
 from dataclasses import dataclass, field
@@ -24,7 +22,7 @@ message given as a function (a did-you-mean each, a search of every name) is not
 10,000 unknown names costs what refusing 20 does."""
 
 
-@dataclass
+@dataclass(repr=False)
 class ProblemReport:
     """Collects problems, each placed at the line of its key path."""
 
@@ -64,6 +62,8 @@ def _toml_text(value: object) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, str):
+        import json  # loaded for a message only, not on every start
+
         return json.dumps(value, ensure_ascii=False)
     if isinstance(value, float) and not math.isfinite(value):
         return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
@@ -81,6 +81,8 @@ def quoted(names: Iterable[str], limit: int = 12) -> str:
 
 
 def suggest(word: str, options: Collection[str]) -> str:
+    import difflib  # loaded for a message only, not on every start
+
     close = difflib.get_close_matches(word, list(options), n=1)
     if close:
         return f'did you mean "{close[0]}"?'

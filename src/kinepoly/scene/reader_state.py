@@ -22,7 +22,7 @@ __all__ = ["ReaderState", "polar_point"]
 _POLAR_KEYS = ("polar",)
 
 
-@dataclass
+@dataclass(repr=False)
 class ReaderState:
     """The state of one scene's reading; each section reader checks one section and reports what is wrong."""
 

@@ -26,7 +26,7 @@ _MICROMETRES = {"mm": 1_000.0, "cm": 10_000.0, "m": 1_000_000.0, "in": 25_400.0}
 _RADIANS = {"deg": math.pi / 180.0, "rad": 1.0}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Kind:
     """A kind of quantity: how plain numbers and unit strings turn into the stored unit."""
 
@@ -43,7 +43,7 @@ class Kind:
         return f'{self.noun} (a number {self.plain}, or a string like "{self.example}")'
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Kinds:
     length: Kind
     speed: Kind
