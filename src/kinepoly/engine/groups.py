@@ -56,6 +56,11 @@ class Dyad:
         return (self.first, self.second) if self.carrier is None else (self.carrier, self.first, self.second)
 
     @property
+    def one_assembly(self) -> bool:
+        """Whether the dyad closes in one way only: two slides, whose lines cross in one point (PRP, RPP)."""
+        return self.kind in ("PRP", "RPP")
+
+    @property
     def outer_first(self) -> str:
         """The link that has the first outer joint: ``first``, or the carrier of a carried dyad."""
         return self.first if self.carrier is None else self.carrier

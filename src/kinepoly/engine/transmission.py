@@ -14,7 +14,6 @@ Over rows: a sweep reads every row, a solve row 0 (``Transmission.angle_deg``).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,9 +52,9 @@ class Transmission:
         return math.degrees(float(self.angle[0]))
 
 
-def _describe(positions: Positions, dyad: Dyad) -> tuple[Callable[[], tuple[Points, Points]], str, str, str, str]:
-    """The dyad's two velocity directions (made when asked), its point and joint, and the words of the angle. A
-    direction square to a link is the one its velocity construction drew (``Positions.chord``, made once)."""
+def _describe(positions: Positions, dyad: Dyad) -> tuple[tuple[Points, Points], str, str, str, str]:
+    """The dyad's two velocity directions, its point and joint, and the words of the angle. A direction square to a
+    link is the one its velocity construction drew (``Positions.chord``, made once)."""
     def square(start: str, end: str) -> Points:
         return positions.chord(start, end)[1]
 
@@ -65,21 +64,21 @@ def _describe(positions: Positions, dyad: Dyad) -> tuple[Callable[[], tuple[Poin
         second = dyad.second_joint
         if isinstance(second, Revolute):
             p3 = second.point
-            return (lambda: (square(p1, p2), square(p3, p2)), p2, p2,
+            return ((square(p1, p2), square(p3, p2)), p2, p2,
                     f"{p1}{p2} and {p3}{p2}", f"the links {p1}{p2} and {p3}{p2} are in line")
-        return (lambda: (square(p1, p2), slide_direction(positions, second)), p2, p2,
+        return ((square(p1, p2), slide_direction(positions, second)), p2, p2,
                 f"{p1}{p2} and the normal to slider {second.name}",
                 f"the link {p1}{p2} is square to slider {second.name}'s line")
     if dyad.kind == "RPR":
         r = slide_roles(dyad)
         q, p, name = r.guide_pin, r.block_pin, r.slider.name
-        return (lambda: (square(q, p), slide_direction(positions, r.slider)), p, p,
+        return ((square(q, p), slide_direction(positions, r.slider)), p, p,
                 f"the normal to slider {name} and the path of {p} about {q}",
                 f"slider {name}'s line is square to {q}{p}")
     t = two_slide_roles(dyad, positions.mechanism)
     a, b = t.first_slider, t.second_slider
     assert isinstance(a, SliderSpec)
-    return (lambda: (slide_direction(positions, a), slide_direction(positions, b)), t.point, a.point,
+    return ((slide_direction(positions, a), slide_direction(positions, b)), t.point, a.point,
             f"sliders {a.name} and {b.name}", f"the lines of sliders {a.name} and {b.name} are parallel")
 
 
@@ -94,8 +93,7 @@ def transmission_angles(positions: Positions, plan: PositionPlan) -> list[Transm
     out = []
     for group in plan.groups:
         if isinstance(group, Dyad):
-            directions, point, joint, between, at_zero = _describe(positions, group)
-            first, second = directions()
+            (first, second), point, joint, between, at_zero = _describe(positions, group)
             product = np.conjugate(first) * second  # its imaginary part the cross product, its real part the dot
             turn = np.arctan2(np.abs(product.imag), np.abs(product.real))
             angle = np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)

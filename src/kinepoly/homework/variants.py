@@ -417,11 +417,9 @@ def _judged(family: _Family, base: Scene, batch: list[_Numbers], min_transmissio
     far = max((math.hypot(*xy) for _, xy in family.guess), default=0.0)
     unsure = np.zeros(len(batch), np.bool_)
     for dyad in family.dyads:
+        if dyad.one_assembly:
+            continue  # nothing to choose
         other = placer.place(dimensions, inputs, frozenset({dyad.name}))
-        if all(np.array_equal(found.poses[link].origin, other.poses[link].origin, equal_nan=True)
-               and np.array_equal(found.poses[link].rotation, other.poses[link].rotation, equal_nan=True)
-               for link in dyad.links):
-            continue  # a dyad of one assembly (two slides): nothing to choose
         mine = guess_distances(guess, found.mechanism, {link: found.poses[link] for link in dyad.links})
         theirs = guess_distances(guess, other.mechanism, {link: other.poses[link] for link in dyad.links})
         scale = 4.0 * (far + np.sqrt(mine) + np.sqrt(theirs))
