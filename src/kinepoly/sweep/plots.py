@@ -240,9 +240,10 @@ def _kind_panel(ax: Axes, result: SweepResult, kind: str, title: str, angles: bo
     """Every column of ``kind`` over the input; ``angles``: in the angle unit, 0 to 90 degrees."""
     x = result.input.values
     unit = result.scene.units.angle
+    # an angle at 90 degrees (a slot through its pivot) runs along the frame's top edge: drawn over it, not clipped
     for col in result.columns:
         if col.kind == kind:
-            ax.plot(x, _masked(col), lw=1.2, label=col.name)
+            ax.plot(x, _masked(col), lw=1.2, label=col.name, clip_on=not angles, zorder=3 if angles else 2)
     ax.set_title(title, fontsize=9)
     ax.set_xlabel(_input_label(result))
     if angles:
