@@ -5,7 +5,10 @@
   given the placing of the groups after it (``later``), for a kind whose assemblies the policy may carry
   through them; True with the placement when it placed those later groups too (``engine.position``);
 - ``velocity``: its tips, rates and sliding velocities in the velocity polygon (``engine.velocity``);
-- ``acceleration``: the same in the acceleration polygon (``engine.acceleration``).
+- ``acceleration``: the same in the acceleration polygon (``engine.acceleration``);
+
+and ``batched``: whether a family's members (``model.family``) are placed by the kind in one batch, its group closed
+in a form whose dimensions may differ from row to row (it answers the policy's ``by_label``).
 """
 
 from __future__ import annotations
@@ -38,3 +41,4 @@ class Kind(Generic[G]):
     place: Callable[[Mechanism, G, Placement, Policy, Later], Placed]
     velocity: Callable[[VelocityContext, G], None]
     acceleration: Callable[[AccelerationContext, G], None]
+    batched: bool = False

@@ -118,7 +118,7 @@ class FamilyContinuity:
     periodic: bool
     base: Mechanism
     seed: Mapping[str, LinkPose]
-    values: tuple[Reals, ...] = ()
+    values: tuple[Reals, ...]
     flipped: frozenset[str] = frozenset()
 
     def assemble(self, mechanism: Mechanism, question: Question[T], placed: Placement) -> T:

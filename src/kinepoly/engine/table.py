@@ -25,12 +25,13 @@ from kinepoly.engine.groups import (
     Group,
     NewtonGroup,
     PlanetGroup,
+    PositionPlan,
     TriadGroup,
 )
 from kinepoly.engine.kind import Kind
 from kinepoly.model.mechanism import Mechanism
 
-__all__ = ["KINDS", "kind_of", "kinds_for"]
+__all__ = ["KINDS", "batched", "kind_of", "kinds_for"]
 
 
 def _always(mechanism: Mechanism) -> bool:
@@ -90,3 +91,9 @@ def kinds_for(mechanism: Mechanism) -> Iterator[Kind[Any]]:
 def kind_of(group: Group) -> Kind[Any]:
     """The kind of ``group``: its row of the table."""
     return KINDS[type(group)]
+
+
+def batched(plan: PositionPlan) -> bool:
+    """Whether a family's members run through ``plan`` in one batch: every group's kind places them so
+    (``Kind.batched``)."""
+    return all(kind_of(group).batched for group in plan.groups)

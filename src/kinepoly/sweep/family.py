@@ -30,10 +30,11 @@ import numpy as np
 import numpy.typing as npt
 
 from kinepoly.engine.carry import drive_values
-from kinepoly.engine.groups import CarriedDyad, DriveGroup, Dyad, PositionPlan
+from kinepoly.engine.groups import PositionPlan
 from kinepoly.engine.plan import make_plan
 from kinepoly.engine.policy import FamilyContinuity
 from kinepoly.engine.position import Positions, input_values, solve_positions
+from kinepoly.engine.table import batched
 from kinepoly.errors import KinepolyError, SceneError
 from kinepoly.geom.arrays import Bools, Reals
 from kinepoly.model.array_pose import ArrayPose
@@ -62,8 +63,6 @@ _CHUNK_ROWS = 1 << 17
 """At most this many rows (members times rows each) run in one batch, under 0.1 GB of arrays at their peak; a
 larger family runs in several batches of whole members (as fast per row: 1.8 million rows took 0.6 s in batches
 of this size, 0.9 s in batches of a million)."""
-_BATCHED = (Dyad, CarriedDyad, DriveGroup)
-"""The group kinds a family runs in one batch (their closures are closed forms whose dimensions may vary by row)."""
 
 
 @dataclass(frozen=True)
@@ -216,7 +215,7 @@ def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike] | None = None
     with np.errstate(all="ignore"):
         grid = input_grid(prepared.mechanism, prepared.plan, prepared.seed, steps, start, stop,
                           prepared.default_range if start is None else None)
-        if not all(type(group) in _BATCHED for group in prepared.plan.groups):
+        if not batched(prepared.plan):
             ends = (prepared.default_range.start, prepared.default_range.stop) if start is None or stop is None \
                 else (start, stop)
             return _member_by_member(scene, dimensions, steps, ends, grid, t0)
@@ -266,7 +265,7 @@ def member_placer(scene: Scene, links: frozenset[str] | None = None) -> MemberPl
         return None
     mechanism = build_mechanism(scene)
     plan = make_plan(mechanism, None if links is None else set(links))
-    if not all(type(group) in _BATCHED for group in plan.groups):
+    if not batched(plan):
         return None
     return MemberPlacer(mechanism, plan, seed_poses(mechanism, plan))
 

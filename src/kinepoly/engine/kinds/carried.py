@@ -154,4 +154,4 @@ def acceleration(ctx: AccelerationContext, dyad: CarriedDyad) -> None:
     read_rate(b, j, p3, p2, crossing.along_second())
 
 
-KIND: Kind[CarriedDyad] = Kind(find, dyads.place, velocity, acceleration)
+KIND: Kind[CarriedDyad] = Kind(find, dyads.place, velocity, acceleration, batched=True)

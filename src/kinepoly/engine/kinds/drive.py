@@ -72,4 +72,4 @@ def place(mechanism: Mechanism, group: DriveGroup, placed: Placement, policy: Po
     return replace(placed, poses={**placed.poses, group.link: pose}), False
 
 
-KIND: Kind[DriveGroup] = Kind(find, place, velocity, acceleration)
+KIND: Kind[DriveGroup] = Kind(find, place, velocity, acceleration, batched=True)

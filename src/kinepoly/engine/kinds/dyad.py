@@ -255,4 +255,4 @@ def place(mechanism: Mechanism, group: Dyad, placed: Placement, policy: Policy, 
     return replace(placed, poses={**placed.poses, **closure.place(choice)}), False
 
 
-KIND: Kind[Dyad] = Kind(find, place, velocity, acceleration)
+KIND: Kind[Dyad] = Kind(find, place, velocity, acceleration, batched=True)
