@@ -4,6 +4,7 @@ its kind's functions), and the plan itself."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import CamSpec, GearSpec, SliderSpec
@@ -259,7 +260,15 @@ class PlanConstants:
 
     mechanism: Mechanism | None = None
     """The mechanism they were found on: a polygon of another (the same plan on other dimensions) finds its own."""
-    frame: tuple[tuple[str, tuple[str, ...]], ...] | None = None
+    frame: tuple[tuple[str, tuple[tuple[str, Any], ...]], ...] | None = None
+    """The frame's points: each one's label and the links it is a member of, with the member (``tips``)."""
+    labels: dict[tuple[str, str], str] = field(default_factory=dict)
+    """The label of each (link, point) asked for: the point's name, or ``B@4``."""
+    tips: dict[tuple[str, str], tuple[str, tuple[tuple[str, Any], ...]]] = field(default_factory=dict)
+    """What recording the tip of a (link, point) does: its label and the links it becomes a member of, each with
+    the member (``engine.polygon.Member``)."""
+    together: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    """Each link and the links that turn with it (``Mechanism.turning_together``)."""
     images: dict[tuple[str, str, tuple[str, ...]], tuple[str, str, complex] | None] = field(default_factory=dict)
     """None: the image is built row by row (a corner of its triangle slides on the link)."""
 

@@ -46,6 +46,11 @@ class Placement:
     contact_parameters: dict[str, Reals] = field(default_factory=dict)
     """Each spline cam's contact parameter on its profile at every row (``engine.cam_place``)."""
 
+    def with_poses(self, poses: dict[str, ArrayPose]) -> Placement:
+        """This placement with ``poses`` for its poses (``dataclasses.replace``, made directly)."""
+        return Placement(poses, self.ok, self.failures, self.near, self.notices, self.values, self.rolled,
+                         self.marks, self.contact_parameters)
+
     def row_poses(self, links: Iterable[str], row: int) -> dict[str, LinkPose]:
         """The poses of ``links`` at ``row`` as scalar values (for the one-row solvers)."""
         return {link: LinkPose(*self.poses[link].row(row)) for link in links}
@@ -82,9 +87,13 @@ class Positions:
         """World position of a named point (through the first solved link that has it)."""
         found = self._points.get(name)
         if found is None:
-            owner = next(link for link in self.mechanism.links_of_point(name) if link in self.poses)
-            found = self.poses[owner].world(self.mechanism.local(owner, name))
-            self._points[name] = found
+            poses = self.poses
+            for place in self.mechanism.places_of(name):  # the first solved link that has it: (link, local)
+                if place[0] in poses:
+                    break
+            else:
+                raise StopIteration(name)
+            found = self._points[name] = poses[place[0]].world_at(place[1])
         return found
 
     def chord(self, start: str, end: str) -> tuple[Points, Points]:
@@ -98,7 +107,7 @@ class Positions:
         return found
 
     def world(self, link: str, point: str) -> Points:
-        return self.poses[link].world(self.mechanism.local(link, point))
+        return self.poses[link].world_at(self.mechanism.local_at(link, point))
 
     def add_point(self, name: str, at: Points) -> None:
         """A point the construction finds on the mechanism (a triad's Assur point), by name."""

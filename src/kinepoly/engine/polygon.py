@@ -82,12 +82,11 @@ the link's known ones, so that choosing among all would cost the n-th point of a
 one link: 60 s). No example has a link with more than 8 known tips where an image is built."""
 
 class Member(NamedTuple):
-    """A known tip of a link: its label, where the point is at every row, whether it is fixed on the link
-    (a named tuple, frozen and cheap to make: a polygon makes one per tip and link)."""
+    """A known tip of a link: its label, the point (where it is at every row: ``Positions.point``), whether it is
+    fixed on the link (a constant of the plan, made once: ``PlanConstants.tips``)."""
 
     label: str
     point: str
-    at: Points
     fixed: bool
 
 
@@ -124,14 +123,18 @@ class Polygon:
         self.steps: list[Step] = []
         mech = self.mechanism
         self._ground = mech.ground
+        self._labels = self.constants.labels
+        self._together = self.constants.together
+        if not self._together:
+            self._together.update((link, mech.turning_together(link)) for link in mech.link_names)
         if mech.ground is not None:
             self.set_rate(mech.ground, np.zeros(self.n))  # and every link that slides on it without turning
             frame = self.constants.frame
             if frame is None:
-                frame = self.constants.frame = tuple((p.name, mech.links_of_point(p.name))
+                frame = self.constants.frame = tuple(self._entries(mech.ground, p.name)
                                                      for p in mech.scene.link(mech.ground).points)
-            for name, links in frame:
-                self._register(name, self.zero, name, links, True)
+            for label, entries in frame:
+                self._register(label, self.zero, entries)
 
     # -- row 0 as plain values, for the steps -------------------------------------------------------
     @staticmethod
@@ -151,7 +154,11 @@ class Polygon:
         return self.positions.point(point)
 
     def label(self, link: str, point: str) -> str:
-        return point if self.mechanism.has_point(link, point) else LinkPoint(point, link).text
+        key = (link, point)
+        found = self._labels.get(key)
+        if found is None:
+            found = self._labels[key] = point if self.mechanism.has_point(link, point) else LinkPoint(point, link).text
+        return found
 
     @staticmethod
     def tip_name(label: str) -> str:
@@ -162,48 +169,66 @@ class Polygon:
 
     # -- rates (omega or alpha) ---------------------------------------------------------------------
     def rate_of(self, link: str) -> Reals | None:
-        return self.mechanism.class_rate(self.rate, link)
+        found = self.rate.get(link)
+        return found if found is not None else self.mechanism.class_rate(self.rate, link)
 
     def set_rate(self, link: str, value: Reals) -> None:
-        for other in self.mechanism.turning_together(link):
-            self.rate[other] = value
+        rate = self.rate
+        for other in self._together[link]:
+            rate[other] = value
 
     def omega_of(self, link: str) -> Reals:
         omega = self.mechanism.class_rate(self.omega, link)
         return np.zeros(self.n) if omega is None else omega
 
     # -- tips -----------------------------------------------------------------------------------------
-    def _register(self, label: str, value: Points, point: str, links: tuple[str, ...] | list[str],
-                  fixed: bool) -> None:
-        """``fixed``: ``point`` is a point of each of ``links`` (a named point as a point of the links that have
-        it, not a point of one link under another's, ``B@4``)."""
-        known = label in self.tips  # only a label with a tip already can be a member already
-        self.tips[label] = value
-        at = self.positions.point(point)
-        for link in links:
-            entries = self.members.setdefault(link, [])
-            if not known or all(m.label != label for m in entries):
-                entries.append(Member(label, point, at, fixed))
+    def _entries(self, link: str, point: str) -> tuple[str, tuple[tuple[str, Member], ...]]:
+        """The label of ``point`` as a point of ``link`` and the links whose member it becomes, each with its
+        member: a named point is a point of each link that has it, fixed on it; a point of one link under
+        another's (``B@4``) a member of ``link`` alone, not fixed on it."""
+        label = self.label(link, point)
+        if label == point:
+            return label, tuple((other, Member(label, point, True)) for other in self.mechanism.links_of_point(point))
+        return label, ((link, Member(label, point, False)),)
+
+    def _register(self, label: str, value: Points, entries: tuple[tuple[str, Member], ...]) -> None:
+        """Record the tip ``value`` of ``label``, a member of each link of ``entries`` (``_entries``)."""
+        tips, members = self.tips, self.members
+        known = label in tips  # only a label with a tip already can be a member already
+        tips[label] = value
+        for link, member in entries:
+            found = members.get(link)
+            if found is None:
+                members[link] = [member]
+            elif not known or all(m.label != label for m in found):
+                found.append(member)
 
     def add_tip(self, link: str, point: str, value: Points) -> str:
         """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
-        label = self.label(link, point)
-        if label == point:  # the links that have the point, each with it fixed on it
-            self._register(label, value, point, self.mechanism.links_of_point(point), True)
-        else:
-            self._register(label, value, point, (link,), False)
-        return label
+        key = (link, point)
+        found = self.constants.tips.get(key)
+        if found is None:
+            found = self.constants.tips[key] = self._entries(link, point)
+        self._register(found[0], value, found[1])
+        return found[0]
 
     def add_virtual_tip(self, link: str, name: str, value: Points) -> None:
         """The tip of a point the construction found on ``link`` (not a named point: a triad's Assur point,
         whose place the positions were told)."""
-        self._register(name, value, name, [link], self.mechanism.has_point(link, name))
+        self._register(name, value, ((link, Member(name, name, self.mechanism.has_point(link, name))),))
+
+    def at(self, member: Member) -> Points:
+        """Where a member's point is at every row."""
+        return self.positions.point(member.point)
 
     def tip(self, link: str, point: str) -> Points:
         """The tip of ``point`` as a point of ``link``, constructing it when it is not known yet."""
-        label = self.label(link, point)
-        if label in self.tips:
-            return self.tips[label]
+        label = self._labels.get((link, point))
+        if label is None:
+            label = self.label(link, point)
+        found = self.tips.get(label)
+        if found is not None:
+            return found
         if link == self._ground:
             self.add_tip(link, point, self.zero)
             return self.zero
@@ -268,8 +293,7 @@ class Polygon:
 
     # -- Mehmke's image ---------------------------------------------------------------------------------
     def _image(self, link: str, point: str, label: str, members: list[Member]) -> Points:
-        at = self.world(point)
-        key = (link, label, tuple(m.label for m in members))
+        key = (link, label, tuple(members))
         images = self.constants.images
         if key in images:
             rigid = images[key]
@@ -282,9 +306,10 @@ class Polygon:
             if self.record:
                 first, second = (next(m for m in members if m.label == name) for name in (first_label, second_label))
         else:
+            at = self.world(point)
             known = members[:_IMAGE_MEMBERS]
             pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
-            keys = np.stack([np.asarray(_key(m.at, k.at, at)) for m, k in pairs])
+            keys = np.stack([np.asarray(_key(self.at(m), self.at(k), at)) for m, k in pairs])
             best = np.argmax(keys, axis=0)
             value = self.zero
             for index, (m, k) in enumerate(pairs):
@@ -293,7 +318,7 @@ class Polygon:
                     value = image if len(pairs) == 1 else np.where(best == index, image, value)
             first, second = pairs[int(best[0])]
         if self.record:
-            self._record_image(link, label, first, second, at, value)
+            self._record_image(link, label, first, second, self.world(point), value)
         return value
 
     def _rigid_image(self, link: str, point: str, label: str, members: list[Member]) -> tuple[str, str, complex] | None:
@@ -341,7 +366,7 @@ class Polygon:
 
     def _image_of(self, first: Member, second: Member, at: Points) -> Points:
         """Mehmke, row by row (a triangle whose corner slides on the link changes from row to row)."""
-        wa, wb = first.at, second.at
+        wa, wb = self.at(first), self.at(second)
         side = wb - wa
         a, b = self.tips[first.label], self.tips[second.label]
         polygon_side = b - a
@@ -357,7 +382,7 @@ class Polygon:
     def _record_image(self, link: str, label: str, first: Member, second: Member, at_rows: Points,
                       value: Points) -> None:
         la, lb = first.label, second.label
-        wa, wb, at = complex(first.at[0]), complex(second.at[0]), complex(at_rows[0])
+        wa, wb, at = complex(self.at(first)[0]), complex(self.at(second)[0]), complex(at_rows[0])
         a, b = complex(self.tips[la][0]), complex(self.tips[lb][0])
         side, polygon_side = wb - wa, b - a
         if side == 0:

@@ -17,7 +17,8 @@ import numpy as np
 from kinepoly.geom.arrays import Points, Reals, length
 from kinepoly.model.pose import LinkPose
 
-__all__ = ["ArrayPose", "is_origin", "local_point", "pose_from_point", "pose_from_two_points", "still_pose"]
+__all__ = ["ArrayPose", "is_origin", "local_point", "pose_at", "pose_from_point", "pose_from_two_points",
+           "still_pose"]
 
 
 def local_point(local: tuple[float, float]) -> complex:
@@ -63,12 +64,15 @@ class ArrayPose:
     """The frame itself: world = local at every row."""
 
     def world(self, local: tuple[float, float]) -> Points:
+        return self.world_at(local_point(local))
+
+    def world_at(self, at: complex) -> Points:
+        """``world`` of a point given as x + iy (``local_point``): one number, or one per row in a family."""
         if self.still:
-            at = local_point(local)
             return np.full(len(self.origin), at) if isinstance(at, complex) else at
-        if is_origin(local):
+        if isinstance(at, complex) and at == 0:
             return self.origin
-        return self.origin + self.rotation * local_point(local)
+        return self.origin + self.rotation * at
 
     def to_local(self, world: Points) -> Points:
         return (world - self.origin) * self.rotation.conjugate()
@@ -101,9 +105,14 @@ def still_pose(n: int) -> ArrayPose:
 
 def pose_from_point(local: tuple[float, float], world: Points, rotation: Points) -> ArrayPose:
     """The pose that puts ``local`` at ``world`` with the given rotation."""
-    if is_origin(local):
+    return pose_at(local_point(local), world, rotation)
+
+
+def pose_at(at: complex, world: Points, rotation: Points) -> ArrayPose:
+    """``pose_from_point`` of a point given as x + iy (``local_point``): one number, or one per row in a family."""
+    if isinstance(at, complex) and at == 0:
         return ArrayPose(world, rotation)
-    return ArrayPose(world - rotation * local_point(local), rotation)
+    return ArrayPose(world - rotation * at, rotation)
 
 
 def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, float], world_a: Points,

@@ -16,6 +16,7 @@ from functools import cached_property
 from typing import TypeVar
 
 from kinepoly.errors import MobilityError, SceneError
+from kinepoly.model.array_pose import local_point
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput, SliderSpec
 
 __all__ = ["Drive", "Joint", "Mechanism", "Revolute", "build_mechanism"]
@@ -133,10 +134,44 @@ class Mechanism:
         """Coordinates of ``point`` in ``link``'s own frame (KeyError when the link has no such point)."""
         return self._locals[(link, point)]
 
+    def local_at(self, link: str, point: str) -> complex:
+        """``local`` as x + iy (``model.array_pose.local_point``), made once per point: a family's point one per
+        row."""
+        key = (link, point)
+        found = self._local_at.get(key)
+        if found is None:
+            found = self._local_at[key] = local_point(self.local(link, point))
+        return found
+
+    @cached_property
+    def _local_at(self) -> dict[tuple[str, str], complex]:
+        return {}
+
+    def places_of(self, point: str) -> tuple[tuple[str, complex], ...]:
+        """The links that have ``point``, in scene order, each with the point's ``local_at``: where a position
+        looks the point up, made once per point."""
+        found = self._places.get(point)
+        if found is None:
+            found = self._places[point] = tuple((link, self.local_at(link, point))
+                                                for link in self.links_of_point(point))
+        return found
+
+    @cached_property
+    def _places(self) -> dict[str, tuple[tuple[str, complex], ...]]:
+        return {}
+
     def distance(self, link: str, a: str, b: str) -> float:
         """|ab| in ``link``'s own frame (a link length)."""
-        (ax, ay), (bx, by) = self.local(link, a), self.local(link, b)
-        return math.hypot(bx - ax, by - ay)
+        key = (link, a, b)
+        found = self._lengths.get(key)
+        if found is None:
+            (ax, ay), (bx, by) = self.local(link, a), self.local(link, b)
+            found = self._lengths[key] = math.hypot(bx - ax, by - ay)
+        return found
+
+    @cached_property
+    def _lengths(self) -> dict[tuple[str, str, str], float]:
+        return {}
 
     def slide_through(self, slider: SliderSpec) -> Vec:
         """A point of ``slider``'s line in its guide's own frame (the line's ``through``)."""

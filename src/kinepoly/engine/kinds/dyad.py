@@ -246,13 +246,13 @@ def place(mechanism: Mechanism, group: Dyad, placed: Placement, policy: Policy, 
         base = placed
 
         def carried_through(label: int, base: Placement = base, closure: Closure = closure) -> Placement:
-            return later(replace(base, poses={**base.poses, **closure.place(label)}))
+            return later(base.with_poses({**base.poses, **closure.place(label)}))
 
         chosen = policy.assemble(mechanism, DyadQuestion(closure, carried_through), placed)
         if isinstance(chosen, Placement):
             return chosen, True
         choice = chosen
-    return replace(placed, poses={**placed.poses, **closure.place(choice)}), False
+    return placed.with_poses({**placed.poses, **closure.place(choice)}), False
 
 
 KIND: Kind[Dyad] = Kind(find, place, velocity, acceleration, batched=True)
