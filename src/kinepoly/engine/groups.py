@@ -256,7 +256,7 @@ class PlanConstants:
     """What constructing a plan's polygons finds that does not depend on the rows, kept by its first construction
     for the next ones (``engine.polygon``): the frame's points with the links that have each, and each image of a
     rigid link as the two known tips it is built from and Mehmke's factor, keyed by the link, the point and the
-    link's known tips. A prepared sweep's plan is constructed at every call: its calls replay these."""
+    link's known tips (their members). A prepared sweep's plan is constructed at every call: its calls replay these."""
 
     mechanism: Mechanism | None = None
     """The mechanism they were found on: a polygon of another (the same plan on other dimensions) finds its own."""
@@ -269,7 +269,10 @@ class PlanConstants:
     the member (``engine.polygon.Member``)."""
     together: dict[str, tuple[str, ...]] = field(default_factory=dict)
     """Each link and the links that turn with it (``Mechanism.turning_together``)."""
-    images: dict[tuple[str, str, tuple[str, ...]], tuple[str, str, complex] | None] = field(default_factory=dict)
+    groups: dict[int, Any] = field(default_factory=dict)
+    """What a group's kind finds of it once for the plan (its points, links, lengths and line labels), keyed by the
+    group's identity: the plan holds its groups."""
+    images: dict[tuple[str, str, tuple[Any, ...]], tuple[str, str, complex] | None] = field(default_factory=dict)
     """None: the image is built row by row (a corner of its triangle slides on the link)."""
 
 

@@ -6,8 +6,6 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from kinepoly.engine.gears import Rolled
 from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.model.array_pose import ArrayPose
@@ -85,25 +83,28 @@ class Positions:
 
     def point(self, name: str) -> Points:
         """World position of a named point (through the first solved link that has it)."""
-        found = self._points.get(name)
-        if found is None:
-            poses = self.poses
-            for place in self.mechanism.places_of(name):  # the first solved link that has it: (link, local)
-                if place[0] in poses:
-                    break
-            else:
-                raise StopIteration(name)
-            found = self._points[name] = poses[place[0]].world_at(place[1])
+        points = self._points
+        if name in points:
+            return points[name]
+        poses = self.poses
+        for place in self.mechanism.places_of(name):  # the first solved link that has it: (link, local)
+            if place[0] in poses:
+                break
+        else:
+            raise StopIteration(name)
+        found = points[name] = poses[place[0]].world_at(place[1])
         return found
 
     def chord(self, start: str, end: str) -> tuple[Points, Points]:
         """The vector from point ``start`` to point ``end`` at every row, and that vector turned a quarter
         counter-clockwise: the direction of the relative velocity of ``end`` about ``start`` on their link.
         Made once, for the velocity and acceleration polygons alike (do not change them in place)."""
-        found = self._turned.get((start, end))
-        if found is None:
-            r = np.asarray(self.point(end) - self.point(start))
-            found = self._turned[start, end] = (r, np.asarray(1j * r))
+        key = (start, end)
+        turned = self._turned
+        if key in turned:
+            return turned[key]
+        r: Points = self.point(end) - self.point(start)
+        found = turned[key] = (r, 1j * r)
         return found
 
     def world(self, link: str, point: str) -> Points:

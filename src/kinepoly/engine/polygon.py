@@ -122,17 +122,17 @@ class Polygon:
         self.crossing = crossing
         self.steps: list[Step] = []
         mech = self.mechanism
-        self._ground = mech.ground
+        ground = self._ground = mech.ground
         self._labels = self.constants.labels
         self._together = self.constants.together
         if not self._together:
             self._together.update((link, mech.turning_together(link)) for link in mech.link_names)
-        if mech.ground is not None:
-            self.set_rate(mech.ground, np.zeros(self.n))  # and every link that slides on it without turning
+        if ground is not None:
+            self.set_rate(ground, np.zeros(self.n))  # and every link that slides on it without turning
             frame = self.constants.frame
             if frame is None:
-                frame = self.constants.frame = tuple(self._entries(mech.ground, p.name)
-                                                     for p in mech.scene.link(mech.ground).points)
+                frame = self.constants.frame = tuple(self._entries(ground, p.name)
+                                                     for p in mech.scene.link(ground).points)
             for label, entries in frame:
                 self._register(label, self.zero, entries)
 
@@ -155,9 +155,10 @@ class Polygon:
 
     def label(self, link: str, point: str) -> str:
         key = (link, point)
-        found = self._labels.get(key)
-        if found is None:
-            found = self._labels[key] = point if self.mechanism.has_point(link, point) else LinkPoint(point, link).text
+        labels = self._labels
+        if key in labels:
+            return labels[key]
+        found = labels[key] = point if self.mechanism.has_point(link, point) else LinkPoint(point, link).text
         return found
 
     @staticmethod
@@ -169,8 +170,8 @@ class Polygon:
 
     # -- rates (omega or alpha) ---------------------------------------------------------------------
     def rate_of(self, link: str) -> Reals | None:
-        found = self.rate.get(link)
-        return found if found is not None else self.mechanism.class_rate(self.rate, link)
+        rate = self.rate
+        return rate[link] if link in rate else self.mechanism.class_rate(rate, link)
 
     def set_rate(self, link: str, value: Reals) -> None:
         rate = self.rate
@@ -178,7 +179,8 @@ class Polygon:
             rate[other] = value
 
     def omega_of(self, link: str) -> Reals:
-        omega = self.mechanism.class_rate(self.omega, link)
+        known = self.omega
+        omega = known[link] if link in known else self.mechanism.class_rate(known, link)
         return np.zeros(self.n) if omega is None else omega
 
     # -- tips -----------------------------------------------------------------------------------------
@@ -197,18 +199,16 @@ class Polygon:
         known = label in tips  # only a label with a tip already can be a member already
         tips[label] = value
         for link, member in entries:
-            found = members.get(link)
-            if found is None:
+            if link not in members:
                 members[link] = [member]
-            elif not known or all(m.label != label for m in found):
-                found.append(member)
+            elif not known or all(m.label != label for m in members[link]):
+                members[link].append(member)
 
     def add_tip(self, link: str, point: str, value: Points) -> str:
         """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
         key = (link, point)
-        found = self.constants.tips.get(key)
-        if found is None:
-            found = self.constants.tips[key] = self._entries(link, point)
+        known = self.constants.tips
+        found = known[key] if key in known else known.setdefault(key, self._entries(link, point))
         self._register(found[0], value, found[1])
         return found[0]
 
@@ -223,12 +223,11 @@ class Polygon:
 
     def tip(self, link: str, point: str) -> Points:
         """The tip of ``point`` as a point of ``link``, constructing it when it is not known yet."""
-        label = self._labels.get((link, point))
-        if label is None:
-            label = self.label(link, point)
-        found = self.tips.get(label)
-        if found is not None:
-            return found
+        key = (link, point)
+        label = self._labels[key] if key in self._labels else self.label(link, point)
+        tips = self.tips
+        if label in tips:
+            return tips[label]
         if link == self._ground:
             self.add_tip(link, point, self.zero)
             return self.zero
@@ -249,14 +248,14 @@ class Polygon:
         rate = self.rate_of(link)
         assert rate is not None
         if self.kind == "velocity":
-            end = np.asarray(start + rate * turned)
+            end: Points = start + rate * turned
             if self.record:
                 self._record_relative_velocity(link, label, member.label, r, start, end, rate)
             return end
         w = self.omega_of(link)
         normal = (w * w) * r
-        middle = np.asarray(start - normal if self.normal_sign < 0.0 else start + normal)
-        end = np.asarray(middle + rate * turned)
+        middle: Points = start - normal if self.normal_sign < 0.0 else start + normal
+        end = middle + rate * turned
         if self.record:
             self._record_relative_acceleration(link, label, member.label, r, start, middle, end, w, rate)
         return end

@@ -68,10 +68,15 @@ class ArrayPose:
 
     def world_at(self, at: complex) -> Points:
         """``world`` of a point given as x + iy (``local_point``): one number, or one per row in a family."""
-        if self.still:
-            return np.full(len(self.origin), at) if isinstance(at, complex) else at
-        if isinstance(at, complex) and at == 0:
-            return self.origin
+        if isinstance(at, complex):
+            if self.still:
+                out = np.empty(len(self.origin), np.complex128)
+                out.fill(at)
+                return out
+            if at == 0:
+                return self.origin
+        elif self.still:
+            return at
         return self.origin + self.rotation * at
 
     def to_local(self, world: Points) -> Points:
@@ -131,9 +136,9 @@ def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, flo
         factor = shape.conjugate() / (abs(shape) * abs(shape)) if rigid else (shape / abs(shape)).conjugate()
         turned = span * np.repeat(factor, each) if rigid else span * (1.0 / length(span)) * np.repeat(factor, each)
         return pose_from_point(local_a, world_a, turned)
-    local = local_point((local_b[0] - local_a[0], local_b[1] - local_a[1]))
+    local = complex(local_b[0] - local_a[0], local_b[1] - local_a[1])  # two points of one mechanism: numbers
     if rigid:
         rotation = span * (local.conjugate() / (abs(local) * abs(local)))
     else:
         rotation = span * (1.0 / length(span)) * (local / abs(local)).conjugate()
-    return pose_from_point(local_a, world_a, rotation)
+    return pose_at(complex(local_a[0], local_a[1]), world_a, rotation)

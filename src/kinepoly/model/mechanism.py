@@ -138,10 +138,8 @@ class Mechanism:
         """``local`` as x + iy (``model.array_pose.local_point``), made once per point: a family's point one per
         row."""
         key = (link, point)
-        found = self._local_at.get(key)
-        if found is None:
-            found = self._local_at[key] = local_point(self.local(link, point))
-        return found
+        known = self._local_at
+        return known[key] if key in known else known.setdefault(key, local_point(self.local(link, point)))
 
     @cached_property
     def _local_at(self) -> dict[tuple[str, str], complex]:
@@ -150,10 +148,10 @@ class Mechanism:
     def places_of(self, point: str) -> tuple[tuple[str, complex], ...]:
         """The links that have ``point``, in scene order, each with the point's ``local_at``: where a position
         looks the point up, made once per point."""
-        found = self._places.get(point)
-        if found is None:
-            found = self._places[point] = tuple((link, self.local_at(link, point))
-                                                for link in self.links_of_point(point))
+        known = self._places
+        if point in known:
+            return known[point]
+        found = known[point] = tuple((link, self.local_at(link, point)) for link in self.links_of_point(point))
         return found
 
     @cached_property
@@ -163,10 +161,11 @@ class Mechanism:
     def distance(self, link: str, a: str, b: str) -> float:
         """|ab| in ``link``'s own frame (a link length)."""
         key = (link, a, b)
-        found = self._lengths.get(key)
-        if found is None:
-            (ax, ay), (bx, by) = self.local(link, a), self.local(link, b)
-            found = self._lengths[key] = math.hypot(bx - ax, by - ay)
+        known = self._lengths
+        if key in known:
+            return known[key]
+        (ax, ay), (bx, by) = self.local(link, a), self.local(link, b)
+        found = known[key] = math.hypot(bx - ax, by - ay)
         return found
 
     @cached_property
