@@ -84,7 +84,9 @@ class ArrayPose:
 
     def theta(self, degrees: bool = False) -> Reals:
         """theta in radians (or degrees), in (-pi, pi] like ``Solution.angle``."""
-        angle = np.angle(self.rotation, deg=degrees)
+        angle: Reals = np.arctan2(self.rotation.imag, self.rotation.real)  # np.angle's arithmetic, without its wrapper
+        if degrees:
+            angle *= 180 / math.pi
         half = 180.0 if degrees else math.pi
         if len(angle) and angle.min() == -half:  # one reduction where none is at -half, the usual case
             angle[angle == -half] = half
