@@ -127,16 +127,11 @@ def _inner_at(mech: Mechanism, link: str, point: str) -> Callable[[dict[str, Lin
     return lambda scalar: _c(scalar[link].world(mech.local(link, point)))
 
 
-def _link_size(mech: Mechanism) -> float:
-    """The longest distance between two points of one link: the mechanism's own length scale."""
-    return max((abs(complex(*p.local) - complex(*q.local)) for link in mech.scene.links for p in link.points
-                for q in link.points), default=0.0)
-
-
 def _largest(*values: Reals | float) -> Reals | float:
     """The largest of some lengths: numbers, or arrays where a family's dimensions vary by row."""
-    if any(np.ndim(v) for v in values):
-        return np.asarray(np.maximum.reduce(np.broadcast_arrays(*values)))
+    for value in values:
+        if isinstance(value, np.ndarray) and value.ndim:
+            return np.asarray(np.maximum.reduce(np.broadcast_arrays(*values)))
     return max(values)
 
 
@@ -265,7 +260,7 @@ def _rpr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
         return f"|{pg} {pb}| = {rk:.6g} is less than the offset {h:.6g} of slider {slider.name}'s line from {pg}"
 
     # the guide's angle comes from the direction wg -> wb: when pb nears pg it is ill-conditioned
-    size = _largest(abs(pg_local - through), abs(offset), _link_size(mech))
+    size = _largest(abs(pg_local - through), abs(offset), mech.link_size)
     close = ok & (r < NEAR_SINGULAR_SIN * size)
     near = None
     if close.any():

@@ -4,6 +4,7 @@ its kind's functions), and the plan itself."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
@@ -70,6 +71,11 @@ class Dyad:
         a = next(x for x in joint_links(self.first_joint) if x != self.outer_first)
         b = next(x for x in joint_links(self.second_joint) if x != self.second)
         return (a, b)
+
+    @cached_property
+    def slide_roles(self) -> SlideRoles:
+        """The roles of an RPR dyad's links and pins (``slide_roles``)."""
+        return _slide_roles(self)
 
     @property
     def name(self) -> str:
@@ -181,7 +187,11 @@ def far_side(joint: Joint, link: str) -> str:
 
 
 def slide_roles(dyad: Dyad) -> SlideRoles:
-    """The roles of an RPR dyad's links and pins."""
+    """The roles of an RPR dyad's links and pins (found once per dyad)."""
+    return dyad.slide_roles
+
+
+def _slide_roles(dyad: Dyad) -> SlideRoles:
     slider = dyad.inner
     assert isinstance(slider, SliderSpec) and dyad.kind == "RPR"
     outer = {dyad.first: dyad.first_joint, dyad.second: dyad.second_joint}

@@ -122,7 +122,8 @@ class Polygon:
         self.crossing = crossing
         self.steps: list[Step] = []
         mech = self.mechanism
-        ground = self._ground = mech.ground
+        ground = self.ground = mech.ground
+        """The frame (``Mechanism.ground``)."""
         self._labels = self.constants.labels
         self._together = self.constants.together
         if not self._together:
@@ -228,7 +229,7 @@ class Polygon:
         tips = self.tips
         if label in tips:
             return tips[label]
-        if link == self._ground:
+        if link == self.ground:
             self.add_tip(link, point, self.zero)
             return self.zero
         members = self.members.get(link, [])
@@ -308,14 +309,18 @@ class Polygon:
             at = self.world(point)
             known = members[:_IMAGE_MEMBERS]
             pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
-            keys = np.stack([np.asarray(_key(self.at(m), self.at(k), at)) for m, k in pairs])
-            best = np.argmax(keys, axis=0)
-            value = self.zero
-            for index, (m, k) in enumerate(pairs):
-                if np.any(best == index):
-                    image = self._image_of(m, k, at)
-                    value = image if len(pairs) == 1 else np.where(best == index, image, value)
-            first, second = pairs[int(best[0])]
+            if len(pairs) == 1 and self.n:  # every row builds the image from the one pair
+                first, second = pairs[0]
+                value = self._image_of(first, second, at)
+            else:
+                keys = np.stack([np.asarray(_key(self.at(m), self.at(k), at)) for m, k in pairs])
+                best = keys.argmax(axis=0)
+                value = self.zero
+                for index, (m, k) in enumerate(pairs):
+                    if (best == index).any():
+                        image = self._image_of(m, k, at)
+                        value = image if len(pairs) == 1 else np.where(best == index, image, value)
+                first, second = pairs[int(best[0])]
         if self.record:
             self._record_image(link, label, first, second, self.world(point), value)
         return value
@@ -371,9 +376,11 @@ class Polygon:
         polygon_side = b - a
         ratio_a = (at - wa) / side
         ratio_b = (at - wb) / (wa - wb)
-        turn_a, turn_b = np.exp(1j * np.angle(ratio_a)), np.exp(1j * np.angle(ratio_b))
+        # np.angle(z) is np.arctan2(z.imag, z.real): its arithmetic, without its wrapper
+        turn_a = np.exp(1j * np.arctan2(ratio_a.imag, ratio_a.real))
+        turn_b = np.exp(1j * np.arctan2(ratio_b.imag, ratio_b.real))
         flat_value = a + polygon_side * ratio_a  # proportional division: the foot, then the height
-        sin_lines = np.abs(np.sin(np.angle(turn_b) - np.angle(turn_a)))
+        sin_lines = np.abs(np.sin(np.arctan2(turn_b.imag, turn_b.real) - np.arctan2(turn_a.imag, turn_a.real)))
         crossing = self.crossing(a, polygon_side * turn_a, b, -polygon_side * turn_b, None, None).point
         value = np.where(sin_lines >= COLLINEAR_SIN, crossing, flat_value)
         return np.asarray(np.where(polygon_side == 0.0, a, value))

@@ -16,7 +16,6 @@ from functools import cached_property
 from typing import TypeVar
 
 from kinepoly.errors import MobilityError, SceneError
-from kinepoly.model.array_pose import local_point
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput, SliderSpec
 
 __all__ = ["Drive", "Joint", "Mechanism", "Revolute", "build_mechanism"]
@@ -134,12 +133,24 @@ class Mechanism:
         """Coordinates of ``point`` in ``link``'s own frame (KeyError when the link has no such point)."""
         return self._locals[(link, point)]
 
+    @cached_property
+    def link_size(self) -> float:
+        """The longest distance between two points of one link (the scene's points): the mechanism's own length
+        scale."""
+        return max((abs(complex(*p.local) - complex(*q.local)) for link in self.scene.links for p in link.points
+                    for q in link.points), default=0.0)
+
     def local_at(self, link: str, point: str) -> complex:
         """``local`` as x + iy (``model.array_pose.local_point``), made once per point: a family's point one per
-        row."""
+        row (``model.family``)."""
         key = (link, point)
         known = self._local_at
-        return known[key] if key in known else known.setdefault(key, local_point(self.local(link, point)))
+        return known[key] if key in known else known.setdefault(key, self._complex(self.local(link, point)))
+
+    @staticmethod
+    def _complex(local: Vec) -> complex:
+        """A point's own coordinates as x + iy: one number (a family's, one per row: ``model.family``)."""
+        return complex(local[0], local[1])
 
     @cached_property
     def _local_at(self) -> dict[tuple[str, str], complex]:
@@ -243,7 +254,12 @@ class Mechanism:
 
     def has_turning_guide(self, slider: SliderSpec) -> bool:
         """A Coriolis term exists for this slider: its guide may turn."""
-        return not self.turns_with_ground(slider.guide)
+        return self._turning[slider.guide]
+
+    @cached_property
+    def _turning(self) -> dict[str, bool]:
+        """Whether each link may turn (``turns_with_ground``)."""
+        return {link: not self.turns_with_ground(link) for link in self.link_names}
 
     @cached_property
     def drives(self) -> tuple[Drive, ...]:
