@@ -57,7 +57,11 @@ def test_the_next_construction_replays_the_constants_to_the_last_bit() -> None:
     first = _construct(mechanism, plan)
     assert plan.constants.images, "the first construction keeps the image of C"
     assert plan.constants.mechanism is mechanism
+    kept = plan.constants
+    assert kept.labels and kept.tips and kept.groups and kept.frame, "labels, members, the dyad's lines, the frame"
+    found = (dict(kept.labels), dict(kept.tips), dict(kept.groups), dict(kept.images))
     replayed = _construct(mechanism, plan)
+    assert (kept.labels, kept.tips, kept.groups, kept.images) == found, "the replay finds every constant kept"
     fresh = _construct(mechanism, PositionPlan(plan.driven, plan.groups))
     for name, values in first.items():
         assert values.tobytes() == replayed[name].tobytes() == fresh[name].tobytes(), name

@@ -28,7 +28,7 @@ from kinepoly.engine.carry import carried_local, relative_turn
 from kinepoly.engine.groups import Dyad
 from kinepoly.geom.arrays import Bools, Points, Reals, circle_circle, circle_line, cross_lines, length, turn
 from kinepoly.geom.tolerances import ASSEMBLY_REL_TOL, NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
-from kinepoly.model.array_pose import ArrayPose, local_point, pose_from_point, pose_from_two_points
+from kinepoly.model.array_pose import ArrayPose, local_point, pose_at, pose_from_point, pose_from_two_points
 from kinepoly.model.mechanism import Joint, Mechanism, Revolute
 from kinepoly.model.pose import LinkPose
 from kinepoly.scene.spec import SliderSpec
@@ -89,7 +89,7 @@ def other_side(joint: Joint, link: str) -> str:
 
 
 def _local(mechanism: Mechanism, link: str, point: str) -> complex:
-    return local_point(mechanism.local(link, point))
+    return mechanism.local_at(link, point)
 
 
 def _c(v: tuple[float, float]) -> complex:
@@ -103,7 +103,7 @@ def _row(value: Reals | float, k: int) -> float:
 
 def _outer_world(mech: Mechanism, poses: dict[str, ArrayPose], joint: Joint, link: str, point: str) -> Points:
     known = other_side(joint, link)
-    return poses[known].world(mech.local(known, point))
+    return poses[known].world_at(mech.local_at(known, point))
 
 
 def slider_locus(mechanism: Mechanism, slider: SliderSpec, moving: str, local: tuple[float, float],
@@ -127,16 +127,11 @@ def _inner_at(mech: Mechanism, link: str, point: str) -> Callable[[dict[str, Lin
     return lambda scalar: _c(scalar[link].world(mech.local(link, point)))
 
 
-def _link_size(mech: Mechanism) -> float:
-    """The longest distance between two points of one link: the mechanism's own length scale."""
-    return max((abs(complex(*p.local) - complex(*q.local)) for link in mech.scene.links for p in link.points
-                for q in link.points), default=0.0)
-
-
 def _largest(*values: Reals | float) -> Reals | float:
     """The largest of some lengths: numbers, or arrays where a family's dimensions vary by row."""
-    if any(np.ndim(v) for v in values):
-        return np.asarray(np.maximum.reduce(np.broadcast_arrays(*values)))
+    for value in values:
+        if isinstance(value, np.ndarray) and value.ndim:
+            return np.asarray(np.maximum.reduce(np.broadcast_arrays(*values)))
     return max(values)
 
 
@@ -152,14 +147,15 @@ def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple
     assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.second_joint, Revolute)
     assert isinstance(dyad.inner, Revolute)
     p1, p2, p3 = dyad.first_joint.point, dyad.inner.point, dyad.second_joint.point
-    w1 = _outer_world(mech, poses, dyad.first_joint, outer, p1)
-    w3 = _outer_world(mech, poses, dyad.second_joint, j, p3)
-    local2: complex | Points = _local(mech, i, p2)
+    known1, known3 = dyad.first_joint.other(outer), dyad.second_joint.other(j)
+    w1 = poses[known1].world_at(mech.local_at(known1, p1))
+    w3 = poses[known3].world_at(mech.local_at(known3, p3))
+    local2: complex | Points = mech.local_at(i, p2)
     if drive is not None:  # the inner joint in the carrier's frame, row by row
-        local2 = carried_local(mech, drive, i, _local(mech, i, p2), values[drive.index])
-    span = local2 - _local(mech, outer, p1)
+        local2 = carried_local(mech, drive, i, mech.local_at(i, p2), values[drive.index])
+    span = local2 - mech.local_at(outer, p1)
     r1 = np.abs(span)
-    r2 = abs(_local(mech, j, p2) - _local(mech, j, p3))
+    r2 = abs(mech.local_at(j, p2) - mech.local_at(j, p3))
     left, right, slack, d, h = circle_circle(w1, r1, w3, r2)
     longer = np.maximum(r1, r2)  # one number, unless a driven joint makes r1 vary by row
     singular = np.asarray(~(d > ASSEMBLY_REL_TOL * longer))
@@ -170,7 +166,7 @@ def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple
     def place(choice: Choice) -> dict[str, ArrayPose]:
         at = pick(choice, left, right)
         rotation = np.asarray((at - w1) * (np.conjugate(span) / (r1 * r1)))
-        placed = {outer: pose_from_point(mech.local(outer, p1), w1, rotation),
+        placed = {outer: pose_at(mech.local_at(outer, p1), w1, rotation),
                   j: pose_from_two_points(mech.local(j, p3), mech.local(j, p2), w3, at, rigid=True)}
         if drive is not None:
             placed[i] = pose_from_point(mech.local(i, p2), at, np.asarray(rotation * relative_turn(
@@ -264,7 +260,7 @@ def _rpr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad) -> Closure:
         return f"|{pg} {pb}| = {rk:.6g} is less than the offset {h:.6g} of slider {slider.name}'s line from {pg}"
 
     # the guide's angle comes from the direction wg -> wb: when pb nears pg it is ill-conditioned
-    size = _largest(abs(pg_local - through), abs(offset), _link_size(mech))
+    size = _largest(abs(pg_local - through), abs(offset), mech.link_size)
     close = ok & (r < NEAR_SINGULAR_SIN * size)
     near = None
     if close.any():

@@ -78,7 +78,7 @@ def polygon_velocity(mechanism: Mechanism, polygon: Polygon) -> LinkVelocity:
     for link, members in polygon.members.items():
         omega = polygon.rate_of(link)
         if omega is not None and members:
-            known[link] = (polygon.tips[members[0].label], members[0].at, omega)
+            known[link] = (polygon.tips[members[0].label], polygon.at(members[0]), omega)
 
     def velocity(link: str, at: Points) -> Points | None:
         if link == mechanism.ground:

@@ -4,6 +4,8 @@ its kind's functions), and the plan itself."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any
 
 from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import CamSpec, GearSpec, SliderSpec
@@ -69,6 +71,11 @@ class Dyad:
         a = next(x for x in joint_links(self.first_joint) if x != self.outer_first)
         b = next(x for x in joint_links(self.second_joint) if x != self.second)
         return (a, b)
+
+    @cached_property
+    def slide_roles(self) -> SlideRoles:
+        """The roles of an RPR dyad's links and pins (``slide_roles``)."""
+        return _slide_roles(self)
 
     @property
     def name(self) -> str:
@@ -180,7 +187,11 @@ def far_side(joint: Joint, link: str) -> str:
 
 
 def slide_roles(dyad: Dyad) -> SlideRoles:
-    """The roles of an RPR dyad's links and pins."""
+    """The roles of an RPR dyad's links and pins (found once per dyad)."""
+    return dyad.slide_roles
+
+
+def _slide_roles(dyad: Dyad) -> SlideRoles:
     slider = dyad.inner
     assert isinstance(slider, SliderSpec) and dyad.kind == "RPR"
     outer = {dyad.first: dyad.first_joint, dyad.second: dyad.second_joint}
@@ -255,12 +266,23 @@ class PlanConstants:
     """What constructing a plan's polygons finds that does not depend on the rows, kept by its first construction
     for the next ones (``engine.polygon``): the frame's points with the links that have each, and each image of a
     rigid link as the two known tips it is built from and Mehmke's factor, keyed by the link, the point and the
-    link's known tips. A prepared sweep's plan is constructed at every call: its calls replay these."""
+    link's known tips (their members). A prepared sweep's plan is constructed at every call: its calls replay these."""
 
     mechanism: Mechanism | None = None
     """The mechanism they were found on: a polygon of another (the same plan on other dimensions) finds its own."""
-    frame: tuple[tuple[str, tuple[str, ...]], ...] | None = None
-    images: dict[tuple[str, str, tuple[str, ...]], tuple[str, str, complex] | None] = field(default_factory=dict)
+    frame: tuple[tuple[str, tuple[tuple[str, Any], ...]], ...] | None = None
+    """The frame's points: each one's label and the links it is a member of, with the member (``tips``)."""
+    labels: dict[tuple[str, str], str] = field(default_factory=dict)
+    """The label of each (link, point) asked for: the point's name, or ``B@4``."""
+    tips: dict[tuple[str, str], tuple[str, tuple[tuple[str, Any], ...]]] = field(default_factory=dict)
+    """What recording the tip of a (link, point) does: its label and the links it becomes a member of, each with
+    the member (``engine.polygon.Member``)."""
+    together: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    """Each link and the links that turn with it (``Mechanism.turning_together``)."""
+    groups: dict[int, Any] = field(default_factory=dict)
+    """What a group's kind finds of it once for the plan (its points, links, lengths and line labels), keyed by the
+    group's identity: the plan holds its groups."""
+    images: dict[tuple[str, str, tuple[Any, ...]], tuple[str, str, complex] | None] = field(default_factory=dict)
     """None: the image is built row by row (a corner of its triangle slides on the link)."""
 
 

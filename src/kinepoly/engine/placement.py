@@ -6,8 +6,6 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from kinepoly.engine.gears import Rolled
 from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.model.array_pose import ArrayPose
@@ -46,6 +44,11 @@ class Placement:
     contact_parameters: dict[str, Reals] = field(default_factory=dict)
     """Each spline cam's contact parameter on its profile at every row (``engine.cam_place``)."""
 
+    def with_poses(self, poses: dict[str, ArrayPose]) -> Placement:
+        """This placement with ``poses`` for its poses (``dataclasses.replace``, made directly)."""
+        return Placement(poses, self.ok, self.failures, self.near, self.notices, self.values, self.rolled,
+                         self.marks, self.contact_parameters)
+
     def row_poses(self, links: Iterable[str], row: int) -> dict[str, LinkPose]:
         """The poses of ``links`` at ``row`` as scalar values (for the one-row solvers)."""
         return {link: LinkPose(*self.poses[link].row(row)) for link in links}
@@ -80,25 +83,32 @@ class Positions:
 
     def point(self, name: str) -> Points:
         """World position of a named point (through the first solved link that has it)."""
-        found = self._points.get(name)
-        if found is None:
-            owner = next(link for link in self.mechanism.links_of_point(name) if link in self.poses)
-            found = self.poses[owner].world(self.mechanism.local(owner, name))
-            self._points[name] = found
+        points = self._points
+        if name in points:
+            return points[name]
+        poses = self.poses
+        for place in self.mechanism.places_of(name):  # the first solved link that has it: (link, local)
+            if place[0] in poses:
+                break
+        else:
+            raise StopIteration(name)
+        found = points[name] = poses[place[0]].world_at(place[1])
         return found
 
     def chord(self, start: str, end: str) -> tuple[Points, Points]:
         """The vector from point ``start`` to point ``end`` at every row, and that vector turned a quarter
         counter-clockwise: the direction of the relative velocity of ``end`` about ``start`` on their link.
         Made once, for the velocity and acceleration polygons alike (do not change them in place)."""
-        found = self._turned.get((start, end))
-        if found is None:
-            r = np.asarray(self.point(end) - self.point(start))
-            found = self._turned[start, end] = (r, np.asarray(1j * r))
+        key = (start, end)
+        turned = self._turned
+        if key in turned:
+            return turned[key]
+        r: Points = self.point(end) - self.point(start)
+        found = turned[key] = (r, 1j * r)
         return found
 
     def world(self, link: str, point: str) -> Points:
-        return self.poses[link].world(self.mechanism.local(link, point))
+        return self.poses[link].world_at(self.mechanism.local_at(link, point))
 
     def add_point(self, name: str, at: Points) -> None:
         """A point the construction finds on the mechanism (a triad's Assur point), by name."""

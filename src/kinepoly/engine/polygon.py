@@ -82,12 +82,11 @@ the link's known ones, so that choosing among all would cost the n-th point of a
 one link: 60 s). No example has a link with more than 8 known tips where an image is built."""
 
 class Member(NamedTuple):
-    """A known tip of a link: its label, where the point is at every row, whether it is fixed on the link
-    (a named tuple, frozen and cheap to make: a polygon makes one per tip and link)."""
+    """A known tip of a link: its label, the point (where it is at every row: ``Positions.point``), whether it is
+    fixed on the link (a constant of the plan, made once: ``PlanConstants.tips``)."""
 
     label: str
     point: str
-    at: Points
     fixed: bool
 
 
@@ -123,15 +122,20 @@ class Polygon:
         self.crossing = crossing
         self.steps: list[Step] = []
         mech = self.mechanism
-        self._ground = mech.ground
-        if mech.ground is not None:
-            self.set_rate(mech.ground, np.zeros(self.n))  # and every link that slides on it without turning
+        ground = self.ground = mech.ground
+        """The frame (``Mechanism.ground``)."""
+        self._labels = self.constants.labels
+        self._together = self.constants.together
+        if not self._together:
+            self._together.update((link, mech.turning_together(link)) for link in mech.link_names)
+        if ground is not None:
+            self.set_rate(ground, np.zeros(self.n))  # and every link that slides on it without turning
             frame = self.constants.frame
             if frame is None:
-                frame = self.constants.frame = tuple((p.name, mech.links_of_point(p.name))
-                                                     for p in mech.scene.link(mech.ground).points)
-            for name, links in frame:
-                self._register(name, self.zero, name, links, True)
+                frame = self.constants.frame = tuple(self._entries(ground, p.name)
+                                                     for p in mech.scene.link(ground).points)
+            for label, entries in frame:
+                self._register(label, self.zero, entries)
 
     # -- row 0 as plain values, for the steps -------------------------------------------------------
     @staticmethod
@@ -151,7 +155,12 @@ class Polygon:
         return self.positions.point(point)
 
     def label(self, link: str, point: str) -> str:
-        return point if self.mechanism.has_point(link, point) else LinkPoint(point, link).text
+        key = (link, point)
+        labels = self._labels
+        if key in labels:
+            return labels[key]
+        found = labels[key] = point if self.mechanism.has_point(link, point) else LinkPoint(point, link).text
+        return found
 
     @staticmethod
     def tip_name(label: str) -> str:
@@ -162,49 +171,65 @@ class Polygon:
 
     # -- rates (omega or alpha) ---------------------------------------------------------------------
     def rate_of(self, link: str) -> Reals | None:
-        return self.mechanism.class_rate(self.rate, link)
+        rate = self.rate
+        return rate[link] if link in rate else self.mechanism.class_rate(rate, link)
 
     def set_rate(self, link: str, value: Reals) -> None:
-        for other in self.mechanism.turning_together(link):
-            self.rate[other] = value
+        rate = self.rate
+        for other in self._together[link]:
+            rate[other] = value
 
     def omega_of(self, link: str) -> Reals:
-        omega = self.mechanism.class_rate(self.omega, link)
+        known = self.omega
+        omega = known[link] if link in known else self.mechanism.class_rate(known, link)
         return np.zeros(self.n) if omega is None else omega
 
     # -- tips -----------------------------------------------------------------------------------------
-    def _register(self, label: str, value: Points, point: str, links: tuple[str, ...] | list[str],
-                  fixed: bool) -> None:
-        """``fixed``: ``point`` is a point of each of ``links`` (a named point as a point of the links that have
-        it, not a point of one link under another's, ``B@4``)."""
-        known = label in self.tips  # only a label with a tip already can be a member already
-        self.tips[label] = value
-        at = self.positions.point(point)
-        for link in links:
-            entries = self.members.setdefault(link, [])
-            if not known or all(m.label != label for m in entries):
-                entries.append(Member(label, point, at, fixed))
+    def _entries(self, link: str, point: str) -> tuple[str, tuple[tuple[str, Member], ...]]:
+        """The label of ``point`` as a point of ``link`` and the links whose member it becomes, each with its
+        member: a named point is a point of each link that has it, fixed on it; a point of one link under
+        another's (``B@4``) a member of ``link`` alone, not fixed on it."""
+        label = self.label(link, point)
+        if label == point:
+            return label, tuple((other, Member(label, point, True)) for other in self.mechanism.links_of_point(point))
+        return label, ((link, Member(label, point, False)),)
+
+    def _register(self, label: str, value: Points, entries: tuple[tuple[str, Member], ...]) -> None:
+        """Record the tip ``value`` of ``label``, a member of each link of ``entries`` (``_entries``)."""
+        tips, members = self.tips, self.members
+        known = label in tips  # only a label with a tip already can be a member already
+        tips[label] = value
+        for link, member in entries:
+            if link not in members:
+                members[link] = [member]
+            elif not known or all(m.label != label for m in members[link]):
+                members[link].append(member)
 
     def add_tip(self, link: str, point: str, value: Points) -> str:
         """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
-        label = self.label(link, point)
-        if label == point:  # the links that have the point, each with it fixed on it
-            self._register(label, value, point, self.mechanism.links_of_point(point), True)
-        else:
-            self._register(label, value, point, (link,), False)
-        return label
+        key = (link, point)
+        known = self.constants.tips
+        found = known[key] if key in known else known.setdefault(key, self._entries(link, point))
+        self._register(found[0], value, found[1])
+        return found[0]
 
     def add_virtual_tip(self, link: str, name: str, value: Points) -> None:
         """The tip of a point the construction found on ``link`` (not a named point: a triad's Assur point,
         whose place the positions were told)."""
-        self._register(name, value, name, [link], self.mechanism.has_point(link, name))
+        self._register(name, value, ((link, Member(name, name, self.mechanism.has_point(link, name))),))
+
+    def at(self, member: Member) -> Points:
+        """Where a member's point is at every row."""
+        return self.positions.point(member.point)
 
     def tip(self, link: str, point: str) -> Points:
         """The tip of ``point`` as a point of ``link``, constructing it when it is not known yet."""
-        label = self.label(link, point)
-        if label in self.tips:
-            return self.tips[label]
-        if link == self._ground:
+        key = (link, point)
+        label = self._labels[key] if key in self._labels else self.label(link, point)
+        tips = self.tips
+        if label in tips:
+            return tips[label]
+        if link == self.ground:
             self.add_tip(link, point, self.zero)
             return self.zero
         members = self.members.get(link, [])
@@ -224,14 +249,14 @@ class Polygon:
         rate = self.rate_of(link)
         assert rate is not None
         if self.kind == "velocity":
-            end = np.asarray(start + rate * turned)
+            end: Points = start + rate * turned
             if self.record:
                 self._record_relative_velocity(link, label, member.label, r, start, end, rate)
             return end
         w = self.omega_of(link)
         normal = (w * w) * r
-        middle = np.asarray(start - normal if self.normal_sign < 0.0 else start + normal)
-        end = np.asarray(middle + rate * turned)
+        middle: Points = start - normal if self.normal_sign < 0.0 else start + normal
+        end = middle + rate * turned
         if self.record:
             self._record_relative_acceleration(link, label, member.label, r, start, middle, end, w, rate)
         return end
@@ -268,8 +293,7 @@ class Polygon:
 
     # -- Mehmke's image ---------------------------------------------------------------------------------
     def _image(self, link: str, point: str, label: str, members: list[Member]) -> Points:
-        at = self.world(point)
-        key = (link, label, tuple(m.label for m in members))
+        key = (link, label, tuple(members))
         images = self.constants.images
         if key in images:
             rigid = images[key]
@@ -282,18 +306,23 @@ class Polygon:
             if self.record:
                 first, second = (next(m for m in members if m.label == name) for name in (first_label, second_label))
         else:
+            at = self.world(point)
             known = members[:_IMAGE_MEMBERS]
             pairs = [(m, k) for i, m in enumerate(known) for k in known[i + 1:]]
-            keys = np.stack([np.asarray(_key(m.at, k.at, at)) for m, k in pairs])
-            best = np.argmax(keys, axis=0)
-            value = self.zero
-            for index, (m, k) in enumerate(pairs):
-                if np.any(best == index):
-                    image = self._image_of(m, k, at)
-                    value = image if len(pairs) == 1 else np.where(best == index, image, value)
-            first, second = pairs[int(best[0])]
+            if len(pairs) == 1 and self.n:  # every row builds the image from the one pair
+                first, second = pairs[0]
+                value = self._image_of(first, second, at)
+            else:
+                keys = np.stack([np.asarray(_key(self.at(m), self.at(k), at)) for m, k in pairs])
+                best = keys.argmax(axis=0)
+                value = self.zero
+                for index, (m, k) in enumerate(pairs):
+                    if (best == index).any():
+                        image = self._image_of(m, k, at)
+                        value = image if len(pairs) == 1 else np.where(best == index, image, value)
+                first, second = pairs[int(best[0])]
         if self.record:
-            self._record_image(link, label, first, second, at, value)
+            self._record_image(link, label, first, second, self.world(point), value)
         return value
 
     def _rigid_image(self, link: str, point: str, label: str, members: list[Member]) -> tuple[str, str, complex] | None:
@@ -341,15 +370,17 @@ class Polygon:
 
     def _image_of(self, first: Member, second: Member, at: Points) -> Points:
         """Mehmke, row by row (a triangle whose corner slides on the link changes from row to row)."""
-        wa, wb = first.at, second.at
+        wa, wb = self.at(first), self.at(second)
         side = wb - wa
         a, b = self.tips[first.label], self.tips[second.label]
         polygon_side = b - a
         ratio_a = (at - wa) / side
         ratio_b = (at - wb) / (wa - wb)
-        turn_a, turn_b = np.exp(1j * np.angle(ratio_a)), np.exp(1j * np.angle(ratio_b))
+        # np.angle(z) is np.arctan2(z.imag, z.real): its arithmetic, without its wrapper
+        turn_a = np.exp(1j * np.arctan2(ratio_a.imag, ratio_a.real))
+        turn_b = np.exp(1j * np.arctan2(ratio_b.imag, ratio_b.real))
         flat_value = a + polygon_side * ratio_a  # proportional division: the foot, then the height
-        sin_lines = np.abs(np.sin(np.angle(turn_b) - np.angle(turn_a)))
+        sin_lines = np.abs(np.sin(np.arctan2(turn_b.imag, turn_b.real) - np.arctan2(turn_a.imag, turn_a.real)))
         crossing = self.crossing(a, polygon_side * turn_a, b, -polygon_side * turn_b, None, None).point
         value = np.where(sin_lines >= COLLINEAR_SIN, crossing, flat_value)
         return np.asarray(np.where(polygon_side == 0.0, a, value))
@@ -357,7 +388,7 @@ class Polygon:
     def _record_image(self, link: str, label: str, first: Member, second: Member, at_rows: Points,
                       value: Points) -> None:
         la, lb = first.label, second.label
-        wa, wb, at = complex(first.at[0]), complex(second.at[0]), complex(at_rows[0])
+        wa, wb, at = complex(self.at(first)[0]), complex(self.at(second)[0]), complex(at_rows[0])
         a, b = complex(self.tips[la][0]), complex(self.tips[lb][0])
         side, polygon_side = wb - wa, b - a
         if side == 0:

@@ -18,7 +18,7 @@ from kinepoly.engine.placement import Failure, Placement, Positions
 from kinepoly.engine.policy import Policy
 from kinepoly.engine.table import kind_of
 from kinepoly.geom.arrays import Points, Reals, turn
-from kinepoly.model.array_pose import ArrayPose, local_point, pose_from_point, still_pose
+from kinepoly.model.array_pose import ArrayPose, local_point, pose_at, pose_from_point, still_pose
 from kinepoly.model.family import FamilyMechanism
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import GivenInput, LinkInput, SliderInput
@@ -49,8 +49,8 @@ def _place_frame_drive(mechanism: Mechanism, inp: LinkInput | SliderInput, input
     if isinstance(inp, LinkInput):
         pivot = mechanism.input_pivot(inp).point
         rotation = _unit_turns(mechanism, inputs)
-        at = np.full(n, local_point(mechanism.local(ground, pivot)))
-        poses[inp.link] = pose_from_point(mechanism.local(inp.link, pivot), at, rotation)
+        poses[inp.link] = pose_at(mechanism.local_at(inp.link, pivot), poses[ground].world_at(
+            mechanism.local_at(ground, pivot)), rotation)
     else:
         slider = mechanism.slider(inp.slider)
         direction = turn(slider.angle_rad)

@@ -92,9 +92,10 @@ class AccelerationContext:
         self.coriolis: dict[str, Points] = {}
 
     def v_tip(self, link: str, point: str) -> Points:
-        if link == self.b.mechanism.ground:
-            return self.b.zero
-        return self.v.tips[self.b.label(link, point)]
+        b = self.b
+        if link == b.ground:
+            return b.zero
+        return self.v.polygon.tips[b.label(link, point)]
 
     def normal_line(self, known_link: str, known_point: str, point: str, moving: str,
                     rigid: bool = True, omega: Reals | None = None,

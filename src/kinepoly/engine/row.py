@@ -72,13 +72,13 @@ def pose_row(positions: Positions, k: int = 0) -> Pose:
 
 def velocity_row(result: VelocityResult, k: int = 0) -> VelocityPolygon:
     polygon = result.polygon
-    members = {link: [(m.label, _vec(m.at, k)) for m in entries] for link, entries in polygon.members.items()}
+    members = {link: [(m.label, _vec(polygon.at(m), k)) for m in entries] for link, entries in polygon.members.items()}
     return VelocityPolygon(_vectors(polygon.tips, k), _rates(polygon.rate, k), _vectors(result.sliding, k),
                            tuple(polygon.steps), members)
 
 
 def acceleration_row(result: AccelerationResult, k: int = 0) -> AccelerationPolygon:
     polygon = result.polygon
-    members = {link: [(m.label, _vec(m.at, k)) for m in entries] for link, entries in polygon.members.items()}
+    members = {link: [(m.label, _vec(polygon.at(m), k)) for m in entries] for link, entries in polygon.members.items()}
     return AccelerationPolygon(_vectors(polygon.tips, k), _rates(polygon.rate, k), _vectors(result.sliding, k),
                                _vectors(result.coriolis, k), tuple(polygon.steps), members)

@@ -81,7 +81,7 @@ class Crossing:
 
     def along_second(self) -> Reals:
         """through2 + along_second * direction2 is the same point."""
-        return cross(self.offset, self.direction1) / self.w
+        return np.asarray((self.offset.conjugate() * self.direction1).imag / self.w)  # cross(offset, direction1)
 
 
 def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLike, direction2: PointsLike,
@@ -95,8 +95,8 @@ def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLi
     length, 1 for a slide), else they are measured.
     """
     offset = through2 - through1
-    c2 = cross(offset, direction2)
-    w = cross(direction1, direction2)
+    c2 = (offset.conjugate() * direction2).imag  # cross(offset, direction2), cross(direction1, direction2)
+    w = np.asarray((direction1.conjugate() * direction2).imag)
     norm1 = length(direction1) if length1 is None else length1
     norm2 = length(direction2) if length2 is None else length2
     along = c2 / w

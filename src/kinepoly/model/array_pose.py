@@ -17,7 +17,8 @@ import numpy as np
 from kinepoly.geom.arrays import Points, Reals, length
 from kinepoly.model.pose import LinkPose
 
-__all__ = ["ArrayPose", "is_origin", "local_point", "pose_from_point", "pose_from_two_points", "still_pose"]
+__all__ = ["ArrayPose", "is_origin", "local_point", "pose_at", "pose_from_point", "pose_from_two_points",
+           "still_pose"]
 
 
 def local_point(local: tuple[float, float]) -> complex:
@@ -63,19 +64,29 @@ class ArrayPose:
     """The frame itself: world = local at every row."""
 
     def world(self, local: tuple[float, float]) -> Points:
-        if self.still:
-            at = local_point(local)
-            return np.full(len(self.origin), at) if isinstance(at, complex) else at
-        if is_origin(local):
-            return self.origin
-        return self.origin + self.rotation * local_point(local)
+        return self.world_at(local_point(local))
+
+    def world_at(self, at: complex) -> Points:
+        """``world`` of a point given as x + iy (``local_point``): one number, or one per row in a family."""
+        if isinstance(at, complex):
+            if self.still:
+                out = np.empty(len(self.origin), np.complex128)
+                out.fill(at)
+                return out
+            if at == 0:
+                return self.origin
+        elif self.still:
+            return at
+        return self.origin + self.rotation * at
 
     def to_local(self, world: Points) -> Points:
         return (world - self.origin) * self.rotation.conjugate()
 
     def theta(self, degrees: bool = False) -> Reals:
         """theta in radians (or degrees), in (-pi, pi] like ``Solution.angle``."""
-        angle = np.angle(self.rotation, deg=degrees)
+        angle: Reals = np.arctan2(self.rotation.imag, self.rotation.real)  # np.angle's arithmetic, without its wrapper
+        if degrees:
+            angle *= 180 / math.pi
         half = 180.0 if degrees else math.pi
         if len(angle) and angle.min() == -half:  # one reduction where none is at -half, the usual case
             angle[angle == -half] = half
@@ -101,9 +112,14 @@ def still_pose(n: int) -> ArrayPose:
 
 def pose_from_point(local: tuple[float, float], world: Points, rotation: Points) -> ArrayPose:
     """The pose that puts ``local`` at ``world`` with the given rotation."""
-    if is_origin(local):
+    return pose_at(local_point(local), world, rotation)
+
+
+def pose_at(at: complex, world: Points, rotation: Points) -> ArrayPose:
+    """``pose_from_point`` of a point given as x + iy (``local_point``): one number, or one per row in a family."""
+    if isinstance(at, complex) and at == 0:
         return ArrayPose(world, rotation)
-    return ArrayPose(world - rotation * local_point(local), rotation)
+    return ArrayPose(world - rotation * at, rotation)
 
 
 def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, float], world_a: Points,
@@ -122,9 +138,9 @@ def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, flo
         factor = shape.conjugate() / (abs(shape) * abs(shape)) if rigid else (shape / abs(shape)).conjugate()
         turned = span * np.repeat(factor, each) if rigid else span * (1.0 / length(span)) * np.repeat(factor, each)
         return pose_from_point(local_a, world_a, turned)
-    local = local_point((local_b[0] - local_a[0], local_b[1] - local_a[1]))
+    local = complex(local_b[0] - local_a[0], local_b[1] - local_a[1])  # two points of one mechanism: numbers
     if rigid:
         rotation = span * (local.conjugate() / (abs(local) * abs(local)))
     else:
         rotation = span * (1.0 / length(span)) * (local / abs(local)).conjugate()
-    return pose_from_point(local_a, world_a, rotation)
+    return pose_at(complex(local_a[0], local_a[1]), world_a, rotation)

@@ -17,6 +17,7 @@ import numpy as np
 
 from kinepoly.geom.arrays import Points, Reals
 from kinepoly.geom.vec import Vec
+from kinepoly.model.array_pose import local_point
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import SliderSpec
 
@@ -80,6 +81,11 @@ class FamilyMechanism(Mechanism):
     def members(self) -> int:
         """How many members the family has."""
         return len(next(iter((*self.varied.values(), *self.slides.values()))))
+
+    @staticmethod
+    def _complex(local: Vec) -> complex:
+        """x + iy of a point's own coordinates: one per row where the point is varied (``local_point``)."""
+        return local_point(local)
 
     def member_local(self, link: str, point: str) -> Points:
         """``point``'s own coordinates in ``link`` as x + iy, one per member."""

@@ -133,10 +133,55 @@ class Mechanism:
         """Coordinates of ``point`` in ``link``'s own frame (KeyError when the link has no such point)."""
         return self._locals[(link, point)]
 
+    @cached_property
+    def link_size(self) -> float:
+        """The longest distance between two points of one link (the scene's points): the mechanism's own length
+        scale."""
+        return max((abs(complex(*p.local) - complex(*q.local)) for link in self.scene.links for p in link.points
+                    for q in link.points), default=0.0)
+
+    def local_at(self, link: str, point: str) -> complex:
+        """``local`` as x + iy (``model.array_pose.local_point``), made once per point: a family's point one per
+        row (``model.family``)."""
+        key = (link, point)
+        known = self._local_at
+        return known[key] if key in known else known.setdefault(key, self._complex(self.local(link, point)))
+
+    @staticmethod
+    def _complex(local: Vec) -> complex:
+        """A point's own coordinates as x + iy: one number (a family's, one per row: ``model.family``)."""
+        return complex(local[0], local[1])
+
+    @cached_property
+    def _local_at(self) -> dict[tuple[str, str], complex]:
+        return {}
+
+    def places_of(self, point: str) -> tuple[tuple[str, complex], ...]:
+        """The links that have ``point``, in scene order, each with the point's ``local_at``: where a position
+        looks the point up, made once per point."""
+        known = self._places
+        if point in known:
+            return known[point]
+        found = known[point] = tuple((link, self.local_at(link, point)) for link in self.links_of_point(point))
+        return found
+
+    @cached_property
+    def _places(self) -> dict[str, tuple[tuple[str, complex], ...]]:
+        return {}
+
     def distance(self, link: str, a: str, b: str) -> float:
         """|ab| in ``link``'s own frame (a link length)."""
+        key = (link, a, b)
+        known = self._lengths
+        if key in known:
+            return known[key]
         (ax, ay), (bx, by) = self.local(link, a), self.local(link, b)
-        return math.hypot(bx - ax, by - ay)
+        found = known[key] = math.hypot(bx - ax, by - ay)
+        return found
+
+    @cached_property
+    def _lengths(self) -> dict[tuple[str, str, str], float]:
+        return {}
 
     def slide_through(self, slider: SliderSpec) -> Vec:
         """A point of ``slider``'s line in its guide's own frame (the line's ``through``)."""
@@ -209,7 +254,12 @@ class Mechanism:
 
     def has_turning_guide(self, slider: SliderSpec) -> bool:
         """A Coriolis term exists for this slider: its guide may turn."""
-        return not self.turns_with_ground(slider.guide)
+        return self._turning[slider.guide]
+
+    @cached_property
+    def _turning(self) -> dict[str, bool]:
+        """Whether each link may turn (``turns_with_ground``)."""
+        return {link: not self.turns_with_ground(link) for link in self.link_names}
 
     @cached_property
     def drives(self) -> tuple[Drive, ...]:

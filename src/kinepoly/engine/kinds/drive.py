@@ -3,8 +3,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 from kinepoly.engine.carry import place_on
@@ -69,7 +67,7 @@ def acceleration(ctx: AccelerationContext, group: DriveGroup) -> None:
 def place(mechanism: Mechanism, group: DriveGroup, placed: Placement, policy: Policy, later: Later) -> Placed:
     """The link on the known one, the driven joint at its input's value at every row."""
     pose = place_on(mechanism, group.drive, group.link, placed.poses[group.known], placed.values[group.drive.index])
-    return replace(placed, poses={**placed.poses, group.link: pose}), False
+    return placed.with_poses({**placed.poses, group.link: pose}), False
 
 
 KIND: Kind[DriveGroup] = Kind(find, place, velocity, acceleration, batched=True)

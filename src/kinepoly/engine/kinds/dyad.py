@@ -4,7 +4,7 @@ the polygons the unknown tip is where two direction lines cross (``engine.lines`
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -14,6 +14,7 @@ from kinepoly.engine.groups import Dyad, free_joints, joint_kind, slide_roles, t
 from kinepoly.engine.kind import Kind, Later, Placed
 from kinepoly.engine.lines import (
     known_pairs,
+    link_length,
     parallel,
     parallel_label,
     perpendicular,
@@ -27,6 +28,7 @@ from kinepoly.engine.lines import (
 )
 from kinepoly.engine.placement import Failure, Placement
 from kinepoly.engine.policy import Policy
+from kinepoly.engine.polygon import Line, Polygon
 from kinepoly.engine.results import (
     AccelerationContext,
     VelocityContext,
@@ -38,6 +40,7 @@ from kinepoly.engine.results import (
 )
 from kinepoly.errors import MobilityError
 from kinepoly.model.mechanism import Mechanism, Revolute, joint_links
+from kinepoly.scene.spec import SliderSpec
 
 __all__ = ["KIND", "acceleration", "find", "place", "velocity"]
 
@@ -66,25 +69,63 @@ def find(mechanism: Mechanism, known: set[str]) -> Dyad | None:
     return None
 
 
+@dataclass(frozen=True, repr=False)
+class _Pinned:
+    """An RRR or RRP dyad as its polygons draw it, found once for the plan (``PlanConstants.groups``): the first
+    link turns about ``p1`` on the known ``k1``, the inner pin is ``p2``; the second link turns about ``p3`` on
+    ``k2`` (RRR) or slides on ``k2`` (RRP, ``p3`` None); the links' lengths and the velocity lines' labels."""
+
+    name: str
+    p1: str
+    p2: str
+    k1: str
+    size1: float
+    label1: str
+    p3: str | None
+    k2: str
+    size2: float | None
+    label2: str
+
+
+def _pinned(polygon: Polygon, dyad: Dyad) -> _Pinned:
+    groups = polygon.constants.groups
+    key = id(dyad)
+    if key in groups:
+        found: _Pinned = groups[key]
+        return found
+    assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
+    i, j = dyad.first, dyad.second
+    p1, p2 = dyad.first_joint.point, dyad.inner.point
+    k1, k2 = other_side(dyad.first_joint, i), other_side(dyad.second_joint, j)
+    mech = polygon.mechanism
+    if isinstance(dyad.second_joint, Revolute):
+        p3: str | None = dyad.second_joint.point
+        size2: float | None = link_length(mech, j, dyad.second_joint.point, p2)
+        label2 = perpendicular_label(polygon, k2, dyad.second_joint.point, p2)
+    else:
+        p3, size2 = None, None
+        label2 = parallel_label(dyad.second_joint, polygon.label(k2, p2))
+    found = groups[key] = _Pinned(dyad.name, p1, p2, k1, link_length(mech, i, p1, p2),
+                                  perpendicular_label(polygon, k1, p1, p2), p3, k2, size2, label2)
+    return found
+
+
 def velocity(state: VelocityContext, dyad: Dyad) -> None:
     polygon, sliding = state.polygon, state.sliding
     mech, i, j = polygon.mechanism, dyad.first, dyad.second
     if dyad.kind in ("RRR", "RRP"):
-        assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
-        p1, p2 = dyad.first_joint.point, dyad.inner.point
-        k1 = other_side(dyad.first_joint, i)
-        line1 = revolute_line(polygon, k1, p1, p2, i)
-        label1 = perpendicular_label(polygon, k1, p1, p2)
-        if isinstance(dyad.second_joint, Revolute):
-            p3 = dyad.second_joint.point
-            k2 = other_side(dyad.second_joint, j)
-            line2 = revolute_line(polygon, k2, p3, p2, j)
-            label2 = perpendicular_label(polygon, k2, p3, p2)
+        s = _pinned(polygon, dyad)
+        p1, p2, k1, k2, p3 = s.p1, s.p2, s.k1, s.k2, s.p3
+        chord = polygon.positions.chord
+        line1: Line = (polygon.tip(k1, p1), chord(p1, p2)[1], s.size1)
+        line2: Line
+        if p3 is not None:  # RRR: perpendicular to p3 p2 through p3@k2
+            line2 = (polygon.tip(k2, p3), chord(p3, p2)[1], s.size2)
         else:
-            k2 = other_side(dyad.second_joint, j)
+            assert isinstance(dyad.second_joint, SliderSpec)
             line2 = slide_line(polygon, dyad.second_joint, k2, p2)
-            label2 = parallel_label(dyad.second_joint, polygon.label(k2, p2))
-        crossing = polygon.cross_lines(line1, line2, p2, dyad.name, (label1, label2))
+        label1, label2 = s.label1, s.label2
+        crossing = polygon.cross_lines(line1, line2, p2, s.name, (label1, label2))
         polygon.add_tip(i, p2, crossing.point)
         if polygon.record:
             direction1 = perpendicular(polygon, f"v_{p2}/{p1}", k1, p1, p2)
@@ -101,9 +142,10 @@ def velocity(state: VelocityContext, dyad: Dyad) -> None:
             record_intersection(polygon, p2, equation, line1, line2, (label1, label2), crossing, known,
                                  (direction1, direction2))
         read_rate(polygon, i, p1, p2, crossing.along_first)
-        if isinstance(dyad.second_joint, Revolute):
-            read_rate(polygon, j, dyad.second_joint.point, p2, crossing.along_second())
+        if p3 is not None:
+            read_rate(polygon, j, p3, p2, crossing.along_second())
         else:
+            assert isinstance(dyad.second_joint, SliderSpec)
             slide_rel(polygon, dyad.second_joint, j, p2, sliding)
     elif dyad.kind == "RPR":
         r = slide_roles(dyad)
@@ -146,24 +188,22 @@ def velocity(state: VelocityContext, dyad: Dyad) -> None:
 def acceleration(ctx: AccelerationContext, dyad: Dyad) -> None:
     b, i, j = ctx.b, dyad.first, dyad.second
     if dyad.kind in ("RRR", "RRP"):
-        assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
-        p1, p2 = dyad.first_joint.point, dyad.inner.point
-        k1 = other_side(dyad.first_joint, i)
+        s = _pinned(b, dyad)
+        p1, p2, k1, k2 = s.p1, s.p2, s.k1, s.k2
         line1, n1, label1 = ctx.normal_line(k1, p1, p2, i)
         vectors = [n1] if n1 else []
-        if isinstance(dyad.second_joint, Revolute):
-            p3 = dyad.second_joint.point
-            k2 = other_side(dyad.second_joint, j)
+        if s.p3 is not None:
+            p3 = s.p3
             line2, n2, label2 = ctx.normal_line(k2, p3, p2, j)
             vectors += [n2] if n2 else []
         else:
-            k2 = other_side(dyad.second_joint, j)
+            assert isinstance(dyad.second_joint, SliderSpec)
             line2, laid = ctx.slide_line(dyad.second_joint, k2, j, p2)
             label2 = slide_label(dyad.second_joint)
             vectors += laid
         if b.record:
             normals_step(ctx, vectors)
-        crossing = b.cross_lines(line1, line2, p2, dyad.name, (label1, label2))
+        crossing = b.cross_lines(line1, line2, p2, s.name, (label1, label2))
         b.add_tip(i, p2, crossing.point)
         if b.record:
             direction1 = along_normal(ctx, f"a^t_{p2}/{p1}", k1, p1, p2, n1)
@@ -180,9 +220,10 @@ def acceleration(ctx: AccelerationContext, dyad: Dyad) -> None:
             record_crossing(ctx, p2, equation, line1, line2, (label1, label2), crossing, vectors,
                             (direction1, direction2))
         read_rate(b, i, p1, p2, crossing.along_first)
-        if isinstance(dyad.second_joint, Revolute):
-            read_rate(b, j, dyad.second_joint.point, p2, crossing.along_second())
+        if s.p3 is not None:
+            read_rate(b, j, s.p3, p2, crossing.along_second())
         else:
+            assert isinstance(dyad.second_joint, SliderSpec)
             ctx.slide_values(dyad.second_joint, j, p2)
     elif dyad.kind == "RPR":
         r = slide_roles(dyad)
@@ -246,13 +287,13 @@ def place(mechanism: Mechanism, group: Dyad, placed: Placement, policy: Policy, 
         base = placed
 
         def carried_through(label: int, base: Placement = base, closure: Closure = closure) -> Placement:
-            return later(replace(base, poses={**base.poses, **closure.place(label)}))
+            return later(base.with_poses({**base.poses, **closure.place(label)}))
 
         chosen = policy.assemble(mechanism, DyadQuestion(closure, carried_through), placed)
         if isinstance(chosen, Placement):
             return chosen, True
         choice = chosen
-    return replace(placed, poses={**placed.poses, **closure.place(choice)}), False
+    return placed.with_poses({**placed.poses, **closure.place(choice)}), False
 
 
 KIND: Kind[Dyad] = Kind(find, place, velocity, acceleration, batched=True)
