@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
+from functools import partial
+from itertools import repeat
+from operator import is_not
 
 import numpy as np
 import numpy.typing as npt
@@ -12,7 +16,14 @@ from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.sweep.result import NEAR_SINGULAR, ORDER, SINGULAR, Column, Kind
 
-__all__ = ["ColumnBuilder"]
+__all__ = ["ColumnBuilder", "Raw"]
+
+Raw = tuple[str, Kind, Reals, Bools | None]
+"""A column as a stage gives it: its name, kind, values at every row, and the rows where it has a value besides
+those the row's level allows (None: all of them)."""
+
+_column = partial(tuple.__new__, Column)
+"""``Column`` of its four fields as one tuple (``Column._make`` without its check of their count)."""
 
 
 @dataclass
@@ -21,20 +32,37 @@ class ColumnBuilder:
 
     mechanism: Mechanism
     positions: Positions
-    raw: list[tuple[str, Kind, Reals, Bools | None]] = field(default_factory=list)
-    sources: list[tuple[Kind, Reals | Points]] = field(default_factory=list)
-    """What each column (or pair of columns) was read from, once: the arrays whose sums tell overflow."""
+    raw: list[Raw] = field(default_factory=list)
+    top: int = -1
+    """The highest order of the columns added (``ORDER``)."""
+    tops: list[Reals | Points] = field(default_factory=list)
+    """What the columns of the highest order were read from, each once: the arrays whose sums tell overflow."""
 
     def add(self, name: str, kind: Kind, values: Reals, extra: Bools | None = None) -> None:
-        self.raw.append((name, kind, values, extra))
-        self.sources.append((kind, values))
+        self.extend(((name, kind, values, extra),), ((kind, values),))
 
     def pair(self, name: str, kind: Kind, values: Points, extra: Bools | None = None) -> None:
-        self.raw += [(f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)]
-        self.sources.append((kind, values))
+        """A point's two columns, ``<name>_x`` and ``<name>_y``."""
+        self.extend(((f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)),
+                    ((kind, values),))
+
+    def extend(self, raw: Iterable[Raw], sources: Iterable[tuple[Kind, Reals | Points]]) -> None:
+        """Columns, and what they were read from (each array once: a point's, for its two columns)."""
+        self.raw += raw
+        for kind, values in sources:
+            order = ORDER[kind]
+            if order > self.top:
+                self.top, self.tops = order, [values]
+            elif order == self.top:
+                self.tops += (values,)
 
     def columns(self, level: npt.NDArray[np.int8] | None, shown: Bools, every: bool) -> tuple[Column, ...]:
         """The columns of the ``shown`` rows (``every``: all of them); ``level`` None where every row is ok."""
+        if level is None and every and self.raw:
+            names, kinds, arrays, extras = zip(*self.raw, strict=True)
+            if not any(map(is_not, extras, repeat(None))):  # each value as it is, every row valid: one mask for all
+                return tuple(map(_column, zip(names, kinds, map(np.asarray, arrays, repeat(np.float64)),
+                                              repeat(np.ones(len(shown), np.bool_)))))
         if level is None:
             everywhere = (np.ones(len(shown) if every else int(shown.sum()), np.bool_), True)
             masks = {SINGULAR: everywhere, NEAR_SINGULAR: everywhere}
