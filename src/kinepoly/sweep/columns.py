@@ -6,7 +6,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import partial
 from itertools import repeat
-from operator import is_not
+from operator import getitem, is_not
 
 import numpy as np
 import numpy.typing as npt
@@ -58,13 +58,11 @@ class ColumnBuilder:
 
     def columns(self, level: npt.NDArray[np.int8] | None, shown: Bools, every: bool) -> tuple[Column, ...]:
         """The columns of the ``shown`` rows (``every``: all of them); ``level`` None where every row is ok."""
-        if level is None and every and self.raw:
-            names, kinds, arrays, extras = zip(*self.raw, strict=True)
-            if not any(map(is_not, extras, repeat(None))):  # each value as it is, every row valid: one mask for all
-                return tuple(map(_column, zip(names, kinds, map(np.asarray, arrays, repeat(np.float64)),
-                                              repeat(np.ones(len(shown), np.bool_)))))
         if level is None:
-            everywhere = (np.ones(len(shown) if every else int(shown.sum()), np.bool_), True)
+            plain = self._plain(shown, every)
+            if plain is not None:
+                return plain
+            everywhere = (np.ones(len(shown) if every else np.count_nonzero(shown), np.bool_), True)
             masks = {SINGULAR: everywhere, NEAR_SINGULAR: everywhere}
         else:
             masks = {}
@@ -82,3 +80,15 @@ class ColumnBuilder:
                 values = np.where(valid, values, 0.0)
             out.append(Column(name, kind, np.asarray(values, np.float64), valid))
         return tuple(out)
+
+    def _plain(self, shown: Bools, every: bool) -> tuple[Column, ...] | None:
+        """The columns where every row is ok and no column has rows of its own without a value: each column's shown
+        values as they are, one mask for all (None where a column has such rows)."""
+        if not self.raw:
+            return ()
+        names, kinds, arrays, extras = zip(*self.raw, strict=True)
+        if any(map(is_not, extras, repeat(None))):
+            return None
+        everywhere = np.ones(len(shown) if every else np.count_nonzero(shown), np.bool_)
+        values = map(np.asarray, arrays if every else map(getitem, arrays, repeat(shown)), repeat(np.float64))
+        return tuple(map(_column, zip(names, kinds, values, repeat(everywhere))))

@@ -521,7 +521,7 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
     shown = grid.shown
     every = bool(shown.all())
     input_column = Column(name, "input", grid.values if every else grid.values[shown],
-                          np.ones(len(grid.values) if every else int(shown.sum()), np.bool_))
+                          np.ones(len(grid.values) if every else np.count_nonzero(shown), np.bool_))
     return SweepResult(scene, input_column, out.columns(flags.level if flags.reasons else None, shown, every),
                        flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
                        tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), grid.seed_row,
