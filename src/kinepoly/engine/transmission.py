@@ -71,7 +71,11 @@ class TransmissionPair:
     second: Way
 
     def angle(self, positions: Positions) -> Transmission:
-        """The angle at every row of ``positions``.
+        """The angle at every row of ``positions``, with what it is between."""
+        return Transmission(self.group, self.point, self.joint, self.between, self.at_zero, self.radians(positions))
+
+    def radians(self, positions: Positions) -> Reals:
+        """The angle at every row of ``positions``, in radians, folded into [0, pi/2].
 
         It is the angle whose tangent is |cross| / |dot| of the two directions: well conditioned everywhere. (The
         arcsine of the crossing's sine, which the construction has already, loses half the digits near 90 degrees,
@@ -81,8 +85,7 @@ class TransmissionPair:
         first, second = _direction(positions, self.first), _direction(positions, self.second)
         product = np.conjugate(first) * second  # its imaginary part the cross product, its real part the dot
         turn = np.arctan2(np.abs(product.imag), np.abs(product.real))
-        angle = np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
-        return Transmission(self.group, self.point, self.joint, self.between, self.at_zero, angle)
+        return np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
 
 
 def _direction(positions: Positions, way: Way) -> Points:

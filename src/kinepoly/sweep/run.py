@@ -513,7 +513,7 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
                                                           slider not in asked.sliders):
             out.add(column, kind, values, valid)  # type: ignore[arg-type]
     for column, pair in layout.transmissions:
-        angle = pair.angle(positions).angle
+        angle = pair.radians(positions)
         out.add(column, "transmission", np.degrees(angle) if layout.degrees else angle)
     if not every_ok and gaps:
         notices += gap_notices(grid, ok, name, input_unit(scene))
