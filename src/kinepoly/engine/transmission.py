@@ -22,10 +22,10 @@ from kinepoly.engine.groups import Dyad, PositionPlan, slide_roles, two_slide_ro
 from kinepoly.engine.position import Positions
 from kinepoly.engine.velocity import slide_direction
 from kinepoly.geom.arrays import Points, Reals, length
-from kinepoly.model.mechanism import Revolute
+from kinepoly.model.mechanism import Mechanism, Revolute
 from kinepoly.scene.spec import SliderSpec
 
-__all__ = ["Transmission", "transmission_angles"]
+__all__ = ["Transmission", "TransmissionPair", "Way", "transmission_angles", "transmission_pairs"]
 
 
 @dataclass(frozen=True, repr=False)
@@ -52,50 +52,81 @@ class Transmission:
         return math.degrees(float(self.angle[0]))
 
 
-def _describe(positions: Positions, dyad: Dyad) -> tuple[tuple[Points, Points], str, str, str, str]:
-    """The dyad's two velocity directions, its point and joint, and the words of the angle. A direction square to a
-    link is the one its velocity construction drew (``Positions.chord``, made once)."""
-    def square(start: str, end: str) -> Points:
-        return positions.chord(start, end)[1]
+Way = tuple[str, str] | SliderSpec
+"""How a direction line of a dyad runs: square to the chord from one point to another of a link (``Positions.chord``,
+the direction its velocity construction drew), or along a slide (``slide_direction``)."""
 
+
+@dataclass(frozen=True)
+class TransmissionPair:
+    """What one dyad's transmission angle is between, found once for a plan: its two direction lines (``Way``), the
+    point and joint it names, and the words of the angle (``Transmission``)."""
+
+    group: str
+    point: str
+    joint: str
+    between: str
+    at_zero: str
+    first: Way
+    second: Way
+
+    def angle(self, positions: Positions) -> Transmission:
+        """The angle at every row of ``positions``, with what it is between."""
+        return Transmission(self.group, self.point, self.joint, self.between, self.at_zero, self.radians(positions))
+
+    def radians(self, positions: Positions) -> Reals:
+        """The angle at every row of ``positions``, in radians, folded into [0, pi/2].
+
+        It is the angle whose tangent is |cross| / |dot| of the two directions: well conditioned everywhere. (The
+        arcsine of the crossing's sine, which the construction has already, loses half the digits near 90 degrees,
+        where its slope grows without limit: up to 2e-6 degrees there.) A direction of no length (two points of a
+        link in one place) is taken as 90 degrees.
+        """
+        first, second = _direction(positions, self.first), _direction(positions, self.second)
+        product = np.conjugate(first) * second  # its imaginary part the cross product, its real part the dot
+        turn = np.arctan2(np.abs(product.imag), np.abs(product.real))
+        return np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
+
+
+def _direction(positions: Positions, way: Way) -> Points:
+    if isinstance(way, SliderSpec):
+        return slide_direction(positions, way)
+    return positions.chord(way[0], way[1])[1]
+
+
+def _pair(mechanism: Mechanism, dyad: Dyad) -> TransmissionPair:
+    """The dyad's two velocity directions, its point and joint, and the words of the angle."""
     if dyad.kind in ("RRR", "RRP"):
         assert isinstance(dyad.first_joint, Revolute) and isinstance(dyad.inner, Revolute)
         p1, p2 = dyad.first_joint.point, dyad.inner.point
         second = dyad.second_joint
         if isinstance(second, Revolute):
             p3 = second.point
-            return ((square(p1, p2), square(p3, p2)), p2, p2,
-                    f"{p1}{p2} and {p3}{p2}", f"the links {p1}{p2} and {p3}{p2} are in line")
-        return ((square(p1, p2), slide_direction(positions, second)), p2, p2,
-                f"{p1}{p2} and the normal to slider {second.name}",
-                f"the link {p1}{p2} is square to slider {second.name}'s line")
+            return TransmissionPair(dyad.name, p2, p2, f"{p1}{p2} and {p3}{p2}",
+                                    f"the links {p1}{p2} and {p3}{p2} are in line", (p1, p2), (p3, p2))
+        assert isinstance(second, SliderSpec)
+        return TransmissionPair(dyad.name, p2, p2, f"{p1}{p2} and the normal to slider {second.name}",
+                                f"the link {p1}{p2} is square to slider {second.name}'s line", (p1, p2), second)
     if dyad.kind == "RPR":
         r = slide_roles(dyad)
         q, p, name = r.guide_pin, r.block_pin, r.slider.name
-        return ((square(q, p), slide_direction(positions, r.slider)), p, p,
-                f"the normal to slider {name} and the path of {p} about {q}",
-                f"slider {name}'s line is square to {q}{p}")
-    t = two_slide_roles(dyad, positions.mechanism)
+        return TransmissionPair(dyad.name, p, p, f"the normal to slider {name} and the path of {p} about {q}",
+                                f"slider {name}'s line is square to {q}{p}", (q, p), r.slider)
+    t = two_slide_roles(dyad, mechanism)
     a, b = t.first_slider, t.second_slider
-    assert isinstance(a, SliderSpec)
-    return ((slide_direction(positions, a), slide_direction(positions, b)), t.point, a.point,
-            f"sliders {a.name} and {b.name}", f"the lines of sliders {a.name} and {b.name} are parallel")
+    assert isinstance(a, SliderSpec) and isinstance(b, SliderSpec)
+    return TransmissionPair(dyad.name, t.point, a.point, f"sliders {a.name} and {b.name}",
+                            f"the lines of sliders {a.name} and {b.name} are parallel", a, b)
+
+
+def transmission_pairs(mechanism: Mechanism, plan: PositionPlan) -> tuple[TransmissionPair, ...]:
+    """What the transmission angle of every dyad of the plan is between, in the plan's order: the same for every
+    row and every call (a prepared sweep finds them once); ``mechanism``: the plan's (or one of other dimensions,
+    the same names)."""
+    return tuple(_pair(mechanism, group) for group in plan.groups if isinstance(group, Dyad))
 
 
 def transmission_angles(positions: Positions, plan: PositionPlan) -> list[Transmission]:
-    """The transmission angle of every dyad of the plan, in the plan's order, a solve's and a sweep's alike.
-
-    It is the angle whose tangent is |cross| / |dot| of the two directions: well conditioned everywhere. (The
-    arcsine of the crossing's sine, which the construction has already, loses half the digits near 90 degrees,
-    where its slope grows without limit: up to 2e-6 degrees there.) A direction of no length (two points of a
-    link in one place) is taken as 90 degrees.
-    """
-    out = []
-    for group in plan.groups:
-        if isinstance(group, Dyad):
-            (first, second), point, joint, between, at_zero = _describe(positions, group)
-            product = np.conjugate(first) * second  # its imaginary part the cross product, its real part the dot
-            turn = np.arctan2(np.abs(product.imag), np.abs(product.real))
-            angle = np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
-            out.append(Transmission(group.name, point, joint, between, at_zero, angle))
-    return out
+    """The transmission angle of every dyad of the plan, in the plan's order, a solve's and a sweep's alike
+    (``TransmissionPair.angle``)."""
+    return [pair.angle(positions) for pair in transmission_pairs(positions.mechanism, plan)]

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
+from functools import partial
+from itertools import repeat
+from operator import getitem, is_not
 
 import numpy as np
 import numpy.typing as npt
@@ -12,7 +16,14 @@ from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.sweep.result import NEAR_SINGULAR, ORDER, SINGULAR, Column, Kind
 
-__all__ = ["ColumnBuilder"]
+__all__ = ["ColumnBuilder", "Raw"]
+
+Raw = tuple[str, Kind, Reals, Bools | None]
+"""A column as a stage gives it: its name, kind, values at every row, and the rows where it has a value besides
+those the row's level allows (None: all of them)."""
+
+_column = partial(tuple.__new__, Column)
+"""``Column`` of its four fields as one tuple (``Column._make`` without its check of their count)."""
 
 
 @dataclass
@@ -21,22 +32,37 @@ class ColumnBuilder:
 
     mechanism: Mechanism
     positions: Positions
-    raw: list[tuple[str, Kind, Reals, Bools | None]] = field(default_factory=list)
-    sources: list[tuple[Kind, Reals | Points]] = field(default_factory=list)
-    """What each column (or pair of columns) was read from, once: the arrays whose sums tell overflow."""
+    raw: list[Raw] = field(default_factory=list)
+    top: int = -1
+    """The highest order of the columns added (``ORDER``)."""
+    tops: list[Reals | Points] = field(default_factory=list)
+    """What the columns of the highest order were read from, each once: the arrays whose sums tell overflow."""
 
     def add(self, name: str, kind: Kind, values: Reals, extra: Bools | None = None) -> None:
-        self.raw.append((name, kind, values, extra))
-        self.sources.append((kind, values))
+        self.extend(((name, kind, values, extra),), ((kind, values),))
 
     def pair(self, name: str, kind: Kind, values: Points, extra: Bools | None = None) -> None:
-        self.raw += [(f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)]
-        self.sources.append((kind, values))
+        """A point's two columns, ``<name>_x`` and ``<name>_y``."""
+        self.extend(((f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)),
+                    ((kind, values),))
+
+    def extend(self, raw: Iterable[Raw], sources: Iterable[tuple[Kind, Reals | Points]]) -> None:
+        """Columns, and what they were read from (each array once: a point's, for its two columns)."""
+        self.raw += raw
+        for kind, values in sources:
+            order = ORDER[kind]
+            if order > self.top:
+                self.top, self.tops = order, [values]
+            elif order == self.top:
+                self.tops += (values,)
 
     def columns(self, level: npt.NDArray[np.int8] | None, shown: Bools, every: bool) -> tuple[Column, ...]:
         """The columns of the ``shown`` rows (``every``: all of them); ``level`` None where every row is ok."""
         if level is None:
-            everywhere = (np.ones(len(shown) if every else int(shown.sum()), np.bool_), True)
+            plain = self._plain(shown, every)
+            if plain is not None:
+                return plain
+            everywhere = (np.ones(len(shown) if every else np.count_nonzero(shown), np.bool_), True)
             masks = {SINGULAR: everywhere, NEAR_SINGULAR: everywhere}
         else:
             masks = {}
@@ -54,3 +80,15 @@ class ColumnBuilder:
                 values = np.where(valid, values, 0.0)
             out.append(Column(name, kind, np.asarray(values, np.float64), valid))
         return tuple(out)
+
+    def _plain(self, shown: Bools, every: bool) -> tuple[Column, ...] | None:
+        """The columns where every row is ok and no column has rows of its own without a value: each column's shown
+        values as they are, one mask for all (None where a column has such rows)."""
+        if not self.raw:
+            return ()
+        names, kinds, arrays, extras = zip(*self.raw, strict=True)
+        if any(map(is_not, extras, repeat(None))):
+            return None
+        everywhere = np.ones(len(shown) if every else np.count_nonzero(shown), np.bool_)
+        values = map(np.asarray, arrays if every else map(getitem, arrays, repeat(shown)), repeat(np.float64))
+        return tuple(map(_column, zip(names, kinds, values, repeat(everywhere))))

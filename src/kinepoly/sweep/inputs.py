@@ -367,6 +367,20 @@ def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
     return InputGrid(values, _internal(mechanism, values), mask, seed_row, True)
 
 
+def _even(start: float, stop: float, count: int, endpoint: bool) -> Reals:
+    """``np.linspace(start, stop, count, endpoint=endpoint)``, the same values, without its Python (a sweep's every
+    call makes its rows so)."""
+    step = (float(stop) - float(start)) / (count - 1 if endpoint else count)
+    if step == 0.0 or count < 2:  # linspace's own care of a step that underflows
+        return np.linspace(start, stop, count, endpoint=endpoint)
+    rows = np.arange(count, dtype=np.float64)
+    rows *= step
+    rows += start
+    if endpoint:
+        rows[-1] = stop
+    return rows
+
+
 def _check_steps(steps: int) -> None:
     if not 2 <= steps <= MAX_STEPS:
         raise SceneError(f"--positions: expected a whole number of intervals from 2 to {MAX_STEPS}, got {steps}")
@@ -414,14 +428,13 @@ def input_grid(mechanism: Mechanism, plan: PositionPlan, seed: dict[str, LinkPos
             raise SceneError(f"--from and --to: the range from {start:.6g} to {stop:.6g} is empty; give two different "
                              "inputs (`kinepoly solve` gives a single position)")
         periodic = _is_full_turn(start, stop, full)
-    if periodic:
-        shown = np.linspace(start, stop, steps, endpoint=False)
-    else:
-        shown = np.linspace(start, stop, steps + 1)
+    shown = _even(start, stop, steps if periodic else steps + 1, not periodic)
     values, mask, seed_row = _with_seed(shown, _seed_value(mechanism), periodic, full)
-    shown_rows = np.flatnonzero(mask)
-    unit = mechanism.scene.units.angle if full is not None else mechanism.scene.units.length
-    near_dead = {int(shown_rows[k]): f"near-singular: an end of the range, {margin:.2g} {unit} inside the dead point "
-                 "beyond which a group closed by Newton's method does not close"
-                 for k, margin in ((0, pulled[0]), (-1, pulled[1])) if margin > 0.0}
+    near_dead: dict[int, str] = {}
+    if pulled != (0.0, 0.0):
+        shown_rows = mask.nonzero()[0]
+        unit = mechanism.scene.units.angle if full is not None else mechanism.scene.units.length
+        near_dead = {int(shown_rows[k]): f"near-singular: an end of the range, {margin:.2g} {unit} inside the dead "
+                     "point beyond which a group closed by Newton's method does not close"
+                     for k, margin in ((0, pulled[0]), (-1, pulled[1])) if margin > 0.0}
     return InputGrid(values, _internal(mechanism, values), mask, seed_row, periodic, tuple(notices), near_dead)

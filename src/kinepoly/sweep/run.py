@@ -40,10 +40,10 @@ from kinepoly.engine.policy import Continuity
 from kinepoly.engine.polygon import JointSolve, LineCrossing
 from kinepoly.engine.position import Failure, Positions, solve_positions
 from kinepoly.engine.sliders import slider_motion
-from kinepoly.engine.transmission import transmission_angles
+from kinepoly.engine.transmission import TransmissionPair, transmission_pairs
 from kinepoly.engine.velocity import VelocityResult, construct_velocity
 from kinepoly.errors import AssemblyError, KinepolyError, SceneError, SingularityError
-from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import LinkPose
@@ -51,7 +51,7 @@ from kinepoly.notice import Notice
 from kinepoly.scene.link_point import point_of
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput
 from kinepoly.solution import Asked, needed_links, what_is_asked
-from kinepoly.sweep.columns import ColumnBuilder
+from kinepoly.sweep.columns import ColumnBuilder, Raw
 from kinepoly.sweep.higher_pairs import higher_pair_columns
 from kinepoly.sweep.inputs import (
     FULL_TURN_CHECK_ROWS,
@@ -65,7 +65,7 @@ from kinepoly.sweep.inputs import (
 )
 from kinepoly.sweep.result import CANNOT_ASSEMBLE as _CANNOT
 from kinepoly.sweep.result import NEAR_SINGULAR as _NEAR
-from kinepoly.sweep.result import ORDER, Column, SweepResult
+from kinepoly.sweep.result import ORDER, Column, Kind, SweepResult
 from kinepoly.sweep.result import SINGULAR as _SINGULAR
 
 __all__ = ["PreparedSweep", "cycle_turns", "execute_rows", "gap_notices", "prepare_sweep", "prepared_sweep",
@@ -149,9 +149,9 @@ def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineC
                            "velocity and acceleration are not determined")
             flags.raise_to(near, _NEAR, _condition_text(where, crossing.condition, condition))
             continue
-        if every and (float(crossing.sin_angle.min()) >= NEAR_SINGULAR_SIN
-                      or float(crossing.sin_angle.max()) <= -NEAR_SINGULAR_SIN) \
-                and np.isfinite(crossing.along.sum()):  # the lines cross well at every row (of one sense)
+        if every and (np.minimum.reduce(crossing.sin_angle) >= NEAR_SINGULAR_SIN
+                      or np.maximum.reduce(crossing.sin_angle) <= -NEAR_SINGULAR_SIN) \
+                and math.isfinite(np.add.reduce(crossing.along)):  # the lines cross well at every row (of one sense)
             continue
         sine = np.abs(crossing.sin_angle)
         where = f"group {crossing.group} at {crossing.what}"
@@ -194,8 +194,7 @@ def _overflow_flags(flags: _Flags, ok: Bools, out: ColumnBuilder) -> None:
     Every value of a higher order is computed from those of the lower ones, so a non-finite value
     anywhere shows in the highest order's columns: when their sums are finite, nothing is to mark.
     """
-    top = max((ORDER[kind] for kind, _ in out.sources), default=0)
-    if all(cmath.isfinite(complex(np.add.reduce(values))) for kind, values in out.sources if ORDER[kind] == top):
+    if cmath.isfinite(complex(sum(map(np.add.reduce, out.tops)))):  # non-finite where any of the sums is
         return
     for name, kind, values, extra in out.raw:
         rows = ok & ~np.isfinite(values) & (True if extra is None else extra)
@@ -204,52 +203,88 @@ def _overflow_flags(flags: _Flags, ok: Bools, out: ColumnBuilder) -> None:
                            f"singular: {name} overflowed (beyond the range of double precision)")
 
 
-def _rate(value: Reals | None) -> Reals:
-    assert value is not None, "every link of the plan has its rate"
-    return value
-
-
-def _angle_unit(scene: Scene, radians: Reals) -> Reals:
-    return np.degrees(radians) if scene.units.angle == "deg" else radians
-
-
 @dataclass(frozen=True)
-class _ColumnNames:
-    """The asked columns of a prepared sweep, named once for all its calls: each asked link's (link, theta,
-    omega, alpha) and each asked point's (label, point, r, v, a) column names, None where not reported."""
+class _Layout:
+    """What every call of a prepared sweep reads alike, found once for all its calls: the polygons it builds, each
+    asked link's (link, theta, omega, alpha) and each asked point's (label, point, r, v, a) column names (a point's
+    as its x and y columns), None where not reported, and the dyads' transmission angles with their columns."""
 
+    input_column: str
     degrees: bool
+    velocity: bool
+    """Whether the velocity polygon is built (and ``acceleration``: the acceleration polygon too)."""
+    acceleration: bool
+    polygons: tuple[str, ...]
+    """The polygons whose error a near-singular row's warning estimates (``_RowCondition``)."""
     links: tuple[tuple[str, str | None, str | None, str | None], ...]
-    points: tuple[tuple[str, str, str, str | None, str | None], ...]
+    points: tuple[tuple[str, str, tuple[str, str], tuple[str, str] | None, tuple[str, str] | None], ...]
+    transmissions: tuple[tuple[str, TransmissionPair], ...]
+    newton: bool
+    """Whether a group of the plan is solved by Newton's method."""
 
 
-def _column_names(mechanism: Mechanism, asked: Asked) -> _ColumnNames:
-    find, input_column = mechanism.scene.find, input_name(mechanism)
+def _xy(name: str) -> tuple[str, str]:
+    return f"{name}_x", f"{name}_y"
+
+
+def _layout(mechanism: Mechanism, plan: PositionPlan, asked: Asked, centrode: str | None, series: bool) -> _Layout:
+    scene, input_column = mechanism.scene, input_name(mechanism)
+    find = scene.find
+    higher = bool(scene.cams or scene.gears)  # a follower's s-v-a and the gear ratios need the polygons
+    accelerations = bool(asked.needs_acceleration or scene.cams or series)
+    velocity = bool(asked.needs_velocity or centrode is not None or higher or series)
     links = tuple((link, None if f"theta_{link}" == input_column else f"theta_{link}",
                    f"omega_{link}" if link in asked.omega else None, f"alpha_{link}" if link in asked.alpha else None)
                   for link in dict.fromkeys((*asked.omega, *asked.alpha)))
-    points = tuple((label, point_of(label), f"r_{label}", f"v_{label}" if label in find.velocity else None,
-                    f"a_{label}" if label in find.acceleration else None)
+    points = tuple((label, point_of(label), _xy(f"r_{label}"), _xy(f"v_{label}") if label in find.velocity else None,
+                    _xy(f"a_{label}") if label in find.acceleration else None)
                    for label in dict.fromkeys((*find.velocity, *find.acceleration)))
-    return _ColumnNames(mechanism.scene.units.angle == "deg", links, points)
+    return _Layout(input_column, scene.units.angle == "deg", velocity, velocity and accelerations,
+                   ("velocity", "acceleration") if accelerations else ("velocity",), links, points,
+                   tuple((f"mu_{pair.point}", pair) for pair in transmission_pairs(mechanism, plan)),
+                   any(isinstance(group, NewtonGroup) for group in plan.groups))
 
 
-def _columns(out: ColumnBuilder, names: _ColumnNames, asked: Asked, velocity: VelocityResult | None,
-             acceleration: AccelerationResult | None, input_column: str) -> None:
+def _columns(out: ColumnBuilder, layout: _Layout, asked: Asked, velocity: VelocityResult | None,
+             acceleration: AccelerationResult | None) -> None:
     mech, positions = out.mechanism, out.positions
-    for link, theta, omega, alpha in names.links:
+    raw: list[Raw] = []
+    sources: list[tuple[Kind, Reals | Points]] = []
+    rates = velocity.polygon if velocity is not None else None
+    rates_of_rates = acceleration.polygon if acceleration is not None else None
+    for link, theta, omega, alpha in layout.links:
         if theta is not None:
-            out.add(theta, "angle", positions.poses[link].theta(degrees=names.degrees))
-        if omega is not None and velocity is not None:
-            out.add(omega, "omega", _rate(velocity.polygon.rate_of(link)))
-        if alpha is not None and acceleration is not None:
-            out.add(alpha, "alpha", _rate(acceleration.polygon.rate_of(link)))
-    for label, point, r, v, a in names.points:
-        out.pair(r, "position", positions.point(point))
-        if v is not None and velocity is not None:
-            out.pair(v, "velocity", velocity.tips[label])
-        if a is not None and acceleration is not None:
-            out.pair(a, "acceleration", acceleration.tips[label])
+            angle = positions.poses[link].theta(degrees=layout.degrees)
+            raw += ((theta, "angle", angle, None),)
+            sources += (("angle", angle),)
+        if omega is not None and rates is not None:
+            rate = rates.rate_of(link)
+            assert rate is not None, "every link of the plan has its rate"
+            raw += ((omega, "omega", rate, None),)
+            sources += (("omega", rate),)
+        if alpha is not None and rates_of_rates is not None:
+            rate = rates_of_rates.rate_of(link)
+            assert rate is not None, "every link of the plan has its rate"
+            raw += ((alpha, "alpha", rate, None),)
+            sources += (("alpha", rate),)
+    tips = rates.tips if rates is not None else None
+    tips_of_rates = rates_of_rates.tips if rates_of_rates is not None else None
+    for label, point, r, v, a in layout.points:
+        at = positions.point(point)
+        raw += ((r[0], "position", at.real, None), (r[1], "position", at.imag, None))
+        sources += (("position", at),)
+        if v is not None and tips is not None:
+            at = tips[label]
+            raw += ((v[0], "velocity", at.real, None), (v[1], "velocity", at.imag, None))
+            sources += (("velocity", at),)
+        if a is not None and tips_of_rates is not None:
+            at = tips_of_rates[label]
+            raw += ((a[0], "acceleration", at.real, None), (a[1], "acceleration", at.imag, None))
+            sources += (("acceleration", at),)
+    out.extend(raw, sources)
+    if not asked.sliders:
+        return
+    input_column = layout.input_column
     driven = {drive.spec.slider: drive.spec for drive in mech.drives if isinstance(drive.spec, SliderInput)}
     for name in asked.sliders:
         motion = slider_motion(positions, mech.slider(name), velocity, acceleration)
@@ -327,9 +362,10 @@ class PreparedSweep:
         return seed_poses(self.mechanism, self.plan)
 
     @cached_property
-    def column_names(self) -> _ColumnNames:
-        """The asked columns' names, found once for every call."""
-        return _column_names(self.mechanism, self.asked)
+    def layout(self) -> _Layout:
+        """What every call reads alike (the polygons built, the columns' names, the transmission angles), found
+        once for all calls."""
+        return _layout(self.mechanism, self.plan, self.asked, self.centrode, self.series)
 
     @cached_property
     def default_range(self) -> DefaultRange:
@@ -384,7 +420,7 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
         grid, positions = None, None
         quick = start is None and steps >= FULL_TURN_CHECK_ROWS and not mechanism.scene.gears  # gears: their cycle
         trial = full_turn_grid(mechanism, steps) if quick else None
-        if trial is not None and not any(isinstance(g, NewtonGroup) for g in plan.groups):
+        if trial is not None and not prepared.layout.newton:
             policy = Continuity(trial.seed_row, lambda: prepared.seed, True, progress, dict(mechanism.scene.guess))
             positions = solve_positions(mechanism, plan, trial.internal, policy)
             grid, positions = (trial, positions) if positions.ok.all() else (None, None)
@@ -441,7 +477,8 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
     prepared one, or a family's, ``model.family``); ``gaps``: say where the input's range does not assemble
     (a family says it member by member); ``member``: the mechanism of a row, where it is not ``mechanism`` (a
     family's member's, for the error estimates of near-singular rows)."""
-    scene, centrode, plan, asked = mechanism.scene, prepared.centrode, prepared.plan, prepared.asked
+    scene, centrode, plan, asked, layout = mechanism.scene, prepared.centrode, prepared.plan, prepared.asked, \
+        prepared.layout
     flags = _Flags(np.zeros(len(grid.values), np.int8))
     for failure in positions.failures:
         flags.raise_to(failure.rows, _CANNOT, _failure_text(failure))
@@ -454,20 +491,17 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
     ok = positions.ok
     every_ok = bool(ok.all())
     velocity = acceleration = None
-    higher = bool(scene.cams or scene.gears)  # a follower's s-v-a and the gear ratios need the polygons
-    accelerations = bool(asked.needs_acceleration or scene.cams or prepared.series)
-    condition = _RowCondition(positions, grid.internal, member or (lambda _: mechanism),
-                              ("velocity", "acceleration") if accelerations else ("velocity",))
-    if asked.needs_velocity or centrode is not None or higher or prepared.series:
+    condition = _RowCondition(positions, grid.internal, member or (lambda _: mechanism), layout.polygons)
+    if layout.velocity:
         velocity = construct_velocity(positions, plan, asked.velocity)
         _crossing_flags(flags, ok, every_ok, velocity.polygon.crossings, condition)
-    if accelerations and velocity is not None:
-        acceleration = construct_acceleration(velocity, plan, asked.acceleration)
-        _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings, condition)
-    name = input_name(mechanism)
+        if layout.acceleration:
+            acceleration = construct_acceleration(velocity, plan, asked.acceleration)
+            _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings, condition)
+    name = layout.input_column
     out = ColumnBuilder(mechanism, positions)
-    _columns(out, prepared.column_names, asked, velocity, acceleration, name)
-    followers = higher_pair_columns(out, velocity, acceleration, name)
+    _columns(out, layout, asked, velocity, acceleration)
+    followers = higher_pair_columns(out, velocity, acceleration, name) if scene.cams or scene.gears else ()
     notices = list(grid.notices)
     if centrode is not None and velocity is not None:
         notices += _centrode(out, centrode, velocity, grid.seed_row, flags.level)
@@ -478,15 +512,16 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
         for column, kind, values, valid in series_columns(mechanism, positions, grid.seed_row, velocity, acceleration,
                                                           slider not in asked.sliders):
             out.add(column, kind, values, valid)  # type: ignore[arg-type]
-    for transmission in transmission_angles(positions, plan):
-        out.add(f"mu_{transmission.point}", "transmission", _angle_unit(scene, transmission.angle))
+    for column, pair in layout.transmissions:
+        angle = pair.radians(positions)
+        out.add(column, "transmission", np.degrees(angle) if layout.degrees else angle)
     if not every_ok and gaps:
         notices += gap_notices(grid, ok, name, input_unit(scene))
     _overflow_flags(flags, ok, out)
     shown = grid.shown
     every = bool(shown.all())
     input_column = Column(name, "input", grid.values if every else grid.values[shown],
-                          np.ones(len(grid.values) if every else int(shown.sum()), np.bool_))
+                          np.ones(len(grid.values) if every else np.count_nonzero(shown), np.bool_))
     return SweepResult(scene, input_column, out.columns(flags.level if flags.reasons else None, shown, every),
                        flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
                        tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), grid.seed_row,
