@@ -89,9 +89,12 @@ def test_every_intersection_tip_lies_on_each_of_its_lines(name: str) -> None:
 
 
 @settings(max_examples=25, deadline=None)
-@given(st.sampled_from(("triad", "kc0-six-bar")), st.floats(-30.0, 30.0), st.floats(-20, 20), st.floats(-50, 50))
+@given(st.sampled_from(("triad", "kc0-six-bar")), st.floats(-30.0, 30.0, allow_subnormal=False),
+       st.floats(-20, 20, allow_subnormal=False), st.floats(-50, 50, allow_subnormal=False))
 def test_random_triad_tips_lie_on_their_lines(name: str, turn: float, omega: float, alpha: float) -> None:
-    """The triad examples at other crank angles and rates: the same, wherever the group assembles."""
+    """The triad examples at other crank angles and rates: the same, wherever the group assembles. Subnormal rates
+    are left out: at omega = 0 and alpha = 5e-324 the acceleration polygon is made of numbers with one significant
+    bit, so no tip can lie within 1e-9 of it on a line (1e-310 still passes)."""
     text = (EXAMPLES / f"{name}.toml").read_text()
     angle, w, al = {"triad": (60, 5, 2), "kc0-six-bar": (60, 10, -4)}[name]
     text = text.replace(f"angle = {angle}\n", f"angle = {angle + turn!r}\n", 1)
