@@ -39,6 +39,12 @@ _DIRECTIONS_DEG = (45, 135, -45, -135, 0, 180, 90, -90, 22.5, 157.5, -22.5, -157
 _DIRECTIONS = tuple((math.cos(math.radians(angle)), math.sin(math.radians(angle))) for angle in _DIRECTIONS_DEG)
 _ALONG_T = (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85)
 """Where along a vector's shaft its label is tried, the middle first."""
+_FURTHEST_RINGS_MM = (50.0, 62.0, 76.0, 92.0, 110.0)
+"""Where no place within the far rings is clear of the other labels: further out, a longer leader (the region bounds
+them)."""
+_LEADER_INK_MM2 = 0.02
+"""Where every place within reach lies on something drawn: how much ink under a label (mm²) one mm less of leader
+is worth (``Placer._least_inked``)."""
 _FAR_RING_GROUPS = (_FAR_RINGS_MM[:2], _FAR_RINGS_MM[2:4], _FAR_RINGS_MM[4:])
 """The far rings in the groups tested together: a label that finds a place near stops the search there."""
 _SEARCH_BUDGET = 1000
@@ -231,6 +237,22 @@ class _Placed:
                         return True
         return False
 
+    def near(self, bounds: Box, distance: float = 0.0) -> list[int]:
+        """The indexes of the placed geometries whose bounds come within ``distance`` of ``bounds``; counted in
+        ``scanned`` as looked at."""
+        x0, y0, x1, y1 = bounds[0] - distance, bounds[1] - distance, bounds[2] + distance, bounds[3] + distance
+        found: set[int] = set()
+        for key in self._keys((x0, y0, x1, y1)):
+            for index in self._cells.get(key, ()):
+                b = self._bounds[index]
+                if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0:
+                    found.add(index)
+        self.scanned += len(found)
+        return sorted(found)
+
+    def is_leader(self, index: int) -> bool:
+        return index in self._leaders
+
     def __len__(self) -> int:
         return len(self.geometries)
 
@@ -262,6 +284,9 @@ class Placer:
         self._start = 0
         self.crowded: list[str] = []
         """The roles of labels put where they touch something: no free place was within reach."""
+        self.set_out: list[str] = []
+        """The roles of labels that found no free place within reach of their anchor (``_far``'s last resorts):
+        the crowded ones, and those set clear of the other labels where a little ink, or none, lies under them."""
 
     def _inside(self, b: Box) -> bool:
         x0, y0, x1, y1 = self.region
@@ -333,17 +358,15 @@ class Placer:
         return None
 
     def _far(self, runs: tuple[Run, ...], color: str, role: str, anchor: Point, bold: bool,
-             size: tuple[float, float], shift: Point, optional: bool = False) -> list[Item]:
-        from shapely.geometry import LineString
+             size: tuple[float, float], shift: Point, optional: bool = False, near: Sequence[Box] = (),
+             feet: Sequence[Point] = ()) -> list[Item]:
+        """The label set out from ``anchor`` with a leader, at the nearest place free of everything; where there is
+        none, at the place clear of every other label that the least ink drawn lies under (``_least_inked``): one
+        of ``near`` (the places beside the anchor, without a leader) or one out from ``anchor`` or from one of
+        ``feet`` (further points the label may name: along a vector's shaft), its leader from there."""
 
-        def leader_to(b: Box) -> Any:
-            near = (min(max(anchor[0], b[0]), b[2]), min(max(anchor[1], b[1]), b[3]))  # the box's nearest point
-            length = math.hypot(near[0] - anchor[0], near[1] - anchor[1])
-            if length <= 0.6:
-                return None
-            k = (length - 0.3) / length
-            start = (anchor[0] + shift[0], anchor[1] + shift[1])
-            return LineString([start, (anchor[0] + k * (near[0] - anchor[0]), anchor[1] + k * (near[1] - anchor[1]))])
+        def leader_to(b: Box, foot: Point = anchor) -> Any:
+            return _leader(foot, b, shift)
 
         # A leader that crosses nothing drawn first, ring after ring (the nearest that has one ends the search),
         # then one that must cross something.
@@ -366,10 +389,68 @@ class Placer:
                 return self._accept(b, runs, color, role, anchor, bold, leader)
         if optional:
             return []
-        # Nowhere free within reach: keep the nearest place inside the region (the overlap test reports it).
+        # Nowhere free within reach of the anchor: the place clear of the other labels with the least ink under it,
+        # out from the anchor or from a foot; one on ink counts as crowded.
+        self.set_out.append(role)
+        far = [(_pushed_box(foot, direction, size, ring), foot) for foot in (anchor, *feet)
+               for ring in _FAR_RINGS_MM + _FURTHEST_RINGS_MM for direction in _DIRECTIONS]
+        choice = self._least_inked([*near, *(b for b, _ in far)], [None] * len(near) + [leader_to(*f) for f in far])
+        if choice is not None:
+            if choice[2]:
+                self.crowded.append(role)
+            return self._accept(choice[0], runs, color, role, anchor, bold, choice[1])
+        # Not even that within the search's budget: the nearest place inside the region (the overlap test reports it).
         self.crowded.append(role)
         b = _inside_of(_pushed_box(anchor, (1.0, 0.0), size, _RINGS_MM[0]), self.region)
         return self._accept(b, runs, color, role, anchor, bold)
+
+    def _least_inked(self, boxes: Sequence[Box], leaders: Sequence[Any]) -> tuple[Box, Any, bool] | None:
+        """Of ``boxes`` (each with its leader, or None beside the anchor), the one inside the region whose clearance
+        touches no placed label nor leader, whose leader keeps clear of every label, and under which the least ink
+        lies (about the area of what is drawn within its clearance; a leader's length weighs ``_LEADER_INK_MM2`` per
+        mm): a label crowded by lines stays readable and apart from the other labels. With it, its leader and
+        whether the box itself (its clearance aside) touches anything drawn. None when the search has spent its
+        budget already.
+
+        The boxes and leaders are tested all at once, against the placed geometries near them (``_Placed.near``)."""
+        import numpy as np
+        import shapely
+
+        if not boxes or self._spent():
+            return None
+        c = CLEARANCE_MM
+        b = np.asarray(boxes, dtype=float)
+        grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
+        ink = np.zeros(len(boxes))
+        which, hit = self._hard_tree.query(grown, predicate="intersects")
+        if len(which):  # each piece's area times the share of its bounds the box covers: cheap, and near enough
+            pieces = np.asarray(self._hard, dtype=object)[hit]
+            bounds = shapely.bounds(pieces)
+            g = b[which]
+            wide = np.minimum(g[:, 2] + c, bounds[:, 2]) - np.maximum(g[:, 0] - c, bounds[:, 0])
+            high = np.minimum(g[:, 3] + c, bounds[:, 3]) - np.maximum(g[:, 1] - c, bounds[:, 1])
+            spans = np.maximum(bounds[:, 2] - bounds[:, 0], 1e-9) * np.maximum(bounds[:, 3] - bounds[:, 1], 1e-9)
+            share = np.clip(wide, 0.0, None) * np.clip(high, 0.0, None) / spans
+            np.add.at(ink, which, shapely.area(pieces) * np.minimum(share, 1.0))
+        ok = np.array([self._inside(box) for box in boxes], dtype=bool)
+        lines = [(k, line) for k, line in enumerate(leaders) if line is not None]
+        extent = shapely.total_bounds(np.concatenate([grown, np.asarray([line for _, line in lines], dtype=object)]))
+        reach = LEADER.width / 2 + CLEARANCE_MM
+        near = self._placed.near(tuple(extent), reach)
+        if near:
+            placed = shapely.STRtree([self._placed.geometries[i] for i in near])
+            ok[np.unique(placed.query(grown, predicate="intersects")[0])] = False
+            labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
+            if lines and labels:
+                crossed = shapely.STRtree(labels).query([line for _, line in lines], predicate="dwithin",
+                                                        distance=reach)[0]
+                ok[[lines[j][0] for j in np.unique(crossed).tolist()]] = False
+        length = np.array([0.0 if line is None else line.length for line in leaders])
+        for k in np.argsort(ink + _LEADER_INK_MM2 * length, kind="stable").tolist():
+            if ok[k]:
+                return boxes[k], leaders[k], bool(ink[k]) and bool(len(self._hard_tree.query(
+                    shapely.box(*boxes[k]), predicate="intersects")))
+        return None
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
                  bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False,
@@ -385,7 +466,7 @@ class Placer:
                                             for u in _DIRECTIONS), self._candidates))
         found = None if far else self._near(candidates)
         if found is None:
-            items = self._far(runs, color, role, anchor, bold, outer, (0.0, 0.0), optional)
+            items = self._far(runs, color, role, anchor, bold, outer, (0.0, 0.0), optional, () if far else candidates)
             if not items:
                 return []
             corner = _box_of(items)
@@ -418,7 +499,22 @@ class Placer:
         found = self._near(candidates)
         if found is not None:
             return self._accept(found, runs, color, role, _mid(start, end), False)
-        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0))
+        feet = [(start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])) for t in _ALONG_T[1:]]
+        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0), near=candidates, feet=feet)
+
+
+def _leader(anchor: Point, b: Box, shift: Point = (0.0, 0.0)) -> Any:
+    """The leader from ``anchor`` (moved by ``shift``) to 0.3 mm short of the box ``b``'s nearest point, or None when
+    the box lies within 0.6 mm of the anchor."""
+    from shapely.geometry import LineString
+
+    near = (min(max(anchor[0], b[0]), b[2]), min(max(anchor[1], b[1]), b[3]))  # the box's nearest point
+    length = math.hypot(near[0] - anchor[0], near[1] - anchor[1])
+    if length <= 0.6:
+        return None
+    k = (length - 0.3) / length
+    start = (anchor[0] + shift[0], anchor[1] + shift[1])
+    return LineString([start, (anchor[0] + k * (near[0] - anchor[0]), anchor[1] + k * (near[1] - anchor[1]))])
 
 
 def _inside_of(b: Box, region: Box) -> Box:
@@ -590,19 +686,19 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
 def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dict[int, Placed], hard: list[Any],
            soft: list[Any], base: _Placed) -> tuple[list[Placed], list[str]]:
     """The best of up to ``_TRIES`` placements of the requests not kept, each with the labels that found no free
-    place before moved to the front."""
-    best: tuple[list[Placed], list[str]] | None = None
+    place before (``Placer.set_out``) moved to the front; its labels and the roles crowded."""
+    best: tuple[list[Placed], list[str], list[str]] | None = None
     for _ in range(_TRIES):
-        placed, crowded = _attempt(region, requests, order, kept, hard, soft, base.copy())
-        if best is not None and len(crowded) >= len(best[1]):
-            break  # moving the crowded labels first did not help
-        best = (placed, crowded)
-        if not crowded or len(crowded) > _FEW:
-            break  # none crowded, or so many that the polygon's own points crowd: moving them first cannot help
-        first = [k for k in order if requests[k].role in crowded]
+        placed, crowded, set_out = _attempt(region, requests, order, kept, hard, soft, base.copy())
+        if best is not None and len(set_out) >= len(best[2]):
+            break  # moving the labels set out first did not help
+        best = (placed, crowded, set_out)
+        if not set_out or len(set_out) > _FEW:
+            break  # none set out, or so many that the polygon's own points crowd: moving them first cannot help
+        first = [k for k in order if requests[k].role in set_out]
         order = first + [k for k in order if k not in first]
     assert best is not None
-    return best
+    return best[0], best[1]
 
 
 _CROWD_MM = 3.0
@@ -630,8 +726,9 @@ def _crowd(requests: Sequence[Request]) -> set[int]:
 
 
 def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kept: dict[int, Placed],
-             hard: list[Any], soft: list[Any], placed_so_far: _Placed) -> tuple[list[Placed], list[str]]:
-    """One placement of the requests not kept, in ``order``; every request's label and the roles crowded."""
+             hard: list[Any], soft: list[Any], placed_so_far: _Placed) -> tuple[list[Placed], list[str], list[str]]:
+    """One placement of the requests not kept, in ``order``; every request's label, the roles crowded and the roles
+    set out (``Placer.set_out``)."""
     placer = Placer(region, hard, soft, placed_so_far)
     out: dict[int, Placed] = dict(kept)
     crowd = _crowd(requests)
@@ -644,7 +741,7 @@ def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kep
         else:
             items = placer.along(request.anchor, request.end, request.runs, request.color, request.role)
         out[k] = (request.layer, items, placed_so_far.geometries[before:], placed_so_far._bounds[before:])
-    return [out[k] for k in range(len(requests))], placer.crowded
+    return [out[k] for k in range(len(requests))], placer.crowded, placer.set_out
 
 
 _WRAP_MM = 40.0
@@ -760,6 +857,7 @@ class _DraftPlacer(Placer):
         self.region = region
         self._placed = _Placed()
         self.crowded = []
+        self.set_out = []
 
     def _near(self, candidates: Sequence[Box]) -> Box | None:
         return candidates[0]
