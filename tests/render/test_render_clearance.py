@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from tests.render.builds import chain
 from tests.render.clearance import conflicts
 from tests.scenes import EXAMPLES
 
@@ -14,7 +15,7 @@ import kinepoly
 from kinepoly.render import labels
 from kinepoly.render.primitives import Arrow, Layer, Sheet, Stroke, Text
 from kinepoly.render.primitives import Path as Line
-from kinepoly.render.sheet import build_sheet
+from kinepoly.render.sheet import build_sheet, layout_sheet
 from kinepoly.render.text import plain_runs
 
 LAYOUT_SCENES = Path(__file__).resolve().parent / "scenes"
@@ -29,6 +30,20 @@ def _sheet(path: Path) -> Sheet:
 def test_no_label_touches_anything_on_the_drawing(path: Path) -> None:
     found = conflicts(_sheet(path))
     assert not found, "\n".join(map(str, found))
+
+
+@pytest.mark.parametrize("paper", ["A4", "A3"])
+def test_no_two_labels_overlap_where_a_long_chains_polygon_tips_cluster(paper: str) -> None:
+    """A chain of seven four-bar loops: its polygons' tips and short vectors crowd round a few spots, where no place
+    near them is free of the lines. Each label there is set out with a leader to a place clear of every other
+    label (before: at its anchor, on top of its neighbours, 34 pairs overlapping on A4 and 36 on A3)."""
+    solution = chain(7)
+    sheet = build_sheet(solution, layout=layout_sheet(solution, paper, grow=False))  # on the paper asked
+    overlapping = [c for c in conflicts(sheet) if c.other.startswith("text ")]
+    assert not overlapping, "\n".join(map(str, overlapping))
+    labels = [item for item in sheet.items() if isinstance(item, Text) and item.anchor is not None]
+    leaders = [item for item in sheet.items() if item.role.startswith("leader ")]
+    assert len(labels) > 100 and len(leaders) > 10  # the chain's labels are all drawn, the crowded set out
 
 
 def test_the_layout_scenes_include_six_bars_and_the_whitworth() -> None:
