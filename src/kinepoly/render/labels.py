@@ -20,6 +20,8 @@ from kinepoly.render.primitives import Arrow, Circle, Item, Path, Stroke, Text, 
 from kinepoly.render.text import Run, runs_box, text_width
 
 if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
     from shapely.geometry.base import BaseGeometry
 
 __all__ = ["BACKGROUND_ROLES", "CLEARANCE_MM", "FEW", "LEADER", "LabelCache", "Placer", "Request", "draft_place",
@@ -364,9 +366,17 @@ class Placer:
         none, at the place clear of every other label that the least ink drawn lies under (``_least_inked``): one
         of ``near`` (the places beside the anchor, without a leader) or one out from ``anchor`` or from one of
         ``feet`` (further points the label may name: along a vector's shaft), its leader from there."""
+        import numpy as np
+        from shapely.geometry import LineString
 
-        def leader_to(b: Box, foot: Point = anchor) -> Any:
-            return _leader(foot, b, shift)
+        def leader_to(b: Box) -> Any:
+            near = (min(max(anchor[0], b[0]), b[2]), min(max(anchor[1], b[1]), b[3]))  # the box's nearest point
+            length = math.hypot(near[0] - anchor[0], near[1] - anchor[1])
+            if length <= 0.6:
+                return None
+            k = (length - 0.3) / length
+            start = (anchor[0] + shift[0], anchor[1] + shift[1])
+            return LineString([start, (anchor[0] + k * (near[0] - anchor[0]), anchor[1] + k * (near[1] - anchor[1]))])
 
         # A leader that crosses nothing drawn first, ring after ring (the nearest that has one ends the search),
         # then one that must cross something.
@@ -392,9 +402,9 @@ class Placer:
         # Nowhere free within reach of the anchor: the place clear of the other labels with the least ink under it,
         # out from the anchor or from a foot; one on ink counts as crowded.
         self.set_out.append(role)
-        far = [(_pushed_box(foot, direction, size, ring), foot) for foot in (anchor, *feet)
-               for ring in _FAR_RINGS_MM + _FURTHEST_RINGS_MM for direction in _DIRECTIONS]
-        choice = self._least_inked([*near, *(b for b, _ in far)], [None] * len(near) + [leader_to(*f) for f in far])
+        boxes, leaders = _set_out_places((anchor, *feet), size, shift)
+        choice = self._least_inked(np.concatenate([np.asarray(near, dtype=float).reshape(-1, 4), boxes]),
+                                   np.concatenate([np.full(len(near), None, dtype=object), leaders]))
         if choice is not None:
             if choice[2]:
                 self.crowded.append(role)
@@ -404,24 +414,43 @@ class Placer:
         b = _inside_of(_pushed_box(anchor, (1.0, 0.0), size, _RINGS_MM[0]), self.region)
         return self._accept(b, runs, color, role, anchor, bold)
 
-    def _least_inked(self, boxes: Sequence[Box], leaders: Sequence[Any]) -> tuple[Box, Any, bool] | None:
-        """Of ``boxes`` (each with its leader, or None beside the anchor), the one inside the region whose clearance
-        touches no placed label nor leader, whose leader keeps clear of every label, and under which the least ink
-        lies (about the area of what is drawn within its clearance; a leader's length weighs ``_LEADER_INK_MM2`` per
-        mm): a label crowded by lines stays readable and apart from the other labels. With it, its leader and
-        whether the box itself (its clearance aside) touches anything drawn. None when the search has spent its
-        budget already.
+    def _least_inked(self, b: npt.NDArray[np.float64],
+                     leaders: npt.NDArray[np.object_]) -> tuple[Box, Any, bool] | None:
+        """Of the boxes ``b`` (n x 4), each with its leader (None: beside the anchor), the one inside the region
+        whose clearance touches no placed label nor leader, whose leader keeps clear of every label, and under which
+        the least ink lies (about the area of what is drawn within its clearance; a leader's length weighs
+        ``_LEADER_INK_MM2`` per mm): a label crowded by lines stays readable and apart from the other labels. With
+        it, its leader and whether the box itself (its clearance aside) touches anything drawn. None when the search
+        has spent its budget already.
 
         The boxes and leaders are tested all at once, against the placed geometries near them (``_Placed.near``)."""
         import numpy as np
         import shapely
 
-        if not boxes or self._spent():
+        if not len(b) or self._spent():
             return None
+        x0, y0, x1, y1 = self.region
+        inside = (b[:, 0] >= x0) & (b[:, 1] >= y0) & (b[:, 2] <= x1) & (b[:, 3] <= y1)
+        b, leaders = b[inside], leaders[inside]
         c = CLEARANCE_MM
-        b = np.asarray(boxes, dtype=float)
         grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
-        ink = np.zeros(len(boxes))
+        lined = leaders != None  # noqa: E711 (elementwise)
+        reach = LEADER.width / 2 + CLEARANCE_MM
+        ok = np.ones(len(b), dtype=bool)
+        e0, e1, e2, e3 = (float(v) for v in shapely.total_bounds(np.concatenate([grown, leaders[lined]])))
+        near = self._placed.near((e0, e1, e2, e3), reach)
+        if near:  # clear of the placed labels and leaders, and its leader clear of the placed labels
+            placed = shapely.STRtree([self._placed.geometries[i] for i in near])
+            ok[placed.query(grown, predicate="intersects")[0]] = False
+            labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
+            tested = np.flatnonzero(ok & lined)
+            if len(tested) and labels:
+                crossed = shapely.STRtree(labels).query(leaders[tested], predicate="dwithin", distance=reach)[0]
+                ok[tested[crossed]] = False
+        b, leaders, grown, lined = b[ok], leaders[ok], grown[ok], lined[ok]
+        if not len(b):
+            return None
+        ink = np.zeros(len(b))
         which, hit = self._hard_tree.query(grown, predicate="intersects")
         if len(which):  # each piece's area times the share of its bounds the box covers: cheap, and near enough
             pieces = np.asarray(self._hard, dtype=object)[hit]
@@ -432,25 +461,12 @@ class Placer:
             spans = np.maximum(bounds[:, 2] - bounds[:, 0], 1e-9) * np.maximum(bounds[:, 3] - bounds[:, 1], 1e-9)
             share = np.clip(wide, 0.0, None) * np.clip(high, 0.0, None) / spans
             np.add.at(ink, which, shapely.area(pieces) * np.minimum(share, 1.0))
-        ok = np.array([self._inside(box) for box in boxes], dtype=bool)
-        lines = [(k, line) for k, line in enumerate(leaders) if line is not None]
-        extent = shapely.total_bounds(np.concatenate([grown, np.asarray([line for _, line in lines], dtype=object)]))
-        reach = LEADER.width / 2 + CLEARANCE_MM
-        near = self._placed.near(tuple(extent), reach)
-        if near:
-            placed = shapely.STRtree([self._placed.geometries[i] for i in near])
-            ok[np.unique(placed.query(grown, predicate="intersects")[0])] = False
-            labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
-            if lines and labels:
-                crossed = shapely.STRtree(labels).query([line for _, line in lines], predicate="dwithin",
-                                                        distance=reach)[0]
-                ok[[lines[j][0] for j in np.unique(crossed).tolist()]] = False
-        length = np.array([0.0 if line is None else line.length for line in leaders])
-        for k in np.argsort(ink + _LEADER_INK_MM2 * length, kind="stable").tolist():
-            if ok[k]:
-                return boxes[k], leaders[k], bool(ink[k]) and bool(len(self._hard_tree.query(
-                    shapely.box(*boxes[k]), predicate="intersects")))
-        return None
+        length = np.zeros(len(b))
+        length[lined] = shapely.length(leaders[lined])
+        k = int(np.argmin(ink + _LEADER_INK_MM2 * length))  # the first of the least
+        box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
+        on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(shapely.box(*box), predicate="intersects")))
+        return box, leaders[k], on_ink
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
                  bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False,
@@ -503,18 +519,27 @@ class Placer:
         return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0), near=candidates, feet=feet)
 
 
-def _leader(anchor: Point, b: Box, shift: Point = (0.0, 0.0)) -> Any:
-    """The leader from ``anchor`` (moved by ``shift``) to 0.3 mm short of the box ``b``'s nearest point, or None when
-    the box lies within 0.6 mm of the anchor."""
-    from shapely.geometry import LineString
+def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
+                    shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
+    """The places a label of ``size`` set out is tried at: on every far ring (``_FAR_RINGS_MM``, then
+    ``_FURTHEST_RINGS_MM``) round each of ``feet``, each with its leader as ``Placer._far`` draws it (from the foot,
+    moved by ``shift``, to 0.3 mm short of the box's nearest point; None within 0.6 mm of the foot). The boxes
+    (n x 4) and the leaders."""
+    import numpy as np
+    import shapely
 
-    near = (min(max(anchor[0], b[0]), b[2]), min(max(anchor[1], b[1]), b[3]))  # the box's nearest point
-    length = math.hypot(near[0] - anchor[0], near[1] - anchor[1])
-    if length <= 0.6:
-        return None
-    k = (length - 0.3) / length
-    start = (anchor[0] + shift[0], anchor[1] + shift[1])
-    return LineString([start, (anchor[0] + k * (near[0] - anchor[0]), anchor[1] + k * (near[1] - anchor[1]))])
+    rings = _FAR_RINGS_MM + _FURTHEST_RINGS_MM
+    offsets = np.array([_pushed_box((0.0, 0.0), direction, size, ring) for ring in rings for direction in _DIRECTIONS])
+    foot = np.repeat(np.asarray(feet, dtype=float), len(offsets), axis=0)
+    boxes = np.tile(offsets, (len(feet), 1)) + np.hstack([foot, foot])
+    nearest = np.clip(foot, boxes[:, :2], boxes[:, 2:])
+    length = np.hypot(*(nearest - foot).T)
+    drawn = length > 0.6
+    leaders = np.full(len(boxes), None, dtype=object)
+    k = ((length[drawn] - 0.3) / length[drawn])[:, None]
+    ends = foot[drawn] + k * (nearest[drawn] - foot[drawn])
+    leaders[drawn] = shapely.linestrings(np.stack([foot[drawn] + np.asarray(shift), ends], axis=1))
+    return boxes, leaders
 
 
 def _inside_of(b: Box, region: Box) -> Box:
@@ -559,12 +584,17 @@ class LabelCache:
         self._fitted: dict[Request, Request] = {}
         self.parts: dict[Any, Any] = {}
         """The items and label requests of the parts that the sheets draw alike (``render.sheet.build_sheet``)."""
-        self._regions: dict[tuple[Any, ...], tuple[list[Placed], list[str]]] = {}
+        self._regions: dict[tuple[Any, ...], tuple[list[Placed], list[str], list[str]]] = {}
         self._last: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
         self._widest: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
         """Per region, the placement on the sheet with the most drawing there (a handout's whole drawing)."""
         self.crowded: set[str] = set()
-        """The roles of the labels that found no free place on any sheet placed with this cache."""
+        """The roles of the labels that found no free place on any sheet placed with this cache: put where they lie
+        on something drawn."""
+        self.set_out: set[str] = set()
+        """The roles of the labels that found no free place near their anchor on any sheet placed with this cache
+        (``Placer.set_out``): the crowded ones and those set clear of everything further out. How crowded a polygon's
+        points are, whatever the paper (``render.sheet.crowded``)."""
 
     def fitted(self, request: Request) -> Request:
         """The request wrapped to its region (``_fitted``), made once."""
@@ -653,8 +683,9 @@ _FEW = FEW
 
 
 def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], near: Sequence[Item],
-                  shared: _Placed) -> tuple[list[Placed], list[str]]:
-    """The region's labels: those kept from the sheet before, then the others placed one after another.
+                  shared: _Placed) -> tuple[list[Placed], list[str], list[str]]:
+    """The region's labels: those kept from the sheet before, then the others placed one after another; with the
+    roles crowded and set out (``Placer``).
 
     Where some label finds no free place (the labels around a crowded spot closed every way out),
     the region is placed again with those labels first, while that helps.
@@ -667,9 +698,9 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
             base.add(entry)
         hard = [g for item in near for g in cache.pieces(item)]
         soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
-        placed, crowded = _tries(region, requests, order, kept, hard, soft, base)
+        placed, crowded, set_out = _tries(region, requests, order, kept, hard, soft, base)
     else:
-        placed, crowded = [kept[k] for k in range(len(requests))], []
+        placed, crowded, set_out = [kept[k] for k in range(len(requests))], [], []
     for entry in placed:
         shared.add(entry)
     by_request: dict[Request, list[Placed]] = {}
@@ -680,13 +711,13 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
     widest = cache._widest.get(region)
     if widest is None or (len(drawn) >= len(widest[1]) and drawn.issuperset(widest[1])):
         cache._widest[region] = (by_request, drawn)
-    return placed, crowded
+    return placed, crowded, set_out
 
 
 def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dict[int, Placed], hard: list[Any],
-           soft: list[Any], base: _Placed) -> tuple[list[Placed], list[str]]:
+           soft: list[Any], base: _Placed) -> tuple[list[Placed], list[str], list[str]]:
     """The best of up to ``_TRIES`` placements of the requests not kept, each with the labels that found no free
-    place before (``Placer.set_out``) moved to the front; its labels and the roles crowded."""
+    place before (``Placer.set_out``) moved to the front; its labels, the roles crowded and the roles set out."""
     best: tuple[list[Placed], list[str], list[str]] | None = None
     for _ in range(_TRIES):
         placed, crowded, set_out = _attempt(region, requests, order, kept, hard, soft, base.copy())
@@ -698,7 +729,7 @@ def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dic
         first = [k for k in order if requests[k].role in set_out]
         order = first + [k for k in order if k not in first]
     assert best is not None
-    return best[0], best[1]
+    return best
 
 
 _CROWD_MM = 3.0
@@ -822,6 +853,7 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
         if found is not None:
             results[region] = found[0]
             cache.crowded.update(found[1])
+            cache.set_out.update(found[2])
             if any(_near_region(other, region, margin) for other in by_region if other != region):
                 for entry in found[0]:
                     shared.add(entry)
@@ -829,15 +861,16 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
     for region, reqs in by_region.items():
         if region in results:
             continue
-        placed, crowded = _place_region(cache, region, reqs, near[region], shared)
+        placed, crowded, set_out = _place_region(cache, region, reqs, near[region], shared)
         results[region] = placed
         cache.crowded.update(crowded)
+        cache.set_out.update(set_out)
         own = [g for _, _, geometries, _ in placed for g in geometries]
         mine = {id(g) for g in own}
         if all(_well_inside(b, region, margin) for _, _, _, boxes in placed for b in boxes) and \
                 not any(_near_region(b, region, margin) for g, b in zip(shared.geometries, shared._bounds, strict=True)
                         if id(g) not in mine):
-            cache._regions[keys[region]] = (placed, crowded)
+            cache._regions[keys[region]] = (placed, crowded, set_out)
     out: dict[str, list[Item]] = {}
     counters = dict.fromkeys(results, 0)
     for request in ordered:  # the layers' items in the order of the requests
