@@ -84,3 +84,22 @@ def test_the_measure_fails_on_a_real_sheet_whose_labels_are_placed_blindly(monke
     found = conflicts(_sheet(EXAMPLES / "shaper.toml"))
     assert len(found) >= 5
     assert any("text" in c.other for c in found) and any("Arrow" in c.other for c in found)
+
+
+def test_labels_with_no_free_place_are_set_clear_of_each_other() -> None:
+    """Twelve labels of one point in a mesh of lines 2 mm apart, where every place touches a line (set out with a
+    leader from the start, as ``place`` does a point among many): each is put clear of the others (before: all
+    twelve at one place, on top of each other), and said to be crowded."""
+    from shapely.geometry import box
+
+    mesh = [Line(((x, 0.0), (x, 200.0)), Stroke()) for x in range(0, 201, 2)]
+    hard = [g for line in mesh for g in labels.item_pieces(line)]
+    placer = labels.Placer((0.0, 0.0, 200.0, 200.0), hard, [], labels._Placed())
+    texts = []
+    for k in range(12):
+        items = placer.at_point((100.0, 100.0), plain_runs(f"p{k}", 2.6), role=f"tip p{k}", far=True)
+        texts.append(items[-1])
+    boxes = [box(*t.box).buffer(labels.CLEARANCE_MM / 2, join_style="mitre") for t in texts if isinstance(t, Text)]
+    assert len(boxes) == 12
+    assert not [(i, j) for i in range(12) for j in range(i) if boxes[i].intersects(boxes[j])]
+    assert placer.crowded == placer.set_out == [f"tip p{k}" for k in range(12)]

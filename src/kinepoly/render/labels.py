@@ -4,7 +4,11 @@ A label is tried at candidate places nearest its anchor first: around a point, o
 arrow's shaft. A place is taken only when the label's box, grown by a small clearance, touches
 no drawn stroke, arrow, circle or label and lies inside the label's region. Light shading
 (plates, image triangles) is avoided when possible and allowed when not. When every near place
-is taken, the label goes further out with a thin leader line back to its anchor.
+is taken, the label goes further out with a thin leader line back to its anchor. Where no place within
+reach is free of the drawing (many tips and short vectors in a small spot of a polygon), the label is
+still kept clear of every other label: it takes the place, near or out on a leader (from its point, or
+from a point along its vector's shaft), under which the least ink lies, and counts as crowded when that
+is not none.
 """
 
 from __future__ import annotations
@@ -427,11 +431,13 @@ class Placer:
         import numpy as np
         import shapely
 
-        if not len(b) or self._spent():
+        if self._spent():
             return None
         x0, y0, x1, y1 = self.region
         inside = (b[:, 0] >= x0) & (b[:, 1] >= y0) & (b[:, 2] <= x1) & (b[:, 3] <= y1)
         b, leaders = b[inside], leaders[inside]
+        if not len(b):
+            return None
         c = CLEARANCE_MM
         grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
         lined = leaders != None  # noqa: E711 (elementwise)
