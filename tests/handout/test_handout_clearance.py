@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from tests.render.builds import chain
 from tests.render.clearance import conflicts
 from tests.scenes import EXAMPLES
 
@@ -25,4 +26,15 @@ def test_no_label_touches_anything_on_any_page(path: Path, lang: str) -> None:
     handout, sheets = handout_sheets(solution, load_catalogue(lang))
     assert len(sheets) == len(handout.pages) >= 3
     found = [f"page {k}: {c}" for k, sheet in enumerate(sheets, 1) for c in conflicts(sheet)]
+    assert not found, "\n".join(dict.fromkeys(found))
+
+
+def test_no_two_labels_overlap_on_any_page_of_a_long_chains_handout() -> None:
+    """A chain of seven four-bar loops: many polygon tips and short vectors cluster, and no place near them is free
+    of the lines; its labels lie clear of each other on every page, the answers page's whole drawing too (before:
+    366 overlaps on 45 of its 67 pages)."""
+    handout, sheets = handout_sheets(chain(7), load_catalogue("en"))
+    assert len(sheets) == len(handout.pages) > 60
+    found = [f"page {k}: {c}" for k, sheet in enumerate(sheets, 1) for c in conflicts(sheet)
+             if c.other.startswith("text ")]
     assert not found, "\n".join(dict.fromkeys(found))

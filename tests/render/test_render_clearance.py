@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from tests.render.builds import chain
 from tests.render.clearance import conflicts
 from tests.scenes import EXAMPLES
 
@@ -14,7 +15,7 @@ import kinepoly
 from kinepoly.render import labels
 from kinepoly.render.primitives import Arrow, Layer, Sheet, Stroke, Text
 from kinepoly.render.primitives import Path as Line
-from kinepoly.render.sheet import build_sheet
+from kinepoly.render.sheet import build_sheet, layout_sheet
 from kinepoly.render.text import plain_runs
 
 LAYOUT_SCENES = Path(__file__).resolve().parent / "scenes"
@@ -29,6 +30,20 @@ def _sheet(path: Path) -> Sheet:
 def test_no_label_touches_anything_on_the_drawing(path: Path) -> None:
     found = conflicts(_sheet(path))
     assert not found, "\n".join(map(str, found))
+
+
+@pytest.mark.parametrize("paper", ["A4", "A3"])
+def test_no_two_labels_overlap_where_a_long_chains_polygon_tips_cluster(paper: str) -> None:
+    """A chain of seven four-bar loops: its polygons' tips and short vectors crowd round a few spots, where no place
+    near them is free of the lines. Each label there is set out with a leader to a place clear of every other
+    label (before: at its anchor, on top of its neighbours, 34 pairs overlapping on A4 and 36 on A3)."""
+    solution = chain(7)
+    sheet = build_sheet(solution, layout=layout_sheet(solution, paper, grow=False))  # on the paper asked
+    overlapping = [c for c in conflicts(sheet) if c.other.startswith("text ")]
+    assert not overlapping, "\n".join(map(str, overlapping))
+    labels = [item for item in sheet.items() if isinstance(item, Text) and item.anchor is not None]
+    leaders = [item for item in sheet.items() if item.role.startswith("leader ")]
+    assert len(labels) > 100 and len(leaders) > 10  # the chain's labels are all drawn, the crowded set out
 
 
 def test_the_layout_scenes_include_six_bars_and_the_whitworth() -> None:
@@ -69,3 +84,22 @@ def test_the_measure_fails_on_a_real_sheet_whose_labels_are_placed_blindly(monke
     found = conflicts(_sheet(EXAMPLES / "shaper.toml"))
     assert len(found) >= 5
     assert any("text" in c.other for c in found) and any("Arrow" in c.other for c in found)
+
+
+def test_labels_with_no_free_place_are_set_clear_of_each_other() -> None:
+    """Twelve labels of one point in a mesh of lines 2 mm apart, where every place touches a line (set out with a
+    leader from the start, as ``place`` does a point among many): each is put clear of the others (before: all
+    twelve at one place, on top of each other), and said to be crowded."""
+    from shapely.geometry import box
+
+    mesh = [Line(((x, 0.0), (x, 200.0)), Stroke()) for x in range(0, 201, 2)]
+    hard = [g for line in mesh for g in labels.item_pieces(line)]
+    placer = labels.Placer((0.0, 0.0, 200.0, 200.0), hard, [], labels._Placed())
+    texts = []
+    for k in range(12):
+        items = placer.at_point((100.0, 100.0), plain_runs(f"p{k}", 2.6), role=f"tip p{k}", far=True)
+        texts.append(items[-1])
+    boxes = [box(*t.box).buffer(labels.CLEARANCE_MM / 2, join_style="mitre") for t in texts if isinstance(t, Text)]
+    assert len(boxes) == 12
+    assert not [(i, j) for i in range(12) for j in range(i) if boxes[i].intersects(boxes[j])]
+    assert placer.crowded == placer.set_out == [f"tip p{k}" for k in range(12)]

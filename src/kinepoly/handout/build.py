@@ -150,10 +150,11 @@ def _choose(solution: Solution, say: Catalogue, size: tuple[float, float],
 
 
 def crowded_labels(solution: Solution, frame: Frame) -> int:
-    """How many labels of the whole drawing find no free place on ``frame``. They stay placed for its pages:
-    each page shows a label where the whole drawing has it and places only those that differ."""
+    """How many labels of the whole drawing find no free place near their point on ``frame`` (set out further with
+    a leader, or crowded: ``render.labels.LabelCache.set_out``). They stay placed for its pages: each page shows a
+    label where the whole drawing has it and places only those that differ."""
     build_sheet(solution, frame.paper, layout=frame.layout, labels=frame.labels, title_block=False)
-    return len(frame.labels.crowded)
+    return len(frame.labels.set_out)
 
 
 def _note_items(frame: Frame, notes: tuple[str, ...]) -> list[Item]:

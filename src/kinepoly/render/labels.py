@@ -4,7 +4,11 @@ A label is tried at candidate places nearest its anchor first: around a point, o
 arrow's shaft. A place is taken only when the label's box, grown by a small clearance, touches
 no drawn stroke, arrow, circle or label and lies inside the label's region. Light shading
 (plates, image triangles) is avoided when possible and allowed when not. When every near place
-is taken, the label goes further out with a thin leader line back to its anchor.
+is taken, the label goes further out with a thin leader line back to its anchor. Where no place within
+reach is free of the drawing (many tips and short vectors in a small spot of a polygon), the label is
+still kept clear of every other label: it takes the place, near or out on a leader (from its point, or
+from a point along its vector's shaft), under which the least ink lies, and counts as crowded when that
+is not none.
 """
 
 from __future__ import annotations
@@ -20,6 +24,8 @@ from kinepoly.render.primitives import Arrow, Circle, Item, Path, Stroke, Text, 
 from kinepoly.render.text import Run, runs_box, text_width
 
 if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
     from shapely.geometry.base import BaseGeometry
 
 __all__ = ["BACKGROUND_ROLES", "CLEARANCE_MM", "FEW", "LEADER", "LabelCache", "Placer", "Request", "draft_place",
@@ -39,6 +45,12 @@ _DIRECTIONS_DEG = (45, 135, -45, -135, 0, 180, 90, -90, 22.5, 157.5, -22.5, -157
 _DIRECTIONS = tuple((math.cos(math.radians(angle)), math.sin(math.radians(angle))) for angle in _DIRECTIONS_DEG)
 _ALONG_T = (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85)
 """Where along a vector's shaft its label is tried, the middle first."""
+_FURTHEST_RINGS_MM = (50.0, 62.0, 76.0, 92.0, 110.0)
+"""Where no place within the far rings is clear of the other labels: further out, a longer leader (the region bounds
+them)."""
+_LEADER_INK_MM2 = 0.02
+"""Where every place within reach lies on something drawn: how much ink under a label (mm²) one mm less of leader
+is worth (``Placer._least_inked``)."""
 _FAR_RING_GROUPS = (_FAR_RINGS_MM[:2], _FAR_RINGS_MM[2:4], _FAR_RINGS_MM[4:])
 """The far rings in the groups tested together: a label that finds a place near stops the search there."""
 _SEARCH_BUDGET = 1000
@@ -231,6 +243,22 @@ class _Placed:
                         return True
         return False
 
+    def near(self, bounds: Box, distance: float = 0.0) -> list[int]:
+        """The indexes of the placed geometries whose bounds come within ``distance`` of ``bounds``; counted in
+        ``scanned`` as looked at."""
+        x0, y0, x1, y1 = bounds[0] - distance, bounds[1] - distance, bounds[2] + distance, bounds[3] + distance
+        found: set[int] = set()
+        for key in self._keys((x0, y0, x1, y1)):
+            for index in self._cells.get(key, ()):
+                b = self._bounds[index]
+                if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0:
+                    found.add(index)
+        self.scanned += len(found)
+        return sorted(found)
+
+    def is_leader(self, index: int) -> bool:
+        return index in self._leaders
+
     def __len__(self) -> int:
         return len(self.geometries)
 
@@ -262,6 +290,9 @@ class Placer:
         self._start = 0
         self.crowded: list[str] = []
         """The roles of labels put where they touch something: no free place was within reach."""
+        self.set_out: list[str] = []
+        """The roles of labels that found no free place within reach of their anchor (``_far``'s last resorts):
+        the crowded ones, and those set clear of the other labels where a little ink, or none, lies under them."""
 
     def _inside(self, b: Box) -> bool:
         x0, y0, x1, y1 = self.region
@@ -333,7 +364,13 @@ class Placer:
         return None
 
     def _far(self, runs: tuple[Run, ...], color: str, role: str, anchor: Point, bold: bool,
-             size: tuple[float, float], shift: Point, optional: bool = False) -> list[Item]:
+             size: tuple[float, float], shift: Point, optional: bool = False, near: Sequence[Box] = (),
+             feet: Sequence[Point] = ()) -> list[Item]:
+        """The label set out from ``anchor`` with a leader, at the nearest place free of everything; where there is
+        none, at the place clear of every other label that the least ink drawn lies under (``_least_inked``): one
+        of ``near`` (the places beside the anchor, without a leader) or one out from ``anchor`` or from one of
+        ``feet`` (further points the label may name: along a vector's shaft), its leader from there."""
+        import numpy as np
         from shapely.geometry import LineString
 
         def leader_to(b: Box) -> Any:
@@ -366,10 +403,76 @@ class Placer:
                 return self._accept(b, runs, color, role, anchor, bold, leader)
         if optional:
             return []
-        # Nowhere free within reach: keep the nearest place inside the region (the overlap test reports it).
+        # Nowhere free within reach of the anchor: the place clear of the other labels with the least ink under it,
+        # out from the anchor or from a foot; one on ink counts as crowded.
+        self.set_out.append(role)
+        boxes, leaders = _set_out_places((anchor, *feet), size, shift)
+        choice = self._least_inked(np.concatenate([np.asarray(near, dtype=float).reshape(-1, 4), boxes]),
+                                   np.concatenate([np.full(len(near), None, dtype=object), leaders]))
+        if choice is not None:
+            if choice[2]:
+                self.crowded.append(role)
+            return self._accept(choice[0], runs, color, role, anchor, bold, choice[1])
+        # Not even that within the search's budget: the nearest place inside the region (the overlap test reports it).
         self.crowded.append(role)
         b = _inside_of(_pushed_box(anchor, (1.0, 0.0), size, _RINGS_MM[0]), self.region)
         return self._accept(b, runs, color, role, anchor, bold)
+
+    def _least_inked(self, b: npt.NDArray[np.float64],
+                     leaders: npt.NDArray[np.object_]) -> tuple[Box, Any, bool] | None:
+        """Of the boxes ``b`` (n x 4), each with its leader (None: beside the anchor), the one inside the region
+        whose clearance touches no placed label nor leader, whose leader keeps clear of every label, and under which
+        the least ink lies (about the area of what is drawn within its clearance; a leader's length weighs
+        ``_LEADER_INK_MM2`` per mm): a label crowded by lines stays readable and apart from the other labels. With
+        it, its leader and whether the box itself (its clearance aside) touches anything drawn. None when the search
+        has spent its budget already.
+
+        The boxes and leaders are tested all at once, against the placed geometries near them (``_Placed.near``)."""
+        import numpy as np
+        import shapely
+
+        if self._spent():
+            return None
+        x0, y0, x1, y1 = self.region
+        inside = (b[:, 0] >= x0) & (b[:, 1] >= y0) & (b[:, 2] <= x1) & (b[:, 3] <= y1)
+        b, leaders = b[inside], leaders[inside]
+        if not len(b):
+            return None
+        c = CLEARANCE_MM
+        grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
+        lined = leaders != None  # noqa: E711 (elementwise)
+        reach = LEADER.width / 2 + CLEARANCE_MM
+        ok = np.ones(len(b), dtype=bool)
+        e0, e1, e2, e3 = (float(v) for v in shapely.total_bounds(np.concatenate([grown, leaders[lined]])))
+        near = self._placed.near((e0, e1, e2, e3), reach)
+        if near:  # clear of the placed labels and leaders, and its leader clear of the placed labels
+            placed = shapely.STRtree([self._placed.geometries[i] for i in near])
+            ok[placed.query(grown, predicate="intersects")[0]] = False
+            labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
+            tested = np.flatnonzero(ok & lined)
+            if len(tested) and labels:
+                crossed = shapely.STRtree(labels).query(leaders[tested], predicate="dwithin", distance=reach)[0]
+                ok[tested[crossed]] = False
+        b, leaders, grown, lined = b[ok], leaders[ok], grown[ok], lined[ok]
+        if not len(b):
+            return None
+        ink = np.zeros(len(b))
+        which, hit = self._hard_tree.query(grown, predicate="intersects")
+        if len(which):  # each piece's area times the share of its bounds the box covers: cheap, and near enough
+            pieces = np.asarray(self._hard, dtype=object)[hit]
+            bounds = shapely.bounds(pieces)
+            g = b[which]
+            wide = np.minimum(g[:, 2] + c, bounds[:, 2]) - np.maximum(g[:, 0] - c, bounds[:, 0])
+            high = np.minimum(g[:, 3] + c, bounds[:, 3]) - np.maximum(g[:, 1] - c, bounds[:, 1])
+            spans = np.maximum(bounds[:, 2] - bounds[:, 0], 1e-9) * np.maximum(bounds[:, 3] - bounds[:, 1], 1e-9)
+            share = np.clip(wide, 0.0, None) * np.clip(high, 0.0, None) / spans
+            np.add.at(ink, which, shapely.area(pieces) * np.minimum(share, 1.0))
+        length = np.zeros(len(b))
+        length[lined] = shapely.length(leaders[lined])
+        k = int(np.argmin(ink + _LEADER_INK_MM2 * length))  # the first of the least
+        box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
+        on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(shapely.box(*box), predicate="intersects")))
+        return box, leaders[k], on_ink
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
                  bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False,
@@ -385,7 +488,7 @@ class Placer:
                                             for u in _DIRECTIONS), self._candidates))
         found = None if far else self._near(candidates)
         if found is None:
-            items = self._far(runs, color, role, anchor, bold, outer, (0.0, 0.0), optional)
+            items = self._far(runs, color, role, anchor, bold, outer, (0.0, 0.0), optional, () if far else candidates)
             if not items:
                 return []
             corner = _box_of(items)
@@ -418,7 +521,31 @@ class Placer:
         found = self._near(candidates)
         if found is not None:
             return self._accept(found, runs, color, role, _mid(start, end), False)
-        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0))
+        feet = [(start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])) for t in _ALONG_T[1:]]
+        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0), near=candidates, feet=feet)
+
+
+def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
+                    shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
+    """The places a label of ``size`` set out is tried at: on every far ring (``_FAR_RINGS_MM``, then
+    ``_FURTHEST_RINGS_MM``) round each of ``feet``, each with its leader as ``Placer._far`` draws it (from the foot,
+    moved by ``shift``, to 0.3 mm short of the box's nearest point; None within 0.6 mm of the foot). The boxes
+    (n x 4) and the leaders."""
+    import numpy as np
+    import shapely
+
+    rings = _FAR_RINGS_MM + _FURTHEST_RINGS_MM
+    offsets = np.array([_pushed_box((0.0, 0.0), direction, size, ring) for ring in rings for direction in _DIRECTIONS])
+    foot = np.repeat(np.asarray(feet, dtype=float), len(offsets), axis=0)
+    boxes = np.tile(offsets, (len(feet), 1)) + np.hstack([foot, foot])
+    nearest = np.clip(foot, boxes[:, :2], boxes[:, 2:])
+    length = np.hypot(*(nearest - foot).T)
+    drawn = length > 0.6
+    leaders = np.full(len(boxes), None, dtype=object)
+    k = ((length[drawn] - 0.3) / length[drawn])[:, None]
+    ends = foot[drawn] + k * (nearest[drawn] - foot[drawn])
+    leaders[drawn] = shapely.linestrings(np.stack([foot[drawn] + np.asarray(shift), ends], axis=1))
+    return boxes, leaders
 
 
 def _inside_of(b: Box, region: Box) -> Box:
@@ -463,12 +590,17 @@ class LabelCache:
         self._fitted: dict[Request, Request] = {}
         self.parts: dict[Any, Any] = {}
         """The items and label requests of the parts that the sheets draw alike (``render.sheet.build_sheet``)."""
-        self._regions: dict[tuple[Any, ...], tuple[list[Placed], list[str]]] = {}
+        self._regions: dict[tuple[Any, ...], tuple[list[Placed], list[str], list[str]]] = {}
         self._last: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
         self._widest: dict[Box, tuple[dict[Request, list[Placed]], frozenset[Item]]] = {}
         """Per region, the placement on the sheet with the most drawing there (a handout's whole drawing)."""
         self.crowded: set[str] = set()
-        """The roles of the labels that found no free place on any sheet placed with this cache."""
+        """The roles of the labels that found no free place on any sheet placed with this cache: put where they lie
+        on something drawn."""
+        self.set_out: set[str] = set()
+        """The roles of the labels that found no free place near their anchor on any sheet placed with this cache
+        (``Placer.set_out``): the crowded ones and those set clear of everything further out. How crowded a polygon's
+        points are, whatever the paper (``render.sheet.crowded``)."""
 
     def fitted(self, request: Request) -> Request:
         """The request wrapped to its region (``_fitted``), made once."""
@@ -557,8 +689,9 @@ _FEW = FEW
 
 
 def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], near: Sequence[Item],
-                  shared: _Placed) -> tuple[list[Placed], list[str]]:
-    """The region's labels: those kept from the sheet before, then the others placed one after another.
+                  shared: _Placed) -> tuple[list[Placed], list[str], list[str]]:
+    """The region's labels: those kept from the sheet before, then the others placed one after another; with the
+    roles crowded and set out (``Placer``).
 
     Where some label finds no free place (the labels around a crowded spot closed every way out),
     the region is placed again with those labels first, while that helps.
@@ -571,9 +704,9 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
             base.add(entry)
         hard = [g for item in near for g in cache.pieces(item)]
         soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
-        placed, crowded = _tries(region, requests, order, kept, hard, soft, base)
+        placed, crowded, set_out = _tries(region, requests, order, kept, hard, soft, base)
     else:
-        placed, crowded = [kept[k] for k in range(len(requests))], []
+        placed, crowded, set_out = [kept[k] for k in range(len(requests))], [], []
     for entry in placed:
         shared.add(entry)
     by_request: dict[Request, list[Placed]] = {}
@@ -584,22 +717,22 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
     widest = cache._widest.get(region)
     if widest is None or (len(drawn) >= len(widest[1]) and drawn.issuperset(widest[1])):
         cache._widest[region] = (by_request, drawn)
-    return placed, crowded
+    return placed, crowded, set_out
 
 
 def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dict[int, Placed], hard: list[Any],
-           soft: list[Any], base: _Placed) -> tuple[list[Placed], list[str]]:
+           soft: list[Any], base: _Placed) -> tuple[list[Placed], list[str], list[str]]:
     """The best of up to ``_TRIES`` placements of the requests not kept, each with the labels that found no free
-    place before moved to the front."""
-    best: tuple[list[Placed], list[str]] | None = None
+    place before (``Placer.set_out``) moved to the front; its labels, the roles crowded and the roles set out."""
+    best: tuple[list[Placed], list[str], list[str]] | None = None
     for _ in range(_TRIES):
-        placed, crowded = _attempt(region, requests, order, kept, hard, soft, base.copy())
-        if best is not None and len(crowded) >= len(best[1]):
-            break  # moving the crowded labels first did not help
-        best = (placed, crowded)
-        if not crowded or len(crowded) > _FEW:
-            break  # none crowded, or so many that the polygon's own points crowd: moving them first cannot help
-        first = [k for k in order if requests[k].role in crowded]
+        placed, crowded, set_out = _attempt(region, requests, order, kept, hard, soft, base.copy())
+        if best is not None and len(set_out) >= len(best[2]):
+            break  # moving the labels set out first did not help
+        best = (placed, crowded, set_out)
+        if not set_out or len(set_out) > _FEW:
+            break  # none set out, or so many that the polygon's own points crowd: moving them first cannot help
+        first = [k for k in order if requests[k].role in set_out]
         order = first + [k for k in order if k not in first]
     assert best is not None
     return best
@@ -630,8 +763,9 @@ def _crowd(requests: Sequence[Request]) -> set[int]:
 
 
 def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kept: dict[int, Placed],
-             hard: list[Any], soft: list[Any], placed_so_far: _Placed) -> tuple[list[Placed], list[str]]:
-    """One placement of the requests not kept, in ``order``; every request's label and the roles crowded."""
+             hard: list[Any], soft: list[Any], placed_so_far: _Placed) -> tuple[list[Placed], list[str], list[str]]:
+    """One placement of the requests not kept, in ``order``; every request's label, the roles crowded and the roles
+    set out (``Placer.set_out``)."""
     placer = Placer(region, hard, soft, placed_so_far)
     out: dict[int, Placed] = dict(kept)
     crowd = _crowd(requests)
@@ -644,7 +778,7 @@ def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kep
         else:
             items = placer.along(request.anchor, request.end, request.runs, request.color, request.role)
         out[k] = (request.layer, items, placed_so_far.geometries[before:], placed_so_far._bounds[before:])
-    return [out[k] for k in range(len(requests))], placer.crowded
+    return [out[k] for k in range(len(requests))], placer.crowded, placer.set_out
 
 
 _WRAP_MM = 40.0
@@ -725,6 +859,7 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
         if found is not None:
             results[region] = found[0]
             cache.crowded.update(found[1])
+            cache.set_out.update(found[2])
             if any(_near_region(other, region, margin) for other in by_region if other != region):
                 for entry in found[0]:
                     shared.add(entry)
@@ -732,15 +867,16 @@ def place(requests: Sequence[Request], drawn: Iterable[Item], cache: LabelCache 
     for region, reqs in by_region.items():
         if region in results:
             continue
-        placed, crowded = _place_region(cache, region, reqs, near[region], shared)
+        placed, crowded, set_out = _place_region(cache, region, reqs, near[region], shared)
         results[region] = placed
         cache.crowded.update(crowded)
+        cache.set_out.update(set_out)
         own = [g for _, _, geometries, _ in placed for g in geometries]
         mine = {id(g) for g in own}
         if all(_well_inside(b, region, margin) for _, _, _, boxes in placed for b in boxes) and \
                 not any(_near_region(b, region, margin) for g, b in zip(shared.geometries, shared._bounds, strict=True)
                         if id(g) not in mine):
-            cache._regions[keys[region]] = (placed, crowded)
+            cache._regions[keys[region]] = (placed, crowded, set_out)
     out: dict[str, list[Item]] = {}
     counters = dict.fromkeys(results, 0)
     for request in ordered:  # the layers' items in the order of the requests
@@ -760,6 +896,7 @@ class _DraftPlacer(Placer):
         self.region = region
         self._placed = _Placed()
         self.crowded = []
+        self.set_out = []
 
     def _near(self, candidates: Sequence[Box]) -> Box | None:
         return candidates[0]

@@ -163,9 +163,10 @@ def _keeps_scales(layout: Layout) -> bool:
 
 
 def crowded(solution: Solution, layout: Layout) -> int:
-    """How many labels of the whole drawing on ``layout`` find no free place (they stay placed for its sheets)."""
+    """How many labels of the whole drawing on ``layout`` find no free place near their point (they stay placed
+    for its sheets): set out further with a leader, or crowded (``render.labels.LabelCache.set_out``)."""
     build_sheet(solution, (layout.width, layout.height), layout=layout)
-    return len(layout.labels.crowded)
+    return len(layout.labels.set_out)
 
 
 def roomy(solution: Solution, layout: Layout) -> bool:
