@@ -76,6 +76,9 @@ class Positions:
     """Each spline cam's contact parameter on its profile at every row."""
     _points: dict[str, Points] = field(default_factory=dict)
     _turned: dict[tuple[str, str], tuple[Points, Points]] = field(default_factory=dict)
+    _chords: dict[int, tuple[str, str]] = field(default_factory=dict, init=False)
+    """Each turned chord made (``chord``), by the array's identity (the chord is kept, so the identity is its own)."""
+    _products: dict[tuple[tuple[str, str], tuple[str, str]], Points] = field(default_factory=dict, init=False)
 
     @property
     def n(self) -> int:
@@ -105,6 +108,22 @@ class Positions:
             return turned[key]
         r: Points = self.point(end) - self.point(start)
         found = turned[key] = (r, 1j * r)
+        self._chords[id(found[1])] = key
+        return found
+
+    def chord_product(self, first: Points, second: Points) -> Points | None:
+        """conj(first) * second where both are turned chords made here (``chord``): its imaginary part their cross
+        product, its real part their dot product; made once, for the velocity and acceleration polygons' crossing
+        of the same two lines and the transmission angle between them alike (None for other directions)."""
+        chords = self._chords
+        a, b = chords.get(id(first)), chords.get(id(second))
+        if a is None or b is None:
+            return None
+        key = (a, b)
+        products = self._products
+        if key in products:
+            return products[key]
+        found = products[key] = first.conjugate() * second
         return found
 
     def world(self, link: str, point: str) -> Points:
