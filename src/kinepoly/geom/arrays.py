@@ -122,9 +122,10 @@ def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) 
     a = (d * d + (r1 - r2) * (r1 + r2)) * (0.5 * inverse)
     slack = (r1 - a) * (r1 + a)
     h = np.sqrt(np.maximum(slack, 0.0))
-    base = c1 + d_vec * (a * inverse)  # the foot on c1c2; real factors before the one complex product
+    base = np.asarray(c1 + d_vec * (a * inverse))  # the foot on c1c2; real factors before the one complex product
     offset = (1j * d_vec) * (h * inverse)
-    return np.asarray(base + offset), np.asarray(base - offset), slack, d, h
+    left = np.asarray(base + offset)
+    return left, np.subtract(base, offset, out=base), slack, d, h  # the foot, a new array, made the right point
 
 
 def circle_line(center: PointsLike, radius: Reals | float, through: PointsLike,
