@@ -3,6 +3,7 @@ while the executor works, ``Positions`` when it is done)."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
@@ -76,6 +77,11 @@ class Positions:
     """Each spline cam's contact parameter on its profile at every row."""
     _points: dict[str, Points] = field(default_factory=dict)
     _turned: dict[tuple[str, str], tuple[Points, Points]] = field(default_factory=dict)
+    _chords: dict[int, tuple[str, str]] = field(default_factory=dict, init=False)
+    """Each turned chord made (``chord``), by the array's identity (the chord is kept, so the identity is its own)."""
+    _products: dict[tuple[tuple[str, str], tuple[str, str]], Points] = field(default_factory=dict, init=False)
+    _origin: set[str] = field(default_factory=set, init=False)
+    """The points found (``point``) at the frame's origin, 0 + 0i with both zeros positive, at every row."""
 
     @property
     def n(self) -> int:
@@ -92,7 +98,11 @@ class Positions:
                 break
         else:
             raise StopIteration(name)
-        found = points[name] = poses[place[0]].world_at(place[1])
+        pose, at = poses[place[0]], place[1]
+        found = points[name] = pose.world_at(at)
+        if pose.still and isinstance(at, complex) and at == 0 and math.copysign(1.0, at.real) > 0.0 \
+                and math.copysign(1.0, at.imag) > 0.0:
+            self._origin.add(name)
         return found
 
     def chord(self, start: str, end: str) -> tuple[Points, Points]:
@@ -103,8 +113,25 @@ class Positions:
         turned = self._turned
         if key in turned:
             return turned[key]
-        r: Points = self.point(end) - self.point(start)
+        at, start_at = self.point(end), self.point(start)
+        r: Points = at if start in self._origin else at - start_at  # x - (+0) is x, bit for bit (-0 too)
         found = turned[key] = (r, 1j * r)
+        self._chords[id(found[1])] = key
+        return found
+
+    def chord_product(self, first: Points, second: Points) -> Points | None:
+        """conj(first) * second where both are turned chords made here (``chord``): its imaginary part their cross
+        product, its real part their dot product; made once, for the velocity and acceleration polygons' crossing
+        of the same two lines and the transmission angle between them alike (None for other directions)."""
+        chords = self._chords
+        a, b = chords.get(id(first)), chords.get(id(second))
+        if a is None or b is None:
+            return None
+        key = (a, b)
+        products = self._products
+        if key in products:
+            return products[key]
+        found = products[key] = first.conjugate() * second
         return found
 
     def world(self, link: str, point: str) -> Points:

@@ -428,7 +428,13 @@ class Polygon:
                     labels: tuple[str, str] = ("", "")) -> Crossing:
         """Cross two direction lines (through, direction, the direction's length if known) and keep
         how well they cross; a strict polygon raises ``SingularityError`` where they are parallel."""
-        crossing = self.crossing(first[0], first[1], second[0], second[1], first[2], second[2])
+        d1, d2 = first[1], second[1]
+        if self.crossing is cross_lines and not isinstance(d1, complex) and not isinstance(d2, complex):
+            # lines square to two chords: their product is made once for both polygons (``Positions.chord_product``)
+            crossing = cross_lines(first[0], d1, second[0], d2, first[2], second[2],
+                                   self.positions.chord_product(d1, d2))
+        else:
+            crossing = self.crossing(first[0], first[1], second[0], second[1], first[2], second[2])
         self.crossings.append(LineCrossing(self.kind, group, what, crossing.sin_angle, crossing.along_first))
         if self.strict and not abs(float(crossing.sin_angle[0])) > PARALLEL_SIN:
             where = f"of group {group} at {describe_input(self.mechanism)}"

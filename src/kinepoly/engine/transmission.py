@@ -52,6 +52,11 @@ class Transmission:
         return math.degrees(float(self.angle[0]))
 
 
+_CLEAR = 1e-150
+"""Where the cross or the dot product of the two directions is at least this (and finite) at every row, both
+directions have a length there, and the product of the lengths does not round to zero (it is at least half
+this): the angle needs no row's directions measured."""
+
 Way = tuple[str, str] | SliderSpec
 """How a direction line of a dyad runs: square to the chord from one point to another of a link (``Positions.chord``,
 the direction its velocity construction drew), or along a slide (``slide_direction``)."""
@@ -83,8 +88,14 @@ class TransmissionPair:
         link in one place) is taken as 90 degrees.
         """
         first, second = _direction(positions, self.first), _direction(positions, self.second)
-        product = np.conjugate(first) * second  # its imaginary part the cross product, its real part the dot
-        turn = np.arctan2(np.abs(product.imag), np.abs(product.real))
+        product = positions.chord_product(first, second)  # made for the polygons' crossing of these lines
+        if product is None:
+            product = np.conjugate(first) * second  # its imaginary part the cross product, its real part the dot
+        across, along = np.abs(product.imag), np.abs(product.real)
+        turn = np.arctan2(across, along)
+        if (np.minimum.reduce(across) >= _CLEAR or np.minimum.reduce(along) >= _CLEAR) \
+                and math.isfinite(np.add.reduce(across) + np.add.reduce(along)):
+            return turn  # every direction has a length: no row is taken as 90 degrees
         return np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
 
 

@@ -75,32 +75,36 @@ class Crossing:
     point: Points
     sin_angle: Reals
     along_first: Reals
-    offset: Points
+    offset_conjugate: Points
+    """The conjugate of through2 - through1 (the first line's point to the second's)."""
     direction1: PointsLike
     w: Reals
 
     def along_second(self) -> Reals:
         """through2 + along_second * direction2 is the same point."""
-        return np.asarray((self.offset.conjugate() * self.direction1).imag / self.w)  # cross(offset, direction1)
+        return np.asarray((self.offset_conjugate * self.direction1).imag / self.w)  # cross(offset, direction1)
 
 
 def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLike, direction2: PointsLike,
-                length1: float | None = None, length2: float | None = None) -> Crossing:
+                length1: float | None = None, length2: float | None = None,
+                product: Points | None = None) -> Crossing:
     """Cross line 1 (through1, direction1) with line 2, in homogeneous coordinates relative to through1.
 
     With the first line l1 = (-d1y, d1x, 0) through the local origin and the second
     l2 = (-d2y, d2x, c2) through the offset o = through2 - through1, c2 = -(-d2y ox + d2x oy),
     the crossing l1 x l2 is (d1x c2, d1y c2, w) with w = d1 x d2: the point through1 + d1 c2 / w.
     ``length1``, ``length2``: the directions' lengths where the caller knows them (a link's
-    length, 1 for a slide), else they are measured.
+    length, 1 for a slide), else they are measured. ``product``: conj(direction1) * direction2
+    where the caller has it (its imaginary part is w).
     """
-    offset = through2 - through1
-    c2 = (offset.conjugate() * direction2).imag  # cross(offset, direction2), cross(direction1, direction2)
-    w = np.asarray((direction1.conjugate() * direction2).imag)
+    offset = np.asarray(through2 - through1)
+    offset_conjugate = np.conjugate(offset, out=offset)  # a new array: conjugated where it is
+    c2 = (offset_conjugate * direction2).imag  # cross(offset, direction2), cross(direction1, direction2)
+    w = np.asarray((direction1.conjugate() * direction2 if product is None else product).imag)
     norm1 = length(direction1) if length1 is None else length1
     norm2 = length(direction2) if length2 is None else length2
     along = c2 / w
-    return Crossing(np.asarray(through1 + direction1 * along), w / (norm1 * norm2), along, np.asarray(offset),
+    return Crossing(np.asarray(through1 + direction1 * along), w / (norm1 * norm2), along, offset_conjugate,
                     direction1, w)
 
 
@@ -118,9 +122,10 @@ def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) 
     a = (d * d + (r1 - r2) * (r1 + r2)) * (0.5 * inverse)
     slack = (r1 - a) * (r1 + a)
     h = np.sqrt(np.maximum(slack, 0.0))
-    base = c1 + d_vec * (a * inverse)  # the foot on c1c2; real factors before the one complex product
+    base = np.asarray(c1 + d_vec * (a * inverse))  # the foot on c1c2; real factors before the one complex product
     offset = (1j * d_vec) * (h * inverse)
-    return np.asarray(base + offset), np.asarray(base - offset), slack, d, h
+    left = np.asarray(base + offset)
+    return left, np.subtract(base, offset, out=base), slack, d, h  # the foot, a new array, made the right point
 
 
 def circle_line(center: PointsLike, radius: Reals | float, through: PointsLike,

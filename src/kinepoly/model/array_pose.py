@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -62,6 +62,9 @@ class ArrayPose:
     rotation: Points
     still: bool = False
     """The frame itself: world = local at every row."""
+    _found: dict[tuple[float, float, float, float], Points] = field(default_factory=dict, init=False, compare=False)
+    """``world_at`` of each point given as one number, made once (the closure that places a link and the
+    polygons that read its points share it: do not change it in place)."""
 
     def world(self, local: tuple[float, float]) -> Points:
         return self.world_at(local_point(local))
@@ -69,13 +72,20 @@ class ArrayPose:
     def world_at(self, at: complex) -> Points:
         """``world`` of a point given as x + iy (``local_point``): one number, or one per row in a family."""
         if isinstance(at, complex):
+            if at == 0 and not self.still:
+                return self.origin
+            key = (at.real, at.imag, math.copysign(1.0, at.real), math.copysign(1.0, at.imag))  # -0.0 is not 0.0
+            found = self._found
+            if key in found:
+                return found[key]
             if self.still:
                 out = np.empty(len(self.origin), np.complex128)
                 out.fill(at)
-                return out
-            if at == 0:
-                return self.origin
-        elif self.still:
+            else:
+                out = self.origin + self.rotation * at
+            found[key] = out
+            return out
+        if self.still:
             return at
         return self.origin + self.rotation * at
 

@@ -514,7 +514,7 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
             out.add(column, kind, values, valid)  # type: ignore[arg-type]
     for column, pair in layout.transmissions:
         angle = pair.radians(positions)
-        out.add(column, "transmission", np.degrees(angle) if layout.degrees else angle)
+        out.add(column, "transmission", np.degrees(angle, out=angle) if layout.degrees else angle)  # its own array
     if not every_ok and gaps:
         notices += gap_notices(grid, ok, name, input_unit(scene))
     _overflow_flags(flags, ok, out)
