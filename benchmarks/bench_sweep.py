@@ -9,9 +9,12 @@
 
 Every method computes the positions, velocities and accelerations of every moving point (A, B,
 and the coupler point C where the method has it) and the angles, omegas and alphas of links 3
-and 4. Times are the best of several runs (the slow ones run once); ratios are to the closed form
-measured in the same run, so that a loaded machine moves both. Agreement: the largest difference
-from the sweep over all rows, relative to the largest magnitude of that kind of quantity.
+and 4. Times are the best of several runs (the slow ones run once); the closed form and the sweep are
+called in turn, call after call, and ratios are to the closed form measured in the same run, so that a
+loaded machine moves both. The page faults per call are printed too: each new full-length array costs
+fresh pages where the C library has handed freed memory back, a steady count where times are not.
+Agreement: the largest difference from the sweep over all rows, relative to the largest magnitude of
+that kind of quantity.
 Three more figures tell what a sweep costs whatever its length: ``run_sweep`` over 36 rows (the
 Python that runs once per call, next to which the numpy passes over the rows hardly count)
 and ``prepare_sweep`` alone (the mechanism's indexes built on first use are not in it); and the
@@ -25,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import resource
 import sys
 import time
 from collections.abc import Callable
@@ -189,6 +193,23 @@ def best(run: Callable[[], Any], repeat: int) -> tuple[float, Any]:
     return min(times), out
 
 
+def interleaved(runs: dict[str, Callable[[], Any]], repeat: int) -> dict[str, tuple[float, float, Any]]:
+    """Each run called in turn, ``repeat`` times over, so that a machine whose load or clock changes slows them
+    alike: each one's best time, its page faults per call (the C library's fresh pages for new arrays: a count
+    that the machine's load does not move) and its last result."""
+    times: dict[str, list[float]] = {name: [] for name in runs}
+    faults = dict.fromkeys(runs, 0)
+    out: dict[str, Any] = {}
+    for _ in range(repeat):
+        for name, run in runs.items():
+            before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+            t = time.perf_counter()
+            out[name] = run()
+            times[name].append(time.perf_counter() - t)
+            faults[name] += resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before
+    return {name: (min(times[name]), faults[name] / repeat, out[name]) for name in runs}
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer repeats; the slow methods on 360 positions")
@@ -201,17 +222,16 @@ def main() -> int:
     for _ in range(20):  # warm up: imports, caches, the CPU's clock
         sweep(scene, steps=STEPS)
         closed_form(theta)
-    rounds = []
-    for _ in range(3):  # interleaved, so that a busy machine slows every method alike
-        t_closed, closed = best(lambda: closed_form(theta), repeat)
-        t_sweep, result = best(lambda: sweep(scene, steps=STEPS), repeat)
-        t_run, _ = best(lambda: run_sweep(prepared, steps=STEPS), repeat)
-        rounds.append((t_sweep / t_closed, t_run / t_closed, t_closed, t_sweep, t_run))
-    ratio_sweep, ratio_run, t_closed, t_sweep, t_run = min(rounds)
+    timed = interleaved({"closed": lambda: closed_form(theta), "sweep": lambda: sweep(scene, steps=STEPS),
+                         "run": lambda: run_sweep(prepared, steps=STEPS)}, 3 * repeat)
+    (t_closed, f_closed, closed), (t_sweep, f_sweep, result), (t_run, _, _) = (timed[k] for k in ("closed", "sweep",
+                                                                                                  "run"))
+    ratio_sweep, ratio_run = t_sweep / t_closed, t_run / t_closed
     # the cost per row apart from the Python run once per call: ten times the rows, both methods
     theta_long = np.radians(np.linspace(0.0, 360.0, LONG, endpoint=False))
-    t_closed_long, _ = best(lambda: closed_form(theta_long), max(5, repeat // 10))
-    t_sweep_long, _ = best(lambda: sweep(scene, steps=LONG), max(5, repeat // 10))
+    timed_long = interleaved({"closed": lambda: closed_form(theta_long), "sweep": lambda: sweep(scene, steps=LONG)},
+                             max(5, repeat // 2))
+    (t_closed_long, f_closed_long, _), (t_sweep_long, f_sweep_long, _) = timed_long["closed"], timed_long["sweep"]
     swept = from_sweep(result)
     assert np.array_equal(result.input.values, theta_deg)
     rows: list[tuple[str, float | None, str, float | None]] = [
@@ -255,7 +275,8 @@ def main() -> int:
     except Exception as error:  # noqa: BLE001
         rows.append((f"mechanism: {type(error).__name__}: {error}", None, "", None))
     print(f"four-bar of {SCENE.name}: positions, velocities and accelerations of A, B, C and links 3, 4 "
-          f"over {STEPS} positions of theta_2 (best of {repeat}; ratios to the closed form in the same run)")
+          f"over {STEPS} positions of theta_2 (the first three: best of {3 * repeat} calls each, called in turn; "
+          "ratios to the closed form in the same run)")
     print(f"{'method':62s} {'time':>11s} {'/closed':>9s} {'/sweep':>9s} {'agreement':>10s}")
     for name, seconds, _, agree in rows:
         if seconds is None:
@@ -268,6 +289,9 @@ def main() -> int:
           f"the sweep's own split: {result.timing}")
     print(f"over {LONG} positions: sweep {t_sweep_long * 1e3:.3f} ms, closed form {t_closed_long * 1e3:.3f} ms, "
           f"ratio {t_sweep_long / t_closed_long:.2f} (the cost per row, the Python run once per call spread thin)")
+    print(f"page faults per call (fresh pages of memory for new arrays; the machine's load does not move them): "
+          f"{STEPS} positions sweep {f_sweep:.0f}, closed form {f_closed:.0f}; {LONG} positions sweep "
+          f"{f_sweep_long:.0f}, closed form {f_closed_long:.0f}")
     return 0
 
 
