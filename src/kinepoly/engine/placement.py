@@ -3,7 +3,6 @@ while the executor works, ``Positions`` when it is done)."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
@@ -80,8 +79,6 @@ class Positions:
     _chords: dict[int, tuple[str, str]] = field(default_factory=dict, init=False)
     """Each turned chord made (``chord``), by the array's identity (the chord is kept, so the identity is its own)."""
     _products: dict[tuple[tuple[str, str], tuple[str, str]], Points] = field(default_factory=dict, init=False)
-    _origin: set[str] = field(default_factory=set, init=False)
-    """The points found (``point``) at the frame's origin, 0 + 0i with both zeros positive, at every row."""
 
     @property
     def n(self) -> int:
@@ -93,16 +90,8 @@ class Positions:
         if name in points:
             return points[name]
         poses = self.poses
-        for place in self.mechanism.places_of(name):  # the first solved link that has it: (link, local)
-            if place[0] in poses:
-                break
-        else:
-            raise StopIteration(name)
-        pose, at = poses[place[0]], place[1]
-        found = points[name] = pose.world_at(at)
-        if pose.still and isinstance(at, complex) and at == 0 and math.copysign(1.0, at.real) > 0.0 \
-                and math.copysign(1.0, at.imag) > 0.0:
-            self._origin.add(name)
+        link, at = next(place for place in self.mechanism.places_of(name) if place[0] in poses)  # the first solved
+        found = points[name] = poses[link].world_at(at)
         return found
 
     def chord(self, start: str, end: str) -> tuple[Points, Points]:
@@ -113,8 +102,7 @@ class Positions:
         turned = self._turned
         if key in turned:
             return turned[key]
-        at, start_at = self.point(end), self.point(start)
-        r: Points = at if start in self._origin else at - start_at  # x - (+0) is x, bit for bit (-0 too)
+        r: Points = self.point(end) - self.point(start)
         found = turned[key] = (r, 1j * r)
         self._chords[id(found[1])] = key
         return found

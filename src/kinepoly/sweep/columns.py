@@ -4,9 +4,6 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from functools import partial
-from itertools import repeat
-from operator import getitem, is_not
 
 import numpy as np
 import numpy.typing as npt
@@ -21,9 +18,6 @@ __all__ = ["ColumnBuilder", "Raw"]
 Raw = tuple[str, Kind, Reals, Bools | None]
 """A column as a stage gives it: its name, kind, values at every row, and the rows where it has a value besides
 those the row's level allows (None: all of them)."""
-
-_column = partial(tuple.__new__, Column)
-"""``Column`` of its four fields as one tuple (``Column._make`` without its check of their count)."""
 
 
 @dataclass
@@ -84,11 +78,8 @@ class ColumnBuilder:
     def _plain(self, shown: Bools, every: bool) -> tuple[Column, ...] | None:
         """The columns where every row is ok and no column has rows of its own without a value: each column's shown
         values as they are, one mask for all (None where a column has such rows)."""
-        if not self.raw:
-            return ()
-        names, kinds, arrays, extras = zip(*self.raw, strict=True)
-        if any(map(is_not, extras, repeat(None))):
+        if any(extra is not None for _, _, _, extra in self.raw):
             return None
         everywhere = np.ones(len(shown) if every else np.count_nonzero(shown), np.bool_)
-        values = map(np.asarray, arrays if every else map(getitem, arrays, repeat(shown)), repeat(np.float64))
-        return tuple(map(_column, zip(names, kinds, values, repeat(everywhere))))
+        return tuple(Column(name, kind, np.asarray(values if every else values[shown], np.float64), everywhere)
+                     for name, kind, values, _ in self.raw)

@@ -361,9 +361,7 @@ def full_turn_grid(mechanism: Mechanism, steps: int) -> InputGrid | None:
     if full is None:
         return None
     _check_steps(steps)
-    # np.linspace(0, full, steps, endpoint=False), without its Python
-    grid = np.arange(steps, dtype=np.float64) * (full / steps)
-    values, mask, seed_row = _with_seed(grid, _seed_value(mechanism), True, full)
+    values, mask, seed_row = _with_seed(_even(0.0, full, steps, False), _seed_value(mechanism), True, full)
     return InputGrid(values, _internal(mechanism, values), mask, seed_row, True)
 
 
