@@ -1,7 +1,5 @@
 """``python -m kinepoly``."""
 
-import sys
+from kinepoly.cli import main_exit
 
-from kinepoly.cli import main
-
-sys.exit(main())
+main_exit()

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
+from msgspec import Struct, field
 
 from kinepoly.check import (
     AccuracyReport,
@@ -48,8 +48,7 @@ if TYPE_CHECKING:  # Aronhold-Kennedy's modules are loaded only for a scene that
 __all__ = ["Asked", "Inside", "SliderValues", "Solution", "needed_links", "solve", "wanted", "what_is_asked"]
 
 
-@dataclass(frozen=True)
-class Asked:
+class Asked(Struct, frozen=True):
     """What the scene asks, as (link, point) pairs and link names, planned backwards."""
 
     velocity: tuple[tuple[str, str], ...]
@@ -67,8 +66,7 @@ class Asked:
         return bool(self.acceleration or self.alpha)
 
 
-@dataclass(frozen=True)
-class Inside:
+class Inside(Struct, frozen=True):
     """The solve's own frames (``kinepoly.check.frame``): the localized mechanism and its pose.
 
     Differences of positions (slider values, the cross-check) are taken here, where every
@@ -80,8 +78,7 @@ class Inside:
     pose: Pose
 
 
-@dataclass(frozen=True, repr=False)
-class Solution:
+class Solution(Struct, frozen=True):
     """Everything ``kinepoly solve`` reports for one scene."""
 
     scene: Scene

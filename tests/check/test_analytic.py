@@ -10,12 +10,12 @@ from __future__ import annotations
 import cmath
 import math
 from collections.abc import Callable
-from dataclasses import replace
 
 import mpmath as mp
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from msgspec.structs import replace
 
 from kinepoly.check.analytic import AnalyticSolution, solve_analytic
 from kinepoly.errors import AssemblyError, SceneError, SingularityError

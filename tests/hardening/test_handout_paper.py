@@ -8,10 +8,10 @@ them anew on each page. The times are the benchmark's (benchmarks/scaling.py), n
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
+from msgspec.structs import replace
 from tests.scenes import EXAMPLES
 
 from kinepoly.bench.chain import chain_text

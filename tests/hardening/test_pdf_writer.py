@@ -12,12 +12,12 @@ import re
 import shutil
 import subprocess
 import zlib
-from dataclasses import replace
 from functools import cache
 from pathlib import Path
 from typing import Any
 
 import pytest
+from msgspec.structs import replace
 from tests.scenes import EXAMPLES
 
 import kinepoly

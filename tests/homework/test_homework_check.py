@@ -5,10 +5,10 @@ term changed, the input mistakes by solving a scene written with the mistaken in
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Any
 
+import msgspec
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -273,7 +273,7 @@ def test_instant_center_answers_while_none_are_computed_are_a_clear_error() -> N
     parsed = loads_answers("omega_3 = 1\nI_13 = [1, 2]\n", scene, "ana.toml")
     checker = make_checker(scene, [parsed])
     values = {k: v for k, v in checker.reference.values.items() if k.kind != "center"}
-    without = dataclasses.replace(checker, reference=dataclasses.replace(checker.reference, values=values,
+    without = msgspec.structs.replace(checker, reference=msgspec.structs.replace(checker.reference, values=values,
                                                                          has_centers=False))
     with pytest.raises(SceneError, match=r"ana.toml:2: I_13: this kinepoly does not compute instant centers yet"):
         check(parsed, without)

@@ -139,8 +139,7 @@ def test_the_family_weighs_the_assemblies_as_a_direct_solve_does(name: str, seed
     """From a pose of the other assembly of one dyad (its inner joint mirrored), a direct solve lands some draws
     there: the family leaves every such draw to the path of solves, and what it reaches itself is the direct
     solve's pose."""
-    import dataclasses
-
+    import msgspec
     import numpy as np
 
     scene = as_written(kinepoly.load_scene(EXAMPLES / f"{name}.toml"))
@@ -155,7 +154,7 @@ def test_the_family_weighs_the_assemblies_as_a_direct_solve_does(name: str, seed
     if not mirrored.ok[0]:
         return
     away = tuple((n, (float(mirrored.point(n)[0].real), float(mirrored.point(n)[0].imag))) for n, _ in family.guess)
-    weighed = dataclasses.replace(family, guess=away)
+    weighed = msgspec.structs.replace(family, guess=away)
     ranges = default_ranges(scene)
     ranges = Ranges({link: Range(0.95, 1.05) for link in ranges.factors}, ranges.inputs)
     rng = random.Random(seed)

@@ -4,11 +4,11 @@ with its numbers, through the catalogue; ``solve --steps``, the JSON and the dra
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import re
 from functools import cache
 
+import msgspec
 import pytest
 from tests.scenes import EXAMPLES, slider_crank
 
@@ -151,9 +151,9 @@ def test_the_rarer_topics_and_center_omegas_have_words(lang: str) -> None:
     say = load_catalogue(lang)
     four_bar, shaper = _solved("four-bar"), _solved("shaper")
     image = next(s for s in four_bar.steps if s.topic == "image")
-    _check_words(step_sentence(dataclasses.replace(image, topic="image-translating"), say, _context(four_bar)), say)
+    _check_words(step_sentence(msgspec.structs.replace(image, topic="image-translating"), say, _context(four_bar)), say)
     proportional = next(s for s in shaper.steps if s.topic == "proportional")
-    offset = dataclasses.replace(proportional, params=tuple((k, 0.25 if k == "height" else v)
+    offset = msgspec.structs.replace(proportional, params=tuple((k, 0.25 if k == "height" else v)
                                                             for k, v in proportional.params))
     sentence = step_sentence(offset, say, _context(shaper))
     _check_words(sentence, say)
@@ -161,7 +161,7 @@ def test_the_rarer_topics_and_center_omegas_have_words(lang: str) -> None:
     six_bar = _solved("centers-six-bar")
     assert six_bar.centers is not None
     ratio = next(o for o in six_bar.centers.omegas if o.how == "ratio")
-    same = dataclasses.replace(ratio, how="same", params=(("given", ratio.omega),))
+    same = msgspec.structs.replace(ratio, how="same", params=(("given", ratio.omega),))
     sentence = center_omega_sentence(same, say, _context(six_bar))
     _check_words(sentence, say)
     assert say.number(ratio.omega) in sentence
@@ -216,6 +216,6 @@ def test_solve_steps_and_the_json_say_the_english_sentences(name: str) -> None:
 
 def test_a_step_carries_no_words() -> None:
     """The steps are data only: no English written in the geometry."""
-    assert "text" not in {f.name for f in dataclasses.fields(Step)}
-    assert "text" not in {f.name for f in dataclasses.fields(KennedyStep)}
-    assert "text" not in {f.name for f in dataclasses.fields(CenterOmega)}
+    assert "text" not in {f.name for f in msgspec.structs.fields(Step)}
+    assert "text" not in {f.name for f in msgspec.structs.fields(KennedyStep)}
+    assert "text" not in {f.name for f in msgspec.structs.fields(CenterOmega)}

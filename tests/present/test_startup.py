@@ -4,6 +4,7 @@ instant centers' modules only for a scene that asks for centers, no drawing libr
 
 from __future__ import annotations
 
+import ast
 import json
 import os
 import subprocess
@@ -102,3 +103,17 @@ def test_a_later_solve_reads_the_catalogue_from_the_cache(tmp_path: Path) -> Non
     assert (tmp_path / "kinepoly" / "catalogue-en.marshal").is_file()
     later = _solve_modules(FOUR_BAR, "--json", XDG_CACHE_HOME=str(tmp_path))
     assert not {"importlib.resources", "tempfile"} & later
+
+
+def test_the_value_types_are_structs() -> None:
+    """No module of the package declares a dataclass (docs/architecture.md, "Value types"): making one compiles its
+    generated methods at import, which was the largest share of a solve's start."""
+    declaring = []
+    for path in sorted((ROOT / "src" / "kinepoly").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import | ast.ImportFrom):
+                names = [node.module or ""] if isinstance(node, ast.ImportFrom) else [a.name for a in node.names]
+                if "dataclasses" in names:
+                    declaring.append(str(path.relative_to(ROOT)))
+    assert not declaring
+    assert "dataclasses" not in _solve_modules(FOUR_BAR, "--json")

@@ -8,11 +8,11 @@ Each expectation is derived here from the solution (tips, positions, scales), no
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import re
 from functools import cache
 
+import msgspec
 import pytest
 from tests.scenes import EXAMPLES
 
@@ -61,7 +61,8 @@ def test_every_angle_is_printed_in_minus_180_to_180(name: str, lang: str) -> Non
 def test_an_image_angle_beyond_a_turn_is_its_equivalent(lang: str) -> None:
     solution, say = _solved("four-bar"), load_catalogue(lang)
     image = next(s for s in solution.steps if s.topic == "image")
-    turned = dataclasses.replace(image, params=tuple((k, -342.1 if k == "angle_first" else v) for k, v in image.params))
+    turned = msgspec.structs.replace(image, params=tuple((k, -342.1 if k == "angle_first" else v)
+                                                         for k, v in image.params))
     sentence = step_sentence(turned, say, _context(solution))
     assert f"{say.number(17.9)}°" in sentence and "342" not in sentence
 
@@ -100,7 +101,7 @@ def test_a_collinear_image_point_is_measured_off_on_its_line(lang: str) -> None:
 def test_each_side_of_a_collinear_point_has_its_words(lang: str, ratio: float, where: str) -> None:
     solution, say = _solved("shaper"), load_catalogue(lang)
     step = _collinear_steps(solution)[0]
-    moved = dataclasses.replace(step, params=tuple((k, ratio if k == "ratio" else 1e-13 if k == "height" else v)
+    moved = msgspec.structs.replace(step, params=tuple((k, ratio if k == "ratio" else 1e-13 if k == "height" else v)
                                                    for k, v in step.params))
     sentence = step_sentence(moved, say, _context(solution))
     first, second = (str(step.param(k)).partition("@")[0] for k in ("first", "second"))

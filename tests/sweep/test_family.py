@@ -410,7 +410,7 @@ def test_members_each_at_its_own_input_are_their_solves(name: str, seed: int, me
     """``member_placer``: member k with its own points and slide lines at its own input is the solve of its scene
     at that input, in the scene's own assembly (the solve's, from [guess] at the family's); flipped, its dyad in the
     other assembly."""
-    import dataclasses
+    import msgspec
 
     from kinepoly.engine.groups import Dyad
     from kinepoly.scene.spec import LinkInput
@@ -437,7 +437,7 @@ def test_members_each_at_its_own_input_are_their_solves(name: str, seed: int, me
         at = {n: complex(found.point(n)[k]) for n in names}
         member = dimensions.scene(scene, k)
         given = {"angle_rad": float(inputs[k])} if link_input else {"s": float(inputs[k])}
-        member = dataclasses.replace(member, input=dataclasses.replace(scene.input, **given),  # type: ignore[arg-type]
+        member = msgspec.structs.replace(member, input=msgspec.structs.replace(scene.input, **given),
                                      guess=tuple((n, (z.real, z.imag)) for n, z in at.items()))
         solved = kinepoly.solve(member)
         size = max(abs(z) for z in at.values())

@@ -13,7 +13,9 @@ from __future__ import annotations
 
 import math
 import random
-from dataclasses import dataclass, replace
+
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.scene.loader import loads_scene
 from kinepoly.scene.spec import InputSpec, LinkInput, Scene, SliderInput
@@ -41,8 +43,7 @@ def _xy(x: float, y: float, at: tuple[float, float]) -> str:
     return f"[{x + at[0]!r}, {y + at[1]!r}]"
 
 
-@dataclass(frozen=True)
-class Case:
+class Case(Struct, frozen=True):
     """A scene and what it is: its kind, and how far its input is from a dead point (rad; None: ordinary)."""
 
     kind: str

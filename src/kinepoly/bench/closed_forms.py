@@ -22,9 +22,9 @@ the assembly the solve took, and gives every link's motion for an array of input
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.bench.motion import LinkMotion
 from kinepoly.check.series import pin_between, slider_crank_links
@@ -39,8 +39,7 @@ Array = np.ndarray
 Pair = tuple[Array, Array]
 
 
-@dataclass(frozen=True)
-class ClosedForm:
+class ClosedForm(Struct, frozen=True):
     """A recognised standard mechanism: its name and its motion for an array of inputs."""
 
     name: str

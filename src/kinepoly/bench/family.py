@@ -15,10 +15,10 @@ from __future__ import annotations
 import math
 import random
 import time
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.bench.reference import reference_values
 from kinepoly.bench.run import bench_keys, kind_errors
@@ -37,8 +37,7 @@ CHECKED_ROWS = 5
 """How many rows of each of them (spread evenly over the rows that are ok)."""
 
 
-@dataclass(frozen=True)
-class FamilyBench:
+class FamilyBench(Struct, frozen=True):
     """What ``run_family`` measured: the times (seconds, the best of ``rounds``), the agreement of the family with
     the loop (largest difference relative to each column kind's largest value), and the family's largest error
     per quantity kind against the reference over the rows checked."""

@@ -26,8 +26,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
+
+from msgspec import Struct
 
 from kinepoly.geom.tolerances import PHASE_TOLERANCE
 from kinepoly.model.mechanism import Mechanism
@@ -96,8 +97,7 @@ def cam_row(mp: Any, mechanism: Mechanism, cam: CamSpec, q: list[Any], world: Wo
     return square_root(mp, _dot(gap, gap)) - reach
 
 
-@dataclass(frozen=True)
-class _Side:
+class _Side(Struct, frozen=True):
     """One gear of a pair in the reference: its link, its pitch circle or line, and the phase its rolled arc
     sigma is measured from (an angle for a circle, a distance along a rack's line)."""
 
@@ -106,8 +106,7 @@ class _Side:
     phase: float
 
 
-@dataclass(frozen=True)
-class GearRow:
+class GearRow(Struct, frozen=True):
     """One gear pair's rolling row: sigma_1 - c sigma_0 - constant, with the start pose's directions."""
 
     gear: GearSpec

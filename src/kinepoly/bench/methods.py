@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.bench.closed_forms import closed_form
 from kinepoly.bench.motion import LinkMotion, Trig, evaluate
@@ -43,8 +44,7 @@ Values = dict[str, Any]
 Guess = tuple[tuple[str, tuple[float, float]], ...]
 
 
-@dataclass(frozen=True)
-class Setting:
+class Setting(Struct, frozen=True):
     """What every method needs: the solved scene, its frame, the quantity keys and the input's size."""
 
     solution: Solution
@@ -74,8 +74,7 @@ class Setting:
         return 1.0
 
 
-@dataclass(frozen=True)
-class Method:
+class Method(Struct, frozen=True):
     """One method: ``compute`` does the timed work for an array of inputs; ``values`` reads position i.
 
     ``compute(ts, guesses)`` takes, for the methods that solve a position, one ``[guess]`` per input

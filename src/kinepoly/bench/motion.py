@@ -12,8 +12,9 @@ numpy arrays and mpmath numbers alike (``cos`` and ``sin`` are passed in):
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
+
+from msgspec import Struct
 
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.link_point import LinkPoint
@@ -26,16 +27,14 @@ Num = Any
 Pair = tuple[Num, Num]
 
 
-@dataclass(frozen=True)
-class Trig:
+class Trig(Struct, frozen=True):
     """The cosine and sine of the arithmetic in use (math, numpy or mpmath)."""
 
     cos: Callable[[Num], Num]
     sin: Callable[[Num], Num]
 
 
-@dataclass(frozen=True)
-class LinkMotion:
+class LinkMotion(Struct, frozen=True):
     """A link's pose (x, y, theta) in the solve's frame and its first and second time derivatives."""
 
     x: Num

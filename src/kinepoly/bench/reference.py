@@ -22,8 +22,9 @@ roundoff of doubles is still seen.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
+
+from msgspec import Struct
 
 from kinepoly.bench.higher_pairs import cam_row, gear_rows, replaced_links, square_root
 from kinepoly.bench.motion import LinkMotion, Trig, evaluate
@@ -42,8 +43,7 @@ _WORK_DIGITS = 80
 _NEWTON_STEPS = 40
 
 
-@dataclass(frozen=True)
-class Reference:
+class Reference(Struct, frozen=True):
     """Reference values (mpmath numbers or pairs of them) by quantity key, at one input ``t``."""
 
     t: Any

@@ -12,10 +12,10 @@ import math
 import statistics
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.bench.methods import Method, Setting, methods_for
 from kinepoly.bench.motion import quantity_kind
@@ -29,8 +29,7 @@ BATCH = 256
 """Positions per call for the methods that run over a batch."""
 
 
-@dataclass(frozen=True)
-class MethodResult:
+class MethodResult(Struct, frozen=True):
     """One method: its error (normwise relative, worst kind), per-kind errors, time per position."""
 
     name: str
@@ -46,8 +45,7 @@ class MethodResult:
     """Why the method gave no answer at this input (then error and time are NaN)."""
 
 
-@dataclass(frozen=True)
-class BenchResult:
+class BenchResult(Struct, frozen=True):
     title: str
     where: str
     methods: tuple[MethodResult, ...]

@@ -36,9 +36,10 @@ from __future__ import annotations
 
 import bisect
 from collections.abc import Callable
-from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
+
+from msgspec import Struct
 
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import CamSpec, Vector
@@ -53,8 +54,7 @@ _START_SAMPLES = 16
 """Samples of each stretch among which the contact parameter's start is the best (Newton settles it)."""
 
 
-@dataclass(frozen=True)
-class MpSpline:
+class MpSpline(Struct, frozen=True):
     """The closed spline in mpmath: ``knots[k]`` the parameter of P_k (``knots[n]`` the period) and each
     stretch's coefficients ((a_x, a_y), (b_x, b_y), (c_x, c_y), (d_x, d_y)) of a + b t + c t^2 + d t^3."""
 
@@ -128,8 +128,7 @@ def _rotate(mp: Any, turn: Any, v: Pair) -> Pair:
     return c * v[0] - s * v[1], s * v[0] + c * v[1]
 
 
-@dataclass(frozen=True)
-class SplineContact:
+class SplineContact(Struct, frozen=True):
     """One spline cam's contact: its spline, its two rows, and the start of its parameter."""
 
     cam: CamSpec

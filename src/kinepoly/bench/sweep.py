@@ -15,10 +15,10 @@ centres, found by the sweep) and the rows the sweep finds singular.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any, Literal, cast
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.bench.methods import Guess, Method, Setting, construction_values, methods_for, with_input
 from kinepoly.bench.reference import reference_values
@@ -41,8 +41,7 @@ MEASURED: tuple[Status, ...] = ("ok", "near-singular")
 """The statuses of the rows where the methods are measured (the sweep has velocities there)."""
 
 
-@dataclass(frozen=True)
-class SweepPoint:
+class SweepPoint(Struct, frozen=True):
     """One input of the sweep: the sweep's status, each method's error, the construction's estimate."""
 
     t: float
@@ -57,8 +56,7 @@ class SweepPoint:
         return self.status in MEASURED and bool(self.errors)
 
 
-@dataclass(frozen=True)
-class Sweep:
+class Sweep(Struct, frozen=True):
     """The sweep: inputs in order, the methods shown, and the singular positions found."""
 
     title: str

@@ -22,9 +22,9 @@ This module puts them together: :func:`solve_analytic` and its :class:`AnalyticS
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.check.constraints import Constraint, constraints_of
 from kinepoly.check.coordinates import (
@@ -70,8 +70,7 @@ __all__ = [
 # --------------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True, repr=False)
-class AnalyticSolution:
+class AnalyticSolution(Struct, frozen=True):
     """Poses, velocities and accelerations of every link at one instant, analytically.
 
     ``linear_velocity`` and ``linear_acceleration`` are those of each link's frame origin;

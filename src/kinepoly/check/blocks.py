@@ -13,15 +13,14 @@ Pure numpy and Python: rows and columns are indices, the matrix a list of (row, 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 __all__ = ["SparseMatrix", "block_condition", "blocks_of", "solve_blocks", "window_condition"]
 
 
-@dataclass(frozen=True, repr=False)
-class SparseMatrix:
+class SparseMatrix(Struct, frozen=True):
     """An m x n matrix by its nonzero entries (coordinates and values; no zero is stored)."""
 
     shape: tuple[int, int]
@@ -52,8 +51,7 @@ class SparseMatrix:
         return out
 
 
-@dataclass(frozen=True, repr=False)
-class Blocks:
+class Blocks(Struct, frozen=True):
     """The block triangular form: ``match[i]`` is the column on row i's diagonal; ``order`` the blocks (each a
     list of rows) in the order they are solved (a block uses only the columns of blocks before it)."""
 

@@ -11,15 +11,15 @@ at constant speed) is not measured against round-off.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 __all__ = ["CheckReport", "Quantity", "compare"]
 
 Value = float | tuple[float, float]
 
 
-@dataclass(frozen=True)
-class Quantity:
+class Quantity(Struct, frozen=True):
     """One reported quantity: its key (``points.C.velocity``), kind, and both values."""
 
     key: str
@@ -44,8 +44,7 @@ class Quantity:
         return abs(self.analytic)
 
 
-@dataclass(frozen=True)
-class CheckReport:
+class CheckReport(Struct, frozen=True):
     """Per-quantity differences and the normwise relative error of each kind, and the worst."""
 
     quantities: tuple[Quantity, ...]

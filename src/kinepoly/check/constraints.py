@@ -17,10 +17,10 @@ d^2 Phi / dt^2 quadratic in the velocities); each constraint documents its own g
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.check.coordinates import Body, J, Layout, as_array
 from kinepoly.model.mechanism import Mechanism, Revolute
@@ -52,8 +52,7 @@ def _put(out: np.ndarray, layout: Layout, link: str, d_r: np.ndarray, d_theta: n
         out[:, k + 2] += d_theta
 
 
-@dataclass(frozen=True, repr=False)
-class _Pin:
+class _Pin(Struct, frozen=True):
     """Revolute: r_i + A_i p_i - r_j - A_j p_j = 0.
 
     Phi_q: by r_i I, by theta_i J A_i p_i; by r_j -I, by theta_j -J A_j p_j.  nu = 0.
@@ -84,8 +83,7 @@ class _Pin:
         return np.asarray(bi.omega**2 * (bi.A @ self.p_i) - bj.omega**2 * (bj.A @ self.p_j), dtype=float)
 
 
-@dataclass(frozen=True, repr=False)
-class _AngleOffset:
+class _AngleOffset(Struct, frozen=True):
     """theta_a - theta_b - offset = 0, modulo a turn (a slider's block turns with its guide).
 
     Phi_q: +1 by theta_a, -1 by theta_b; nu = 0; gamma = 0.
@@ -112,8 +110,7 @@ class _AngleOffset:
         return np.zeros(1)
 
 
-@dataclass(frozen=True, repr=False)
-class _LineCoordinate:
+class _LineCoordinate(Struct, frozen=True):
     """u . d - target = 0 with u = A_g u_g, d = r_b + A_b s_b - r_g - A_g t_g.
 
     u_g = n_g (target 0) is the slider's line equation; u_g = e_g (target s) drives a slider.
@@ -168,8 +165,7 @@ class _LineCoordinate:
         return np.array([self.target_ddot - quadratic])
 
 
-@dataclass(frozen=True, repr=False)
-class _AngleDriver:
+class _AngleDriver(Struct, frozen=True):
     """theta_link - theta_base - angle = 0, modulo a turn: Phi_q 1 by theta_link, -1 by theta_base;
     nu = omega; gamma = alpha (the base is the frame, whose theta is 0, or a moving link)."""
 

@@ -14,9 +14,9 @@ the equations dimensionless.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.scene.spec import SliderInput
@@ -60,8 +60,7 @@ def as_pair(v: np.ndarray) -> Vec:
 
 
 
-@dataclass(frozen=True, repr=False)
-class Layout:
+class Layout(Struct, frozen=True):
     """Which columns of q belong to which link, the ground, and the mechanism's size L."""
 
     moving: tuple[str, ...]
@@ -77,8 +76,7 @@ class Layout:
         return 3 * len(self.moving)
 
 
-@dataclass(frozen=True, repr=False)
-class Body:
+class Body(Struct, frozen=True):
     """One link's place and motion: r, theta, A(theta), omega, r_dot (zeros for the ground).
 
     theta is kept as q has it (not wrapped), so angle rows of Phi are exactly linear.

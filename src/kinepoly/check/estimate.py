@@ -27,7 +27,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.engine.steps import Step
 from kinepoly.geom.lines import intersect
@@ -66,8 +67,7 @@ _KIND_CLASS = {"position": "position", "angle": "position", "velocity": "velocit
 """Which term bounds each kind; ``instant_center`` is an omega found from the instant centers."""
 
 
-@dataclass(frozen=True, repr=False)
-class Crossing:
+class Crossing(Struct, frozen=True):
     """One intersection step of a polygon: what it found and the sine of its lines' angle."""
 
     polygon: str
@@ -94,8 +94,7 @@ def crossings(steps: Iterable[Step]) -> list[Crossing]:
     return out
 
 
-@dataclass(frozen=True, repr=False)
-class ErrorEstimate:
+class ErrorEstimate(Struct, frozen=True):
     """The estimated normwise relative error of each kind, and what it was made of."""
 
     condition_number: float

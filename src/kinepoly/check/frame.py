@@ -14,7 +14,8 @@ its coordinates exceed ``FAR_FACTOR`` times its own extent.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.geom.hull import diameter
 from kinepoly.geom.vec import Vec, rotate
@@ -27,8 +28,7 @@ FAR_FACTOR = 4.0
 """A link is re-anchored when its largest coordinate exceeds this many times its extent."""
 
 
-@dataclass(frozen=True, repr=False)
-class LocalFrame:
+class LocalFrame(Struct, frozen=True):
     """A scene with its links re-anchored, and how to go back to the user's frames.
 
     ``anchors[k]`` is the user's local coordinates of link k's new local origin; for the frame

@@ -7,9 +7,8 @@ given point, its line and what a rigid body would need.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.check.coordinates import Vec, as_array, mechanism_size
 from kinepoly.check.newton import SINGULAR_CONDITION, condition_number
@@ -21,8 +20,7 @@ from kinepoly.scene.spec import GivenInput, GivenPoint
 __all__ = ["RIGID_REL_TOL", "GivenMotion", "solve_given"]
 
 
-@dataclass(frozen=True)
-class GivenMotion:
+class GivenMotion(Struct, frozen=True):
     """The motion of a [given] scene's one link, whose frame is the ground's (pose (0, 0, 0)).
 
     ``velocity`` and ``acceleration`` are those of the frame origin; ``alpha`` and

@@ -7,12 +7,12 @@ multiplied by the mechanism's size L (theta * L is a length) and the angle rows 
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
-from dataclasses import dataclass
 
+import msgspec
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.check.blocks import SparseMatrix, block_condition, solve_blocks, window_condition
 from kinepoly.check.constraints import Constraint
@@ -47,8 +47,7 @@ WINDOW = 60
 with the groups next to it (``check.blocks.window_condition``): linear in a chain's length."""
 
 
-@dataclass(frozen=True, repr=False)
-class System:
+class System(Struct, frozen=True, dict=True):
     """The constraints of a mechanism with the scaling that makes Phi_q dimensionless.
 
     Dr multiplies angle rows by L; Dc multiplies theta columns by 1/L. The scaled Jacobian
@@ -133,8 +132,7 @@ class System:
         return np.concatenate([c.gamma(b) for c in self.constraints])
 
 
-@dataclass(frozen=True, repr=False)
-class IndexedLayout(Layout):
+class IndexedLayout(Layout, frozen=True, dict=True):
     """A Layout whose columns are looked up in a table (``Layout.column`` scans the links: quadratic in a chain)."""
 
     @functools.cached_property
@@ -147,7 +145,7 @@ class IndexedLayout(Layout):
 
 def _links_of(constraint: Constraint, moving: dict[str, int]) -> tuple[str, ...]:
     """The moving links a constraint joins: its fields that name a moving link."""
-    names = [getattr(constraint, f.name) for f in dataclasses.fields(constraint)]  # type: ignore[arg-type]
+    names = [getattr(constraint, f.name) for f in msgspec.structs.fields(constraint)]  # type: ignore[arg-type]
     return tuple(dict.fromkeys(n for n in names if isinstance(n, str) and n in moving))
 
 

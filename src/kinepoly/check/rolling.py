@@ -27,9 +27,9 @@ the construction found it; velocities and accelerations follow from Phi_q, nu an
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.check.coordinates import Body, J, Layout, as_array
 from kinepoly.model.mechanism import Mechanism
@@ -49,8 +49,7 @@ def _put(out: np.ndarray, layout: Layout, link: str, d_r: np.ndarray, d_theta: f
         out[0, k + 2] += d_theta
 
 
-@dataclass(frozen=True)
-class _Circles:
+class _Circles(Struct, frozen=True):
     a: str
     b: str
     c_a: np.ndarray
@@ -98,8 +97,7 @@ class _Circles:
         return np.array([-(self.r_a - self.sign * self.r_b) * quadratic])
 
 
-@dataclass(frozen=True)
-class _Rack:
+class _Rack(Struct, frozen=True):
     c: str
     line: str
     o: np.ndarray

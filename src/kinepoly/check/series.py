@@ -18,9 +18,9 @@ The dropped term is -(l/8)(k + lambda sin phi1)^4: an error of about l (k + lamb
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.geom.vec import Vec
 from kinepoly.model.mechanism import Mechanism, Revolute
@@ -66,8 +66,7 @@ def slider_crank_links(mechanism: Mechanism) -> tuple[str, str, str, str, str, s
     return crank, rod, block, o2.point, pa.point, spec.point, spec, through, e
 
 
-@dataclass(frozen=True)
-class SliderSeries:
+class SliderSeries(Struct, frozen=True):
     """The series for one scene: the keys it gives and their values for an array of crank angles."""
 
     name: str

@@ -24,9 +24,8 @@ n . X'' = sigma^2 kappa (1 - rho kappa)), with u_dot from the tangential row:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.check.coordinates import Body, J, Layout, as_array
 from kinepoly.geom.spline import PeriodicSpline, nearest_parameter, periodic_spline
@@ -44,8 +43,7 @@ class _LengthRow:
         return np.zeros(1)
 
 
-@dataclass(frozen=True)
-class _Local:
+class _Local(Struct, frozen=True):
     """The contact's curve quantities at u*, in the cam's frame."""
 
     x: np.ndarray
@@ -55,8 +53,7 @@ class _Local:
     kappa: float
 
 
-@dataclass(frozen=True)
-class _SplineContact(_LengthRow):
+class _SplineContact(Struct, _LengthRow, frozen=True):
     cam: str
     follower: str
     w: np.ndarray
@@ -114,8 +111,7 @@ def _vector(z: complex) -> np.ndarray:
     return as_array((z.real, z.imag))
 
 
-@dataclass(frozen=True)
-class _SplineFace(_LengthRow):
+class _SplineFace(Struct, _LengthRow, frozen=True):
     """A flat face (through f, direction d_l in the follower's frame; the cam on its left) on the profile:
     m = -J A_f d_l the profile's outward normal at the contact, u* the profile's support point along m,
     Phi = m . (r_c + A_c r(u*) - r_f - A_f f).
@@ -189,8 +185,7 @@ _PAIR_SAMPLES_PER_PIECE = 16
 _PAIR_STEPS = 40
 
 
-@dataclass(frozen=True)
-class _SplinePair(_LengthRow):
+class _SplinePair(Struct, _LengthRow, frozen=True):
     """Two splines in contact: the cam's r1(u) and the follower's r2(v) (each in its own link's frame), both
     counter-clockwise, touching from outside. (u*, v*) is their common normal: the tangents T1 = A_c r1',
     T2 = A_f r2' parallel and P2 - P1 along the normal n1 = J t1 (t1 = T1 / sigma1),

@@ -12,7 +12,7 @@ Two relative errors are given per quantity, and per kind the worst of each:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from msgspec import Struct
 
 from kinepoly.check.compare import CheckReport, Quantity
 from kinepoly.check.estimate import ErrorEstimate, Value, componentwise_error
@@ -21,8 +21,7 @@ from kinepoly.check.frame import LocalFrame
 __all__ = ["AccuracyReport", "QuantityError", "assess"]
 
 
-@dataclass(frozen=True, repr=False)
-class QuantityError:
+class QuantityError(Struct, frozen=True):
     """One quantity: both values (positions in the user's frame), difference, estimate, relative errors."""
 
     key: str
@@ -35,8 +34,7 @@ class QuantityError:
     componentwise: float | None
 
 
-@dataclass(frozen=True, repr=False)
-class AccuracyReport:
+class AccuracyReport(Struct, frozen=True):
     """Per-quantity errors, per-kind normwise, componentwise and estimated relative errors."""
 
     quantities: tuple[QuantityError, ...]

@@ -11,9 +11,10 @@ from __future__ import annotations
 
 import hashlib
 import threading
-from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any
+
+from msgspec import Struct
 
 from kinepoly.editor.edits import apply_edit
 from kinepoly.editor.evaluate import PAPER, Evaluation, evaluate, redrawn, step_svg
@@ -47,8 +48,7 @@ def _stamp(path: Path) -> str | None:
         return None
 
 
-@dataclass
-class _History:
+class _History(Struct):
     texts: list[str]
     index: int = 0
     merging: bool = False

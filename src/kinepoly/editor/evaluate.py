@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
+
+from msgspec import Struct, field
+from msgspec.structs import replace
 
 from kinepoly.errors import KinepolyError
 
@@ -26,8 +28,7 @@ __all__ = ["PAPER", "Evaluation", "assembly_joints", "evaluate", "handles", "inp
 PAPER = (297.0, 210.0)
 """The editor's default sheet: A4 landscape, ``kinepoly draw``'s and ``solve``'s default paper."""
 
-@dataclass(frozen=True)
-class Evaluation:
+class Evaluation(Struct, frozen=True):
     """One text's answer: ``result`` (the ``solve --json`` object) or ``errors`` (the CLI's lines) and ``exit``."""
 
     text: str
@@ -37,8 +38,8 @@ class Evaluation:
     svg: str = ""
     view: dict[str, Any] = field(default_factory=dict)
     handles: dict[str, Any] = field(default_factory=dict)
-    solution: Solution | None = field(default=None, compare=False, repr=False)
-    layout: Layout | None = field(default=None, compare=False, repr=False)
+    solution: Solution | None = None
+    layout: Layout | None = None
     timing_ms: dict[str, float] = field(default_factory=dict)
     draft: bool = False
     """Whether ``svg`` is a draft: its labels at their first places, not searched clear

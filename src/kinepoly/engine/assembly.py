@@ -4,9 +4,8 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
+from msgspec.structs import replace
 
 from kinepoly.engine.groups import PositionPlan
 from kinepoly.engine.policy import NearestGuess

@@ -19,10 +19,9 @@ and steps row by row only at the few rows where it might not.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct
 
 from kinepoly.geom.arrays import Bools, Points, Reals
 
@@ -41,8 +40,7 @@ def _keep(c: tuple[Points, Points], label: int) -> Bools:
     return out
 
 
-@dataclass(repr=False)
-class _Walk:
+class _Walk(Struct):
     """One walk along a sequence of rows (seed first): labels in sequence order."""
 
     c: tuple[Points, Points]

@@ -27,11 +27,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct
 
 from kinepoly.engine.groups import CamGroup
 from kinepoly.engine.polygon import Polygon
@@ -98,8 +98,7 @@ def _offset_point(spline: PeriodicSpline, rho: float, u: Reals) -> Points:
     return np.asarray(frame.point + rho * frame.normal)
 
 
-@dataclass(frozen=True, repr=False)
-class Candidates:
+class Candidates(Struct, frozen=True):
     """Every contact at every row, padded to ``width`` columns: the parameter, whether it exists, and the
     follower's pose each one gives (``origin``, ``rotation``), with W's place."""
 
@@ -238,8 +237,7 @@ def _flat_candidates(mechanism: Mechanism, group: CamGroup, poses: dict[str, Arr
     return Candidates(u, ok, origin, rotation, point)
 
 
-@dataclass(frozen=True, repr=False)
-class ProfileContactRows:
+class ProfileContactRows(Struct, frozen=True):
     """The chosen contact at every row, in the frame: the parameter, the contact point Q, the centre of
     curvature K, the unit normal from the cam's side to the follower's, the curvature (1/length, positive
     where the profile is convex) and whether K is at infinity (a straight stretch)."""

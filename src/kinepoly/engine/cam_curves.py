@@ -23,10 +23,10 @@ such a contact is refused.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.cam_contact import Candidates, Ints, cam_spline
 from kinepoly.engine.groups import CamGroup
@@ -62,8 +62,7 @@ def follower_spline(cam: CamSpec) -> PeriodicSpline:
     return _spline(cam.follower_points)
 
 
-@dataclass(frozen=True, repr=False)
-class _Carried:
+class _Carried(Struct, frozen=True):
     """The follower's pose as a function of its one unknown q, per row: turned by q about the pivot (a rocker:
     rotation e^{iq}) or slid by q along the guide (a translating follower: its rotation fixed)."""
 
@@ -100,8 +99,7 @@ def _cross(a: Points, b: Points) -> Reals:
     return np.asarray((np.conj(a) * b).imag)
 
 
-@dataclass(frozen=True, repr=False)
-class CurveCandidates:
+class CurveCandidates(Struct, frozen=True):
     """The contacts of every row (``Candidates``) with the follower profile's parameter v of each."""
 
     candidates: Candidates
@@ -250,8 +248,7 @@ def _distinct(cam_pose: ArrayPose, s1: PeriodicSpline, carried: _Carried, n: int
     return CurveCandidates(candidates, np.asarray(v[pick]))
 
 
-@dataclass(frozen=True, repr=False)
-class CurveContactRows:
+class CurveContactRows(Struct, frozen=True):
     """The follower profile's side of the chosen contact at every row, in the frame: its centre of curvature
     K2 and curvature kappa2 (positive where convex), with the cam's kappa1."""
 

@@ -11,9 +11,10 @@ and the contact parameter of the kept contact are recorded for the polygons.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, replace
 
 import numpy as np
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.cam_contact import (
     Candidates,
@@ -87,8 +88,7 @@ def follow_contact(candidates: Candidates, seed_row: int, seed_choice: int) -> I
     return choice
 
 
-@dataclass(frozen=True, repr=False)
-class CamQuestion:
+class CamQuestion(Struct, frozen=True):
     """A spline cam's contacts at every row (``candidates``), one to keep per row: the cam kind's answers to the
     assembly policies (``engine.policy``)."""
 

@@ -5,8 +5,9 @@ Frozen; made by ``construct.centers`` (plan, find) and ``construct.kennedy`` (th
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Literal
+
+from msgspec import Struct
 
 from kinepoly.engine.circle_diagram import CircleDiagram, Edge, KennedyPlan, center_label, pair_name
 from kinepoly.geom.homogeneous import Place, Triple
@@ -19,8 +20,7 @@ __all__ = ["CenterOmega", "CenterPlan", "How", "InstantCenter", "InstantCenters"
            "Motion"]
 
 
-@dataclass(frozen=True)
-class InstantCenter:
+class InstantCenter(Struct, frozen=True):
     """I_ij: ``place`` is its position, or its direction when at infinity.
 
     ``found`` says how: ``"pin A0"``, ``"slider 14"`` or ``"Kennedy step 3"``; ``number`` is 0 for
@@ -58,8 +58,7 @@ class InstantCenter:
         return self.place.homogeneous
 
 
-@dataclass(frozen=True)
-class KennedyLine:
+class KennedyLine(Struct, frozen=True):
     """The line through the centers I_ik and I_jk of triangle ijk (``third`` is k), or a higher pair's
     common normal at its contact (``contact`` names the contact, ``C23``; ``third`` and ``centers`` empty).
 
@@ -91,8 +90,7 @@ class KennedyLine:
         return self.through is None
 
 
-@dataclass(frozen=True)
-class KennedyStep:
+class KennedyStep(Struct, frozen=True):
     """One derived center: the two Kennedy lines and where they cross.
 
     ``triangles`` are the two triangles whose Kennedy lines cross, or for a higher pair's center the
@@ -115,8 +113,7 @@ class KennedyStep:
     equation: str
 
 
-@dataclass(frozen=True)
-class CenterPlan:
+class CenterPlan(Struct, frozen=True):
     """Made before the position: the circle diagram's plan, the joints, what the scene asks."""
 
     kennedy: KennedyPlan
@@ -125,8 +122,7 @@ class CenterPlan:
     links_needed: frozenset[str]
 
 
-@dataclass(frozen=True)
-class InstantCenters:
+class InstantCenters(Struct, frozen=True):
     """Every center found (joints' and derived), the asked ones, the steps, the diagram, omegas.
 
     ``asked`` pairs each key as the scene wrote it ("31") with the center's name ("13").
@@ -147,8 +143,7 @@ class InstantCenters:
         return self.centers[names.get(key, key)]
 
 
-@dataclass(frozen=True)
-class Motion:
+class Motion(Struct, frozen=True):
     """A link's motion: it turns at ``omega`` and the point ``at`` moves with ``velocity``.
 
     ``about`` names the center it turns about (``"12"``) when ``velocity`` is zero there.
@@ -166,8 +161,7 @@ class Motion:
 How = Literal["ratio", "velocity", "same", "translating"]
 
 
-@dataclass(frozen=True)
-class CenterOmega:
+class CenterOmega(Struct, frozen=True):
     """omega_1j (``symbol``, e.g. ``"omega13"``) of ``link`` j from the centers I_1j and I_ij (``centers``)
     and the motion of link i (``reference``).
 

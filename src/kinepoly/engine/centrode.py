@@ -9,9 +9,9 @@ center is at infinity, and those rows have none.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.velocity import VelocityResult
 from kinepoly.geom.arrays import Bools, Points
@@ -23,8 +23,7 @@ from kinepoly.model.pose import LinkPose
 __all__ = ["Centrodes", "frame_centrodes", "mechanism_size"]
 
 
-@dataclass(frozen=True)
-class Centrodes:
+class Centrodes(Struct, frozen=True):
     """The instant center of one link with the frame at every row: in the frame (``fixed``) and in the
     link's own coordinates (``moving``); ``finite`` the rows where it is not at infinity."""
 

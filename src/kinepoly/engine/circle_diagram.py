@@ -19,9 +19,10 @@ here: the plan is made before any position is solved.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from itertools import combinations
 from typing import Literal
+
+from msgspec import Struct
 
 from kinepoly.geom.vec import Vec
 
@@ -70,8 +71,7 @@ def center_label(name: str) -> str:
     return f"I{name}" if "-" not in name else f"I({name})"
 
 
-@dataclass(frozen=True)
-class KennedyPlan:
+class KennedyPlan(Struct, frozen=True):
     """What the circle diagram will derive.
 
     ``known``: the edges known at once as points (joints); ``lines``: the line edges (higher pairs,
@@ -157,8 +157,7 @@ def plan_kennedy(links: tuple[str, ...], known: frozenset[Edge], targets: tuple[
     return KennedyPlan(links, known, targets, order, options, {e: chosen[e] for e in order}, unreachable, lines)
 
 
-@dataclass(frozen=True)
-class DiagramEdge:
+class DiagramEdge(Struct, frozen=True):
     """One edge of the circle diagram: a center known from a joint (solid), derived (dashed), or a
     higher pair's line edge (``"line"``: known at once as its common normal, drawn dash-dot).
 
@@ -177,8 +176,7 @@ class DiagramEdge:
         return pair_name(self.links)
 
 
-@dataclass(frozen=True)
-class CircleDiagram:
+class CircleDiagram(Struct, frozen=True):
     """The diagram as drawing data: links as points on a unit circle, edges in the order found.
 
     ``on_circle`` places the links on the unit circle in scene order, the first at the top and

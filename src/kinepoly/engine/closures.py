@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
 import numpy as np
+from msgspec import Struct, field
 
 from kinepoly.engine.carry import carried_local, relative_turn
 from kinepoly.engine.groups import Dyad
@@ -45,8 +45,7 @@ def pick(choice: Choice, first: Points, second: Points) -> Points:
     return np.asarray(np.where(choice, first, second))
 
 
-@dataclass(frozen=True, repr=False)
-class Closure:
+class Closure(Struct, frozen=True):
     """A dyad closed over rows.
 
     ``telling``: each assembly's telling point at every row; ``labels``: each assembly in words
@@ -69,7 +68,7 @@ class Closure:
     joint: str
     telling_at: Callable[[dict[str, LinkPose]], complex]
     near: tuple[Bools, Callable[[int], str]] | None = None
-    _placed: dict[int, dict[str, ArrayPose]] = field(default_factory=dict, repr=False, compare=False)
+    _placed: dict[int, dict[str, ArrayPose]] = field(default_factory=dict)
 
     def place(self, choice: Choice) -> dict[str, ArrayPose]:
         """The links' poses for ``choice``; one assembly for every row is placed once (a policy that

@@ -6,9 +6,8 @@ homework checker (with a construction mistake switched in) all construct a row t
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.acceleration import RIGHT, Rules, construct_acceleration
 from kinepoly.engine.assembly import position_at_input
@@ -35,8 +34,7 @@ __all__ = ["Construction", "Wanted", "construct_row"]
 Vec = tuple[float, float]
 
 
-@dataclass(frozen=True, repr=False)
-class Wanted:
+class Wanted(Struct, frozen=True):
     """What to construct: (link, point) tips of each polygon, whether each polygon is needed, sliders."""
 
     velocity: tuple[tuple[str, str], ...]
@@ -46,8 +44,7 @@ class Wanted:
     sliders: tuple[str, ...]
 
 
-@dataclass(frozen=True, repr=False)
-class Construction:
+class Construction(Struct, frozen=True):
     """Row 0 constructed: the positions (arrays), the pose, the polygons and the asked sliders' motion."""
 
     positions: Positions

@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.cam_contact import contact_rows, record_spline_equivalent
 from kinepoly.engine.gears import mesh
@@ -37,8 +37,7 @@ LinkVelocity = Callable[[str, Points], Points | None]
 """The velocity of the point at ``Points`` (frame) as a point of link ``str``, at every row; None where unknown."""
 
 
-@dataclass(frozen=True, repr=False)
-class Contact:
+class Contact(Struct, frozen=True):
     """One pair's contact: the point (frame), the unit normal (cam side to follower side) and, where the
     velocity polygon was built, the sliding velocity along the tangent."""
 
@@ -47,8 +46,7 @@ class Contact:
     sliding_velocity: Vec | None
 
 
-@dataclass(frozen=True, repr=False)
-class ContactRows:
+class ContactRows(Struct, frozen=True):
     """One pair's contact at every row: the point (frame), the unit normal (cam or first gear's side to the
     other's) and, where the velocity polygon was built, the sliding velocity along the tangent."""
 
@@ -141,8 +139,7 @@ def contacts_over_rows(mechanism: Mechanism, poses: dict[str, ArrayPose], veloci
     return out
 
 
-@dataclass(frozen=True, repr=False)
-class FollowerCoordinate:
+class FollowerCoordinate(Struct, frozen=True):
     """What a cam designer plots for a follower: its angle (pinned to the frame at ``pivot``) or its slider
     on the frame (``slider``)."""
 

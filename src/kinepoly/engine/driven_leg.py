@@ -15,10 +15,10 @@ leg's known terms, and reads the carrier's rate, its point under Q and the slide
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.carry import relative_acceleration, relative_velocity
 from kinepoly.engine.lines import add_motor_rate, read_rate, record_drive_term, slide_direction
@@ -32,8 +32,7 @@ from kinepoly.scene.spec import SliderSpec
 __all__ = ["Leg", "acceleration_terms", "finish_acceleration", "finish_velocity", "velocity_terms"]
 
 
-@dataclass(frozen=True, repr=False)
-class Leg:
+class Leg(Struct, frozen=True):
     """One leg of a triad (see ``engine.triad``): its kind, its own link, the point Q, the known link it joins,
     the outer pin K (a pin or slot leg) and the slider (a slide or slot leg)."""
 

@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, replace
 
 import numpy as np
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.branches import follow_branch, follow_members
 from kinepoly.engine.closures import Choice, Closure, close_dyad
@@ -43,8 +44,7 @@ def closing_error(mechanism: Mechanism, closure: Closure) -> KinepolyError:
     return AssemblyError(f"cannot assemble joint {closure.joint} of group {name} at {where}: {closure.why(0)}")
 
 
-@dataclass(frozen=True, repr=False)
-class DyadQuestion:
+class DyadQuestion(Struct, frozen=True):
     """A dyad closed over rows (``closure``) and ``later``: its assembly ``k`` carried through the groups after it."""
 
     closure: Closure

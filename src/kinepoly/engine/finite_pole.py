@@ -8,7 +8,8 @@ A and B. As the two positions close, P12 tends to the link's instant center with
 from __future__ import annotations
 
 import cmath
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.geom.tolerances import COINCIDENT_REL, PARALLEL_SIN
 from kinepoly.model.mechanism import Mechanism
@@ -36,8 +37,7 @@ def bisectors_crossing(a1: complex, a2: complex, b1: complex, b2: complex) -> co
     return complex((ca * db.imag - da.imag * cb) / det, (da.real * cb - ca * db.real) / det)
 
 
-@dataclass(frozen=True)
-class FinitePole:
+class FinitePole(Struct, frozen=True):
     """The pole of ``link``'s displacement from ``first`` to ``second`` (poses), through points ``a`` and ``b``."""
 
     link: str

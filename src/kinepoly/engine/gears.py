@@ -16,9 +16,9 @@ rows of a sweep; a gear placed by rolling carries its delta on to its next mesh.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.inputs import describe_input
 from kinepoly.errors import SceneError
@@ -31,8 +31,7 @@ from kinepoly.scene.spec import GearSpec, PitchCircle, PitchLine
 __all__ = ["Mesh", "Rolled", "anchor_row", "free_delta", "mesh", "pitch_label", "place_rolling"]
 
 
-@dataclass(frozen=True, repr=False)
-class Rolled:
+class Rolled(Struct, frozen=True):
     """A gear placed by rolling: its delta (unwrapped) and the angle of the pitch point it was measured
     at, less that mesh's phase, at every row."""
 
@@ -40,8 +39,7 @@ class Rolled:
     aim: Reals
 
 
-@dataclass(frozen=True, repr=False)
-class Mesh:
+class Mesh(Struct, frozen=True):
     """One pair at every row: the pitch point, each side's unit m (centre to P; for a line the unit
     normal from the circle's centre toward it) and tangent t, and the contact normal (side 0 to side 1)."""
 

@@ -3,9 +3,10 @@ its kind's functions), and the plan itself."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
+
+from msgspec import Struct, field
 
 from kinepoly.model.mechanism import Drive, Joint, Mechanism, Revolute, joint_links
 from kinepoly.scene.spec import CamSpec, GearSpec, SliderSpec
@@ -36,8 +37,7 @@ def joint_kind(joint: Joint) -> str:
     return "R" if isinstance(joint, Revolute) else "P"
 
 
-@dataclass(frozen=True, repr=False)
-class Dyad:
+class Dyad(Struct, frozen=True, dict=True):
     """Two links solved together in closed form.
 
     A *carried* dyad's first side is two links held together by a driven joint: ``carrier`` has the
@@ -84,8 +84,7 @@ class Dyad:
         return f"{self.first}-{self.second} ({self.kind})"
 
 
-@dataclass(frozen=True, repr=False)
-class DriveGroup:
+class DriveGroup(Struct, frozen=True):
     """One link placed on a known one by a driven joint between them (a motor on a link, a cylinder)."""
 
     drive: Drive
@@ -104,8 +103,7 @@ class DriveGroup:
         return f"{self.link} on {self.known} ({self.drive.name} driven)"
 
 
-@dataclass(frozen=True, repr=False)
-class _HigherPairGroup:
+class _HigherPairGroup(Struct, frozen=True):
     """One link placed on a known one through a higher pair: ``link`` is held by one ``joint`` to the known
     ``carrier``; ``known`` carries the other element of the pair."""
 
@@ -122,33 +120,30 @@ class _HigherPairGroup:
         return (self.known, self.carrier)
 
 
-@dataclass(frozen=True, repr=False)
-class GearGroup(_HigherPairGroup):
+class GearGroup(_HigherPairGroup, frozen=True, kw_only=True):
     """A gear placed by rolling on a known gear: ``link`` is pinned at its pitch centre to the known
     ``carrier`` (the frame, an arm), or is a rack sliding on it; ``known`` carries the other pitch curve."""
 
-    gear: GearSpec = field(kw_only=True)
+    gear: GearSpec
 
     @property
     def name(self) -> str:
         return f"{self.link} rolling on {self.known} (gears {self.gear.name})"
 
 
-@dataclass(frozen=True, repr=False)
-class CamGroup(_HigherPairGroup):
+class CamGroup(_HigherPairGroup, frozen=True, kw_only=True):
     """A spline cam's follower placed on the known cam link by its contact: ``link`` (the follower) is held
     by one ``joint`` to the known ``carrier``, a pin (a pivoted rocker) or a slider whose block it is (a
     translating follower); ``engine.cam_contact`` finds the contact."""
 
-    cam: CamSpec = field(kw_only=True)
+    cam: CamSpec
 
     @property
     def name(self) -> str:
         return f"{self.link} on cam {self.known} (cam {self.cam.name})"
 
 
-@dataclass(frozen=True, repr=False)
-class SlideRoles:
+class SlideRoles(Struct, frozen=True):
     """Who is who in an RPR dyad: the guide turns about its pin ``guide_pin`` on ``guide_known``;
     the block is pinned at ``block_pin`` to ``block_known``; the unknown tip is block_pin@guide."""
 
@@ -161,8 +156,7 @@ class SlideRoles:
     block_known: str
 
 
-@dataclass(frozen=True, repr=False)
-class TwoSlideRoles:
+class TwoSlideRoles(Struct, frozen=True):
     """Who is who in a PRP or RPP dyad: ``point`` of ``moving`` is where the two slide lines cross.
 
     The first line slides on ``side1`` along ``first_slider``, the second on ``side2`` along
@@ -216,8 +210,7 @@ def two_slide_roles(dyad: Dyad, mechanism: Mechanism) -> TwoSlideRoles:
     return TwoSlideRoles(inner_slider, second, point, j, i, far_side(second, j), j, pin.point, far_side(pin, i))
 
 
-@dataclass(frozen=True, repr=False)
-class NewtonGroup:
+class NewtonGroup(Struct, frozen=True):
     """Links that form no dyad: solved together by damped Newton from the guess. ``drives``: the inputs
     that drive joints of the group (each one more equation); ``cams``: the spline cams whose follower floats
     in the group on a cam known before it (the contact's parameter one more unknown, ``engine.newton``);
@@ -240,20 +233,17 @@ class NewtonGroup:
                             | {x for gear in self.gears for x in gear.links if x not in self.links}))
 
 
-@dataclass(frozen=True, repr=False)
-class CarriedDyad(Dyad):
+class CarriedDyad(Dyad, frozen=True):
     """A carried RRR dyad (see ``Dyad``): its ``carrier`` and ``drive`` are given."""
 
 
-@dataclass(frozen=True, repr=False)
-class TriadGroup(NewtonGroup):
+class TriadGroup(NewtonGroup, frozen=True):
     """A class-3 group (a triad: a ternary link and three legs, a leg with a driven joint or a floating follower's
     contact among them): placed by damped Newton as a ``NewtonGroup``, its polygons constructed through its Assur
     point (``engine.triad``)."""
 
 
-@dataclass(frozen=True, repr=False)
-class PlanetGroup(NewtonGroup):
+class PlanetGroup(NewtonGroup, frozen=True):
     """A group holding gears that no dyad and no single pair places: a planet on an arm that no input drives,
     placed by rolling (``engine.planet``), the only such group this version places."""
 
@@ -261,8 +251,7 @@ class PlanetGroup(NewtonGroup):
 Group = Dyad | DriveGroup | GearGroup | CamGroup | NewtonGroup
 
 
-@dataclass(repr=False)
-class PlanConstants:
+class PlanConstants(Struct):
     """What constructing a plan's polygons finds that does not depend on the rows, kept by its first construction
     for the next ones (``engine.polygon``): the frame's points with the links that have each, and each image of a
     rigid link as the two known tips it is built from and Mehmke's factor, keyed by the link, the point and the
@@ -286,13 +275,12 @@ class PlanConstants:
     """None: the image is built row by row (a corner of its triangle slides on the link)."""
 
 
-@dataclass(frozen=True, repr=False)
-class PositionPlan:
+class PositionPlan(Struct, frozen=True):
     """Links known from the input, then the groups in order."""
 
     driven: tuple[str, ...]
     groups: tuple[Group, ...]
-    constants: PlanConstants = field(default_factory=PlanConstants, compare=False, repr=False)
+    constants: PlanConstants = field(default_factory=PlanConstants)
     """The construction's constants, found on the plan's first construction (``PlanConstants``)."""
 
     def describe(self) -> list[str]:

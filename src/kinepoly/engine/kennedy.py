@@ -22,10 +22,11 @@ estimated relative error exceeds LOUD_ERROR (a crossing so far away that its dis
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
 from itertools import combinations
 
 import numpy as np
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.cam_contact import parameter_at
 from kinepoly.engine.center_values import CenterPlan, InstantCenter, KennedyLine, KennedyStep
@@ -56,8 +57,7 @@ from kinepoly.scene.spec import CamSpec, GearSpec
 __all__ = ["KennedyResult", "derive_centers"]
 
 
-@dataclass(frozen=True)
-class KennedyResult:
+class KennedyResult(Struct, frozen=True):
     """The centers found (as reported, and in the pose's own coordinates), the steps, the diagram."""
 
     centers: dict[Edge, InstantCenter]
@@ -68,8 +68,7 @@ class KennedyResult:
     size: float
 
 
-@dataclass(frozen=True)
-class _Known:
+class _Known(Struct, frozen=True):
     """A center found: its projective value, its place in the pose's own coordinates, the reported center."""
 
     value: Projective
@@ -77,8 +76,7 @@ class _Known:
     center: InstantCenter
 
 
-@dataclass(frozen=True)
-class _Line:
+class _Line(Struct, frozen=True):
     """A Kennedy line that may carry a center: through the known centers of ``sides``, the two edges that
     close a triangle with the sought one at the ``third`` link; ``join`` is the line through them."""
 
@@ -87,8 +85,7 @@ class _Line:
     join: Wedge
 
 
-@dataclass(frozen=True)
-class _Candidate:
+class _Candidate(Struct, frozen=True):
     """Two Kennedy lines that cross at the center, or (a cam pair's center) one and the common normal."""
 
     first: _Line
@@ -133,8 +130,7 @@ def _joint_center(mechanism: Mechanism, pose: Pose, frame: LocalFrame,
     return value, Place(None, canonical_direction(perp(slide)), value.error)
 
 
-@dataclass(frozen=True)
-class _Normal:
+class _Normal(Struct, frozen=True):
     """A cam pair's line edge: the common normal at the contact, as the contact C and the normal's
     direction (both in the pose's own coordinates) and as a projective line."""
 

@@ -14,8 +14,9 @@ in a form whose dimensions may differ from row to row (it answers the policy's `
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Generic, TypeVar
+
+from msgspec import Struct
 
 from kinepoly.engine.placement import Placement
 from kinepoly.engine.policy import Policy
@@ -33,8 +34,7 @@ Placed = tuple[Placement, bool]
 """The placement, and whether the groups after this one are placed in it too."""
 
 
-@dataclass(frozen=True, repr=False)
-class Kind(Generic[G]):
+class Kind(Struct, Generic[G], frozen=True):
     """The four functions of one group kind (see the module)."""
 
     find: Callable[[Mechanism, set[str]], G | None]

@@ -17,9 +17,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.cam_contact import cam_spline, face_parameter, offset_of
 from kinepoly.engine.groups import NewtonGroup
@@ -318,8 +318,7 @@ def _cut(step: Reals, links: int, reach: float | None) -> float:
     return min(1.0, _CREEP * reach / move) if move > 0.0 else 1.0
 
 
-@dataclass(frozen=True, repr=False)
-class RowClosure:
+class RowClosure(Struct, frozen=True):
     """What Newton's method made of one row: the group's poses (None where it does not close), the final
     joint residual, and the sign of the Jacobian's determinant there (0 where it is not square)."""
 

@@ -13,9 +13,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
 
 import numpy as np
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.cam_place import floating_unreachable
 from kinepoly.engine.groups import NewtonGroup
@@ -43,8 +44,7 @@ _FAR_GUESS = 0.25
 """Further than this share from the guess, the solve says so (``far-from-guess``)."""
 
 
-@dataclass(frozen=True, repr=False)
-class NewtonQuestion:
+class NewtonQuestion(Struct, frozen=True):
     """A group placed by Newton's method: where each row starts."""
 
     group: NewtonGroup

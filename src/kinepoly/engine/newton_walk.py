@@ -16,8 +16,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from functools import cached_property
+
+from msgspec import Struct
 
 from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.newton import RowClosure, group_reach, newton_row, start_poses
@@ -46,8 +47,7 @@ def _between(a: LinkPose, b: LinkPose, t: float) -> LinkPose:
                     a.theta + t * math.remainder(b.theta - a.theta, math.tau))
 
 
-@dataclass(repr=False)
-class Walk:
+class Walk(Struct, dict=True):
     """One pass of the sweep over rows in order, from the seed row (``history``: its row and points)."""
 
     mechanism: Mechanism

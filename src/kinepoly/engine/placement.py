@@ -4,7 +4,8 @@ while the executor works, ``Positions`` when it is done)."""
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
+
+from msgspec import Struct, field
 
 from kinepoly.engine.gears import Rolled
 from kinepoly.geom.arrays import Bools, Points, Reals
@@ -16,8 +17,7 @@ from kinepoly.notice import Notice
 __all__ = ["Failure", "Placement", "Positions"]
 
 
-@dataclass(frozen=True, repr=False)
-class Failure:
+class Failure(Struct, frozen=True):
     """Rows where one group cannot be assembled (rows where an earlier group failed are not among them)."""
 
     group: str
@@ -26,8 +26,7 @@ class Failure:
     why: Callable[[int], str]
 
 
-@dataclass(frozen=True, repr=False)
-class Placement:
+class Placement(Struct, frozen=True):
     """What placing some groups gave: poses, the rows that closed, failures, rough rows, warnings."""
 
     poses: dict[str, ArrayPose]
@@ -45,7 +44,7 @@ class Placement:
     """Each spline cam's contact parameter on its profile at every row (``engine.cam_place``)."""
 
     def with_poses(self, poses: dict[str, ArrayPose]) -> Placement:
-        """This placement with ``poses`` for its poses (``dataclasses.replace``, made directly)."""
+        """This placement with ``poses`` for its poses (``msgspec.structs.replace``, made directly)."""
         return Placement(poses, self.ok, self.failures, self.near, self.notices, self.values, self.rolled,
                          self.marks, self.contact_parameters)
 
@@ -58,8 +57,7 @@ class Placement:
         return {index: float(values[row]) for index, values in enumerate(self.values)}
 
 
-@dataclass(repr=False)
-class Positions:
+class Positions(Struct):
     """Poses of every link of the plan at every row; ``ok`` where all of them could be placed."""
 
     mechanism: Mechanism
@@ -76,9 +74,9 @@ class Positions:
     """Each spline cam's contact parameter on its profile at every row."""
     _points: dict[str, Points] = field(default_factory=dict)
     _turned: dict[tuple[str, str], tuple[Points, Points]] = field(default_factory=dict)
-    _chords: dict[int, tuple[str, str]] = field(default_factory=dict, init=False)
+    _chords: dict[int, tuple[str, str]] = field(default_factory=dict)
     """Each turned chord made (``chord``), by the array's identity (the chord is kept, so the identity is its own)."""
-    _products: dict[tuple[tuple[str, str], tuple[str, str]], Points] = field(default_factory=dict, init=False)
+    _products: dict[tuple[tuple[str, str], tuple[str, str]], Points] = field(default_factory=dict)
 
     @property
     def n(self) -> int:

@@ -25,9 +25,10 @@ its rates are (omega_Pk - omega_arm) rho_k = c_k R_k (omega_K - omega_arm).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
 
 import numpy as np
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.gears import Rolled, anchor_row, free_delta, mesh
 from kinepoly.engine.groups import NewtonGroup
@@ -42,8 +43,7 @@ from kinepoly.scene.spec import GearSpec, PitchCircle
 __all__ = ["Planet", "place_planet", "planet_of"]
 
 
-@dataclass(frozen=True, repr=False)
-class Planet:
+class Planet(Struct, frozen=True):
     """The arm (pinned at ``pivot`` to the known link ``base``), the planet (pinned to the arm at ``pin``, its
     pitch centre) and the two pairs it meshes known gears in."""
 
@@ -93,8 +93,7 @@ def _not_built(mechanism: Mechanism, group: NewtonGroup, why: str) -> SceneError
                       "centred on the arm's pivot (drive the arm, or another link of the group, otherwise)")
 
 
-@dataclass(frozen=True, repr=False)
-class _Mesh:
+class _Mesh(Struct, frozen=True):
     """One mesh of the planet with a known gear: g = c R / rho, and alpha, beta (rad)."""
 
     known: str

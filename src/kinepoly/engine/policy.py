@@ -23,8 +23,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
 from typing import Protocol, TypeVar
+
+from msgspec import Struct, field
 
 from kinepoly.engine.placement import Placement
 from kinepoly.errors import KinepolyError
@@ -61,8 +62,7 @@ class Policy(Protocol):
         """Rows of a group do not close: a solve raises ``error()``, a sweep marks them."""
 
 
-@dataclass(frozen=True, repr=False)
-class NearestGuess:
+class NearestGuess(Struct, frozen=True):
     """The solve's policy (row 0 of a batch of one): nearest the ``[guess]``."""
 
     guess: Mapping[str, Vec]
@@ -76,8 +76,7 @@ class NearestGuess:
         raise error()
 
 
-@dataclass(frozen=True, repr=False)
-class Continuity:
+class Continuity(Struct, frozen=True):
     """The sweep's policy: row ``seed_row`` takes the assembly of ``seed``; the others follow it.
 
     ``seed`` is the solve's positions at the seed row, or a function that solves them when asked: with ``guess``,
@@ -106,8 +105,7 @@ class Continuity:
         """Rows that do not close are marked by the executor; nothing to raise."""
 
 
-@dataclass(frozen=True, repr=False)
-class FamilyContinuity:
+class FamilyContinuity(Struct, frozen=True):
     """A family's policy: every member's row ``seed_row`` (of its ``rows_each``) takes the assembly of the label
     the scene's own solve takes (found on ``base``, the scene's mechanism, at its solve's poses ``seed`` and its
     inputs' values ``values`` there), and the member's other rows follow it continuously; the dyads named in

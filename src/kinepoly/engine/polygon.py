@@ -21,10 +21,10 @@ import cmath
 import functools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Literal, NamedTuple
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.groups import PlanConstants
 from kinepoly.engine.inputs import describe_input
@@ -54,8 +54,7 @@ def sense(rate: float) -> str:
     return "ccw" if rate > 0 else ("cw" if rate < 0 else "zero")
 
 
-@dataclass(frozen=True, repr=False)
-class LineCrossing:
+class LineCrossing(Struct, frozen=True):
     """Two direction lines crossed at every row: the group, the tip found, the sine of their angle,
     and how far along the first line they cross (every later value of the polygon is a sum of
     products of these, so where it is finite, they are)."""
@@ -67,8 +66,7 @@ class LineCrossing:
     along: Reals
 
 
-@dataclass(frozen=True, repr=False)
-class JointSolve:
+class JointSolve(Struct, frozen=True):
     """A group's joint equations solved at every row (no two lines): the condition number of each row."""
 
     kind: Kind

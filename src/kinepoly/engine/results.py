@@ -8,9 +8,8 @@ laid away from the center, the Coriolis term left out or reversed. The right rul
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
+from msgspec import Struct, field
 
 from kinepoly.engine.lines import link_length, slide_direction, slide_reference
 from kinepoly.engine.polygon import Line, Polygon, sense
@@ -23,8 +22,7 @@ __all__ = ["RIGHT", "AccelerationContext", "AccelerationResult", "Rules", "Veloc
            "along_normal", "along_slide", "normals_step", "record_crossing", "slide_label"]
 
 
-@dataclass(frozen=True, repr=False)
-class VelocityResult:
+class VelocityResult(Struct, frozen=True):
     """The velocity polygon at every row: tips, omegas, sliding velocities, crossings and steps."""
 
     polygon: Polygon
@@ -42,8 +40,7 @@ class VelocityResult:
         return self.polygon.rate
 
 
-@dataclass(repr=False)
-class VelocityContext:
+class VelocityContext(Struct):
     """The velocity polygon being built and what the groups find besides its tips and rates: the sliding
     velocities by slider, the equivalent links by cam pair."""
 
@@ -52,8 +49,7 @@ class VelocityContext:
     equivalent: dict[str, Points] = field(default_factory=dict)
 
 
-@dataclass(frozen=True, repr=False)
-class Rules:
+class Rules(Struct, frozen=True):
     """How the known terms are laid: ``normal`` -1 toward the center (right), +1 away;
     ``coriolis`` 1 as it is (right), 0 left out, -1 reversed."""
 
@@ -64,8 +60,7 @@ class Rules:
 RIGHT = Rules()
 
 
-@dataclass(frozen=True, repr=False)
-class AccelerationResult:
+class AccelerationResult(Struct, frozen=True):
     """The acceleration polygon at every row: tips, alphas, sliding accelerations, Coriolis terms, steps."""
 
     polygon: Polygon

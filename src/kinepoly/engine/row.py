@@ -6,7 +6,7 @@ steps the polygons recorded.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from msgspec import Struct
 
 from kinepoly.engine.acceleration import AccelerationResult
 from kinepoly.engine.position import Positions
@@ -20,8 +20,7 @@ __all__ = ["AccelerationPolygon", "SliderValues", "VelocityPolygon", "accelerati
 Vec = tuple[float, float]
 
 
-@dataclass(frozen=True)
-class VelocityPolygon:
+class VelocityPolygon(Struct, frozen=True):
     """Tips (physical velocities, pole at 0), omegas, sliding velocities, steps, and each link's known tips."""
 
     tips: dict[str, Vec]
@@ -31,8 +30,7 @@ class VelocityPolygon:
     members: dict[str, list[tuple[str, Vec]]]
 
 
-@dataclass(frozen=True)
-class SliderValues:
+class SliderValues(Struct, frozen=True):
     """A slider's s, and where the polygons were constructed s_dot, s_ddot and the Coriolis term."""
 
     s: float
@@ -41,8 +39,7 @@ class SliderValues:
     coriolis: Vec | None
 
 
-@dataclass(frozen=True)
-class AccelerationPolygon:
+class AccelerationPolygon(Struct, frozen=True):
     """Tips (physical accelerations, pole at 0), alphas, sliding accelerations, Coriolis terms, steps."""
 
     tips: dict[str, Vec]

@@ -7,9 +7,8 @@ slide), read off the polygons; the Coriolis term is the one the acceleration pol
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.acceleration import AccelerationResult
 from kinepoly.engine.position import Positions
@@ -20,8 +19,7 @@ from kinepoly.scene.spec import SliderSpec
 __all__ = ["SliderMotion", "slider_motion"]
 
 
-@dataclass(frozen=True, repr=False)
-class SliderMotion:
+class SliderMotion(Struct, frozen=True):
     """A slider's s at every row, and where the polygons were constructed s_dot, s_ddot and Coriolis."""
 
     s: Reals

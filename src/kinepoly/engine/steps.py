@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from functools import cache
 from typing import Literal
+
+from msgspec import Struct
 
 from kinepoly.geom.lines import Line
 from kinepoly.scene.link_point import LinkPoint
@@ -21,8 +22,7 @@ Relation = Literal["perpendicular", "parallel", "at-angle", "along", "face"]
 _TERM_TEXT = re.compile(r"^([va])(?:\^([a-z]))?_([^/\s]+)(?:/([^/\s]+))?$")
 
 
-@dataclass(frozen=True, slots=True)
-class TermName:
+class TermName(Struct, frozen=True):
     """A term of a vector equation as a value: ``a^n_B@4/A`` is the ``quantity`` a (v for a velocity), its
     ``component`` n (t tangential, c Coriolis; "" for a whole velocity or acceleration) of ``point`` B@4
     relative to ``reference`` A (None for an absolute term, ``a_B``). ``text`` is the textbook's name."""
@@ -63,8 +63,7 @@ def term_name(text: str) -> TermName | None:
     return TermName(quantity, m.group(2) or "", LinkPoint.parse(m.group(3)), reference)
 
 
-@dataclass(frozen=True)
-class DrawnVector:
+class DrawnVector(Struct, frozen=True):
     """A vector of the polygon from ``start`` to ``end`` (physical units, pole at 0)."""
 
     label: str
@@ -78,8 +77,7 @@ class DrawnVector:
         return term_name(self.label)
 
 
-@dataclass(frozen=True)
-class Direction:
+class Direction(Struct, frozen=True):
     """A direction line of a step as data, so that any language can say it (``Line.label`` is English).
 
     The line carries the unknown ``term`` (``v_B/A``, ``a^t_B/A``, ``a_B/B@1``; empty for the lines
@@ -104,8 +102,7 @@ class Direction:
         return tuple(name for name in names if name is not None)
 
 
-@dataclass(frozen=True)
-class Step:
+class Step(Struct, frozen=True):
     """One step of the construction.
 
     ``known`` says, for each term of the vector equation, what is known of it

@@ -14,9 +14,9 @@ Over rows: a sweep reads every row, a solve row 0 (``Transmission.angle_deg``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.groups import Dyad, PositionPlan, slide_roles, two_slide_roles
 from kinepoly.engine.position import Positions
@@ -28,8 +28,7 @@ from kinepoly.scene.spec import SliderSpec
 __all__ = ["Transmission", "TransmissionPair", "Way", "transmission_angles", "transmission_pairs"]
 
 
-@dataclass(frozen=True, repr=False)
-class Transmission:
+class Transmission(Struct, frozen=True):
     """The transmission angle of one dyad at every row, and what it is between.
 
     ``point`` is the point whose velocity the dyad's two lines find (it names the sweep's column);
@@ -62,8 +61,7 @@ Way = tuple[str, str] | SliderSpec
 the direction its velocity construction drew), or along a slide (``slide_direction``)."""
 
 
-@dataclass(frozen=True)
-class TransmissionPair:
+class TransmissionPair(Struct, frozen=True):
     """What one dyad's transmission angle is between, found once for a plan: its two direction lines (``Way``), the
     point and joint it names, and the words of the angle (``Transmission``)."""
 

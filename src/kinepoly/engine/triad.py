@@ -32,9 +32,9 @@ another pair is taken; the step says which legs give S.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine import driven_leg
 from kinepoly.engine.cam_contact import centre_label, face_direction
@@ -53,8 +53,7 @@ from kinepoly.scene.spec import SliderSpec
 __all__ = ["Leg", "Triad", "acceleration_by_assur_point", "triad_of", "velocity_by_assur_point"]
 
 
-@dataclass(frozen=True, repr=False)
-class Triad:
+class Triad(Struct, frozen=True):
     """A class-3 group: ``ternary`` held by three legs; ``assur`` names its Assur point."""
 
     ternary: str
@@ -155,8 +154,7 @@ def _floating_triad(mechanism: Mechanism, group: NewtonGroup) -> Triad | None:
 # -- the construction, shared by both polygons ----------------------------------------------------
 
 
-@dataclass(frozen=True, repr=False)
-class _LegLine:
+class _LegLine(Struct, frozen=True):
     """A leg's own line in the polygon (through the known tip, after its known terms, along e), and
     where Q is on the mechanism."""
 
@@ -166,8 +164,7 @@ class _LegLine:
     vectors: tuple[DrawnVector, ...]
 
 
-@dataclass(frozen=True, repr=False)
-class _Built:
+class _Built(Struct, frozen=True):
     """One choice of the third leg m, at every row: the tip of S, of each Q (as a point of T), how far
     along each leg's own line (the leg's rate or slide), T's rate, and the sines of the crossings."""
 

@@ -14,10 +14,9 @@ is masked before anything is reported (no NaN reaches an output).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct
 
 __all__ = [
     "Bools",
@@ -60,8 +59,7 @@ def turn(angle_rad: float) -> complex:
     return complex(np.cos(angle_rad), np.sin(angle_rad))
 
 
-@dataclass(frozen=True, repr=False)
-class Crossing:
+class Crossing(Struct, frozen=True):
     """Where two families of lines cross, row by row: through1 + along_first * direction1.
 
     ``sin_angle`` is the sine of the angle between the lines: the caller flags

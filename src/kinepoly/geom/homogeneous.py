@@ -18,7 +18,8 @@ line) and the product is no value: ``Wedge.value`` is None.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.geom.tolerances import COINCIDENT_SIN, PARALLEL_SIN, UNIT_ROUNDOFF
 from kinepoly.geom.vec import Vec
@@ -31,16 +32,14 @@ _ROUNDING = 4.0 * UNIT_ROUNDOFF
 """Error of a unit vector made from exact data, and added by one cross product."""
 
 
-@dataclass(frozen=True)
-class Projective:
+class Projective(Struct, frozen=True):
     """A point or a line of a ``LocalFrame``: a unit 3-vector and its error (radians on the sphere)."""
 
     vector: Triple
     error: float
 
 
-@dataclass(frozen=True)
-class Wedge:
+class Wedge(Struct, frozen=True):
     """p x q: the line through two points, or the point where two lines cross.
 
     ``sin`` is |p x q| for the unit inputs, the sine of their angle: the step's conditioning.
@@ -80,8 +79,7 @@ def canonical_direction(direction: Vec) -> Vec:
     return (x + 0.0, y + 0.0)  # no -0.0
 
 
-@dataclass(frozen=True)
-class Place:
+class Place(Struct, frozen=True):
     """Where a projective point lies in the world: a position, or a direction at infinity.
 
     ``relative_error`` is the estimated error of the position over its distance from the
@@ -105,8 +103,7 @@ class Place:
         return (self.direction[0], self.direction[1], 0.0)
 
 
-@dataclass(frozen=True)
-class LocalFrame:
+class LocalFrame(Struct, frozen=True):
     """Coordinates relative to ``origin`` and divided by ``size``.
 
     Points come in as the caller's coordinates; ``offset`` is added to every position placed

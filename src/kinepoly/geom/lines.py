@@ -7,7 +7,7 @@ is a direction, not NaN.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from msgspec import Struct
 
 from kinepoly.geom.tolerances import PARALLEL_SIN
 from kinepoly.geom.vec import Vec, cross, norm, sub, unit
@@ -19,8 +19,7 @@ class ParallelLinesError(ArithmeticError):
     """Two lines that should cross in a point are parallel (they meet only at infinity)."""
 
 
-@dataclass(frozen=True, repr=False)
-class Line:
+class Line(Struct, frozen=True):
     """The line through ``through`` along ``direction`` (any non-zero length)."""
 
     through: Vec
@@ -28,8 +27,7 @@ class Line:
     label: str = ""
 
 
-@dataclass(frozen=True, repr=False)
-class Intersection:
+class Intersection(Struct, frozen=True):
     """Where two lines cross: homogeneous (x, y, w) relative to ``origin``.
 
     ``sin_angle`` is the sine of the angle between the lines: the point's relative error is

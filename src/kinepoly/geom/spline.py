@@ -22,10 +22,10 @@ positive where the curve turns counter-clockwise, the centre of curvature on the
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct
 
 from kinepoly.geom.arrays import Bools, Points, Reals
 from kinepoly.geom.tolerances import STRAIGHT_CURVATURE
@@ -50,8 +50,7 @@ _BISECTIONS = 200
 """Most halvings of a bracket; each root is settled after about 50 (see ``roots_along``)."""
 
 
-@dataclass(frozen=True, repr=False)
-class PeriodicSpline:
+class PeriodicSpline(Struct, frozen=True):
     """A closed periodic cubic spline: ``knots[k]`` is the parameter of point k (``knots[n]`` the
     period), and piece k is ``coefficients[k, 0] + coefficients[k, 1] t + ... + coefficients[k, 3] t^3``."""
 
@@ -99,8 +98,7 @@ class PeriodicSpline:
 
 
 
-@dataclass(frozen=True, repr=False)
-class CurveFrame:
+class CurveFrame(Struct, frozen=True):
     """The curve's local frame at an array of parameters."""
 
     point: Points

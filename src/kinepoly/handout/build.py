@@ -9,8 +9,9 @@ making room for the band changed a scale.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import replace
 from typing import TYPE_CHECKING, Any
+
+from msgspec.structs import replace
 
 from kinepoly.errors import HandoutError
 from kinepoly.handout.answers import answers_page

@@ -6,22 +6,21 @@ and small tables whose cells may hold the course's notation (``kinepoly.handout.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Literal
+
+from msgspec import Struct
 
 __all__ = ["Column", "Drawing", "Handout", "Page", "Paragraph", "Part", "Table"]
 
 Style = Literal["title", "heading", "equation", "body", "result", "note"]
 
 
-@dataclass(frozen=True)
-class Paragraph:
+class Paragraph(Struct, frozen=True):
     text: str
     style: Style = "body"
 
 
-@dataclass(frozen=True)
-class Table:
+class Table(Struct, frozen=True):
     """A small table; the first column holds names (left-aligned), the others values."""
 
     title: str
@@ -32,8 +31,7 @@ class Table:
 Part = Paragraph | Table
 
 
-@dataclass(frozen=True)
-class Column:
+class Column(Struct, frozen=True):
     """A column of the text: ``fill`` takes the width the other columns leave."""
 
     parts: tuple[Part, ...]
@@ -41,8 +39,7 @@ class Column:
     legend: bool = False
 
 
-@dataclass(frozen=True)
-class Drawing:
+class Drawing(Struct, frozen=True):
     """The state of the drawing a page shows.
 
     ``problem``: the mechanism and the empty polygon panels; ``step``: construction step
@@ -55,8 +52,7 @@ class Drawing:
     number: int = 0
 
 
-@dataclass(frozen=True)
-class Page:
+class Page(Struct, frozen=True):
     kind: Literal["problem", "step", "answers"]
     drawing: Drawing
     columns: tuple[Column, ...]
@@ -64,8 +60,7 @@ class Page:
     heading: str = ""
 
 
-@dataclass(frozen=True)
-class Handout:
+class Handout(Struct, frozen=True):
     title: str
     language: str
     pages: tuple[Page, ...]

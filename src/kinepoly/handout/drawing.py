@@ -13,8 +13,10 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
 from typing import Any
+
+from msgspec import Struct, field
+from msgspec.structs import replace
 
 from kinepoly.geom.tolerances import PAPER_SAME_MM
 from kinepoly.handout.content import Drawing
@@ -34,8 +36,7 @@ GAP_MM = 3.0
 """Between the band of text and the drawing's panels, and inside the border."""
 
 
-@dataclass(frozen=True)
-class Frame:
+class Frame(Struct, frozen=True):
     """The drawing laid out on ``paper`` and moved up by ``shift`` on a page ``width`` x ``height``.
 
     The band of text is the strip ``band`` mm high above the page's bottom margin (0: no band).
@@ -47,9 +48,9 @@ class Frame:
     width: float
     height: float
     band: float
-    labels: LabelCache = field(default_factory=LabelCache, compare=False, repr=False)
+    labels: LabelCache = field(default_factory=LabelCache)
     """Shared by the frame's pages: the labels of the fixed parts are placed once."""
-    placed: dict[Item, Item] = field(default_factory=dict, compare=False, repr=False)
+    placed: dict[Item, Item] = field(default_factory=dict)
     """Each item drawn on the frame's pages, moved to its place on the page once (``moved``): equal items are
     one object on every page."""
 

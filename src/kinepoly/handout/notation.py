@@ -18,7 +18,8 @@ import functools
 import html
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.geom.tolerances import PAPER_ROUNDING_MM
 from kinepoly.render import text as render_text
@@ -90,8 +91,7 @@ def _typeset_width(text: str, size: float, bold: bool) -> float:
     return max(r.dx + text_width(r.text, r.size, bold) for r in runs)
 
 
-@dataclass(frozen=True)
-class Piece:
+class Piece(Struct, frozen=True):
     """A piece of typeset text: ``base`` at full size, then ``sup`` over ``sub`` (both smaller)."""
 
     base: str

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import io
 from collections.abc import Mapping
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.handout.build import crowded_labels, drawn_kinds
 from kinepoly.handout.drawing import blank_sheet, drawing_layers, page_frame_items, scales_of
@@ -26,8 +27,7 @@ FIGURE_DPI = 110
 """The figure's resolution: an A4 drawing is about 1300 pixels wide, readable on a screen, small in a quiz file."""
 
 
-@dataclass(frozen=True)
-class Statement:
+class Statement(Struct, frozen=True):
     """The problem page's text (HTML), its drawing (PNG bytes) and the scales the text quotes
     (``mechanism``: paper mm per length unit; ``velocity``: kv; ``acceleration``: ka)."""
 

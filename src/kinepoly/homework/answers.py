@@ -28,9 +28,10 @@ import math
 import os
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from functools import partial
 from typing import Literal, NoReturn
+
+from msgspec import Struct, field
 
 from kinepoly.errors import SceneError
 from kinepoly.scene.link_point import LinkPoint
@@ -78,8 +79,7 @@ _CLOCKWISE = ("cw", "clockwise")
 _SENSE_WORDS = ("cw", "ccw")
 
 
-@dataclass(frozen=True)
-class Direction:
+class Direction(Struct, frozen=True):
     """A direction without a point: an instant center at infinity. Its sense does not matter."""
 
     x: float
@@ -89,8 +89,7 @@ class Direction:
 Value = float | tuple[float, float] | Direction
 
 
-@dataclass(frozen=True)
-class AnswerKey:
+class AnswerKey(Struct, frozen=True):
     """What an answer is about: ``kind`` of ``target`` (a link, point label, slider or link pair)."""
 
     kind: Kind
@@ -113,15 +112,13 @@ class AnswerKey:
         return (self.kind, self.target)
 
 
-@dataclass(frozen=True)
-class Answer:
+class Answer(Struct, frozen=True):
     key: AnswerKey
     value: Value
     line: int = 0
 
 
-@dataclass(frozen=True)
-class Tolerance:
+class Tolerance(Struct, frozen=True):
     """How close an answer must be. ``relative``: of the expected size (see kinepoly.homework.compare);
     ``angle_deg``: of a vector's direction or a link's angle."""
 
@@ -132,8 +129,7 @@ class Tolerance:
 DEFAULT_TOLERANCE = Tolerance()
 
 
-@dataclass(frozen=True)
-class Answers:
+class Answers(Struct, frozen=True):
     """One answers file: its answers in file order, the tolerance, and the student's name if given."""
 
     answers: tuple[Answer, ...]

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import tomllib
 from collections.abc import Iterable
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.errors import SceneError
 from kinepoly.homework.answers import Answer, AnswerKey, Answers, Tolerance, Value
@@ -23,8 +24,7 @@ from kinepoly.scene.spec import Scene
 __all__ = ["CheckResult", "Checker", "Verdict", "check", "make_checker"]
 
 
-@dataclass(frozen=True)
-class Verdict:
+class Verdict(Struct, frozen=True):
     """One question: the expected value, the given one (None: not answered), how they compare, why wrong."""
 
     key: AnswerKey
@@ -39,8 +39,7 @@ class Verdict:
         return self.comparison is not None and self.comparison.is_correct
 
 
-@dataclass(frozen=True)
-class CheckResult:
+class CheckResult(Struct, frozen=True):
     """One answers file checked: a verdict per question, in the order of the scene's [find], then the
     answers to questions it does not ask, in file order."""
 
@@ -62,8 +61,7 @@ class CheckResult:
         return all(verdict.is_correct for verdict in self.verdicts)
 
 
-@dataclass(frozen=True)
-class Checker:
+class Checker(Struct, frozen=True):
     """A scene solved for the questions, and recomputed with every whole-problem mistake."""
 
     reference: Reference

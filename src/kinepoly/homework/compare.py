@@ -19,15 +19,15 @@ mistakes it tries by it.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.homework.answers import Direction, Kind, Tolerance, Value
 
 __all__ = ["Comparison", "compare"]
 
 
-@dataclass(frozen=True)
-class Comparison:
+class Comparison(Struct, frozen=True):
     """Whether ``given`` is right, how close it is (error / allowed) and the error's parts for the report.
 
     ``error`` has ``relative`` (the error over the size it is judged against, so that the answer is

@@ -25,11 +25,12 @@ roundoff, the first tried), and a mistake that changes nothing visible is never 
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import Generic, TypeVar
+
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.acceleration import Rules
 from kinepoly.errors import KinepolyError
@@ -69,8 +70,7 @@ _NOUNS = {"omega": "angular velocity", "alpha": "angular acceleration", "theta":
 _Answer = TypeVar("_Answer")
 
 
-@dataclass(frozen=True)
-class Mistake(Generic[_Answer]):
+class Mistake(Struct, Generic[_Answer], frozen=True):
     """What one mistake (its code and its text) makes of the answers: of the whole problem (``Recomputed``,
     its answers by key) or of one key (``Candidate``)."""
 
@@ -83,8 +83,7 @@ Recomputed = Mistake[Values]
 Candidate = Mistake[Value]
 
 
-@dataclass(frozen=True)
-class Diagnosis:
+class Diagnosis(Struct, frozen=True):
     """The likely mistake behind a wrong answer (``value``: the answer that mistake gives).
 
     ``code`` is ``unrecognised`` (and ``value`` None) when no mistake reproduces the answer, and
@@ -111,7 +110,7 @@ def _resolved(scene: Scene, reference: Reference, code: str, text: str, changed:
     """The scene solved again at a mistaken input (nothing when it does not assemble there)."""
     keys = asked_keys(reference.values)
     try:
-        values = solve_for(dataclasses.replace(scene, input=changed), keys, everything=False)
+        values = solve_for(replace(scene, input=changed), keys, everything=False)
     except KinepolyError:
         return []
     return [Recomputed(code, text, values)]
@@ -127,17 +126,17 @@ def _input_mistakes(reference: Reference, written: Mapping[str, object] | None) 
         degrees = math.degrees(inp.angle_rad)
         out += _resolved(scene, reference, "degrees-for-radians",
                          f"the input angle {degrees:g} deg used as {degrees:g} rad (a calculator in radian mode)",
-                         dataclasses.replace(inp, angle_rad=degrees))
+                         replace(inp, angle_rad=degrees))
     else:
         out += _resolved(scene, reference, "degrees-for-radians",
                          f"the input angle {inp.angle_rad:g} rad used as {inp.angle_rad:g} deg",
-                         dataclasses.replace(inp, angle_rad=math.radians(inp.angle_rad)))
+                         replace(inp, angle_rad=math.radians(inp.angle_rad)))
     for name, unit in (("omega", "deg/s"), ("omega", "rpm"), ("alpha", "deg/s^2")):
         number = _number_in(written, name, unit)
         if number is not None:
             mistake = "degrees-for-radians" if unit.startswith("deg") else "rpm-for-rad/s"
             si = "rad/s" if name == "omega" else "rad/s^2"
-            changed = dataclasses.replace(inp, omega=number) if name == "omega" else dataclasses.replace(
+            changed = replace(inp, omega=number) if name == "omega" else replace(
                 inp, alpha=number)
             out += _resolved(scene, reference, mistake, f"the input {name} {number:g} {unit} used as {number:g} {si}",
                              changed)

@@ -13,8 +13,9 @@ their gear's.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Sequence
+
+from msgspec.structs import replace
 
 from kinepoly.scene.equivalent import with_equivalent_links
 from kinepoly.scene.spec import CamSpec, GearSpec, LinkSpec, PitchCircle, PitchLine, Scene
@@ -38,11 +39,11 @@ def as_written(scene: Scene) -> Scene:
     replaced = set(scene.equivalent_links)
     added = {cam.cam: name for cam in scene.cams
              if (name := _added_centre(scene, cam, scene.link(cam.cam))) is not None}
-    links = tuple(dataclasses.replace(link, points=tuple(p for p in link.points if p.name != added.get(link.name)))
+    links = tuple(replace(link, points=tuple(p for p in link.points if p.name != added.get(link.name)))
                   for link in scene.links if link.name not in replaced)
     sliders = tuple(s for s in scene.sliders if s.block not in replaced and s.guide not in replaced)
-    cams = tuple(dataclasses.replace(cam, equivalent="", center_point="") for cam in scene.cams)
-    return dataclasses.replace(scene, links=links, sliders=sliders, cams=cams, equivalent_links=())
+    cams = tuple(replace(cam, equivalent="", center_point="") for cam in scene.cams)
+    return replace(scene, links=links, sliders=sliders, cams=cams, equivalent_links=())
 
 
 def solvable(scene: Scene) -> Scene:
@@ -105,7 +106,7 @@ def _cam(cam: CamSpec, values: list[float]) -> CamSpec:
         points, centre, radius = (), (values.pop(0), values.pop(0)), values.pop(0)
     roller = values.pop(0)
     flat = None if cam.flat is None else ((values.pop(0), values.pop(0)), cam.flat[1])
-    return dataclasses.replace(cam, center=centre, radius=radius, roller_radius=roller, flat=flat,
+    return replace(cam, center=centre, radius=radius, roller_radius=roller, flat=flat,
                                profile_points=points)
 
 
@@ -114,11 +115,11 @@ def _gear(gear: GearSpec, values: list[float]) -> GearSpec:
     phase = list(gear.phase)
     for k, curve in enumerate(gear.pitch):
         if isinstance(curve, PitchCircle):
-            pitch.append(dataclasses.replace(curve, radius=values.pop(0)))
+            pitch.append(replace(curve, radius=values.pop(0)))
         else:
-            pitch.append(dataclasses.replace(curve, through=(values.pop(0), values.pop(0))))
+            pitch.append(replace(curve, through=(values.pop(0), values.pop(0))))
             phase[k] = values.pop(0)
-    return dataclasses.replace(gear, pitch=(pitch[0], pitch[1]), phase=(phase[0], phase[1]))
+    return replace(gear, pitch=(pitch[0], pitch[1]), phase=(phase[0], phase[1]))
 
 
 def with_pair_lengths(scene: Scene, lengths: Sequence[float]) -> Scene:
@@ -126,4 +127,4 @@ def with_pair_lengths(scene: Scene, lengths: Sequence[float]) -> Scene:
     values = list(lengths)
     cams = tuple(_cam(cam, values) for cam in scene.cams)
     gears = tuple(_gear(gear, values) for gear in scene.gears)
-    return dataclasses.replace(scene, cams=cams, gears=gears)
+    return replace(scene, cams=cams, gears=gears)

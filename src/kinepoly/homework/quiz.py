@@ -25,8 +25,9 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from typing import Literal
+
+from msgspec import Struct
 
 from kinepoly.errors import SceneError
 from kinepoly.geom.tolerances import ANGLE_SAME_DEG, SAME_REL
@@ -54,8 +55,7 @@ _SAME = SAME_REL
 _SLIDER_NAMES = {"s": "s", "s_dot": "ds/dt", "s_ddot": "d²s/dt²"}
 
 
-@dataclass(frozen=True)
-class QuizTolerance:
+class QuizTolerance(Struct, frozen=True):
     """``relative`` (a fraction: 0.02 for ``2%``) or ``paper_mm`` (a length on the paper), one of them."""
 
     relative: float | None = 0.02
@@ -84,8 +84,7 @@ def parse_tolerance(text: str) -> QuizTolerance:
     return QuizTolerance(relative=None, paper_mm=number)
 
 
-@dataclass(frozen=True)
-class Wrong:
+class Wrong(Struct, frozen=True):
     """A typical mistake's number for a quantity, its code (as ``check`` names it) and the words naming it."""
 
     code: str
@@ -93,8 +92,7 @@ class Wrong:
     value: float
 
 
-@dataclass(frozen=True)
-class Omitted:
+class Omitted(Struct, frozen=True):
     """A mistake left out: its number coincides, within the tolerance, with ``with_`` (``right`` or a code)."""
 
     code: str
@@ -102,8 +100,7 @@ class Omitted:
     with_: str
 
 
-@dataclass(frozen=True)
-class Quantity:
+class Quantity(Struct, frozen=True):
     """One number asked: ``key`` (the answers file's, ``v_A``), ``part`` of it, the words that ask for it (the
     course's notation, ``handout.notation``), the right number, the tolerance (in its unit), the mistakes."""
 
@@ -118,8 +115,7 @@ class Quantity:
     """A direction in degrees: numbers are compared modulo 360."""
 
 
-@dataclass(frozen=True)
-class Question:
+class Question(Struct, frozen=True):
     """One variant as a question: ``name`` the variant's (``slotted-lever-01``), ``title`` its name in the question
     bank (variant and seed), the problem page's text (HTML) and figure (PNG), the numbers asked."""
 
@@ -134,8 +130,7 @@ class Question:
         return f"{self.name}.png"
 
 
-@dataclass(frozen=True)
-class Quiz:
+class Quiz(Struct, frozen=True):
     """The questions of a scene's variants: ``category`` the scene's name (one question bank category per
     scene), ``title`` what the platform calls the quiz, ``language`` the catalogue's code."""
 

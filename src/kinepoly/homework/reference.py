@@ -13,11 +13,12 @@ on the reference's positions and velocity polygon: velocities are not affected b
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
 from typing import Literal
+
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.acceleration import Rules
 from kinepoly.engine.construct import construct_row
@@ -42,8 +43,7 @@ Values = Mapping[AnswerKey, Value]
 """Answers by key, in internal units (angles in radians), in the order ``kinepoly solve`` reports them."""
 
 
-@dataclass(frozen=True)
-class Reference:
+class Reference(Struct, frozen=True):
     """The scene solved for the answers.
 
     ``solution`` is the scene solved for every key (and, when it could be, every point and link);
@@ -216,7 +216,7 @@ def _find_for(scene: Scene, keys: Iterable[AnswerKey], *, everything: bool) -> F
 
 
 def _solved_for(scene: Scene, keys: tuple[AnswerKey, ...], *, everything: bool) -> Solution:
-    return solve(dataclasses.replace(scene, find=_find_for(scene, keys, everything=everything)))
+    return solve(replace(scene, find=_find_for(scene, keys, everything=everything)))
 
 
 def _with_fixed_links(scene: Scene, values: Values) -> dict[AnswerKey, Value]:
@@ -241,7 +241,7 @@ def student_solution(solution: Solution, rules: Rules) -> dict[AnswerKey, Value]
     if solution.acceleration is not None and inside is not None:  # the right construction went through at this row
         built = construct_row(inside.mechanism, solution.plan, wanted(solution.asked), origin=inside.frame.origin,
                               unit=solution.scene.units.length, strict=False, rules=rules)
-        solution = dataclasses.replace(solution, acceleration=built.acceleration, sliders=built.sliders)
+        solution = replace(solution, acceleration=built.acceleration, sliders=built.sliders)
     return _with_fixed_links(solution.scene, values_of(solution))
 
 

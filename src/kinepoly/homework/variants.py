@@ -34,15 +34,15 @@ gives the same variants (Python's Mersenne Twister, one draw order).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import random
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.dyad_assembly import guess_distances
 from kinepoly.engine.groups import Dyad
@@ -92,8 +92,7 @@ Verdict = Guess | Literal[False] | None
 """A draw judged by the family: rejected (False), reached there (``Guess``), or left to the path of solves (None)."""
 
 
-@dataclass(frozen=True)
-class Variant:
+class Variant(Struct, frozen=True):
     """One variant: its name, scene and answer-key texts, and what makes it a good problem."""
 
     name: str
@@ -104,8 +103,7 @@ class Variant:
     min_transmission_deg: float | None
 
 
-@dataclass(frozen=True)
-class _Numbers:
+class _Numbers(Struct, frozen=True):
     """What a variant changes: every link's point coordinates, every slide's ``through``, the input values."""
 
     points: tuple[tuple[Vec, ...], ...]
@@ -153,11 +151,11 @@ def _written_scene(base: Scene, numbers: _Numbers, guess: tuple[tuple[str, Vec],
     links = tuple(LinkSpec(link.name, tuple(PointSpec(p.name, xy, p.line, _as_polar(p, xy))
                                             for p, xy in zip(link.points, coords, strict=True)),
                            link.line) for link, coords in zip(base.links, numbers.points, strict=True))
-    sliders = tuple(dataclasses.replace(s, through=xy) for s, xy in zip(base.sliders, numbers.through, strict=True))
+    sliders = tuple(replace(s, through=xy) for s, xy in zip(base.sliders, numbers.through, strict=True))
     points = {p.name for link in base.links for p in link.points}
-    return with_pair_lengths(dataclasses.replace(
+    return with_pair_lengths(replace(
         base, links=links, sliders=sliders, guess=tuple((name, at) for name, at in guess if name in points),
-        title=title or base.title, input=dataclasses.replace(base.input, **dict(numbers.inputs))),  # type: ignore[arg-type]
+        title=title or base.title, input=replace(base.input, **dict(numbers.inputs))),
         numbers.pairs)
 
 
@@ -245,8 +243,7 @@ def _draw(rng: random.Random, scene: Scene, ranges: Ranges) -> _Numbers:
 # Judging a solved variant
 
 
-@dataclass(frozen=True)
-class _Solved:
+class _Solved(Struct, frozen=True):
     solution: Solution
 
     @property
@@ -355,8 +352,7 @@ def _reach(base: Scene, start: _Numbers, end: _Numbers, original: _Solved) -> _S
 # Judging many draws at once, through the family engine
 
 
-@dataclass(frozen=True, eq=False)
-class _Family:
+class _Family(Struct, frozen=True, eq=False):
     """What judging a scene's draws as one family needs: the placer of its members (``sweep.family``), the dyads
     of its plan, and the original's moving points (a direct solve's ``[guess]``) by name, in the solve's order."""
 

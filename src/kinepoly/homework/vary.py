@@ -19,9 +19,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from functools import partial
 from typing import Literal
+
+from msgspec import Struct, field
 
 from kinepoly.scene.loader import ProblemReport, read_quantity, show_value, suggest
 from kinepoly.scene.problems import no_such
@@ -35,16 +36,14 @@ _QUANTITY: dict[str, Literal["angle", "omega", "alpha", "length", "speed", "acce
     "angle": "angle", "omega": "omega", "alpha": "alpha", "s": "length", "s_dot": "speed", "s_ddot": "accel"}
 
 
-@dataclass(frozen=True)
-class Range:
+class Range(Struct, frozen=True):
     """low <= high, in the stored unit (radians for angles, rad/s, the scene's lengths)."""
 
     low: float
     high: float
 
 
-@dataclass(frozen=True)
-class Ranges:
+class Ranges(Struct, frozen=True):
     """What a variant draws: a factor range per link, and a range per input value (by its spec name)."""
 
     factors: Mapping[str, Range]

@@ -13,7 +13,8 @@ from __future__ import annotations
 import cmath
 import math
 from collections import deque
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.errors import OutputError
 from kinepoly.geom.tolerances import ROUNDING_REL
@@ -30,8 +31,7 @@ class LoopMethodError(OutputError):
     """``--method loops`` asked of a scene with a pair the loop method does not cover (gears, cams): exit 2."""
 
 
-@dataclass(frozen=True)
-class Term:
+class Term(Struct, frozen=True):
     """One vector of a loop, ``sign`` times ``length`` e^{i angle}, angle = theta_1k + ``offset``.
 
     A link's vector (``slider`` None) has a constant length and turns with ``link``; a slider's has the
@@ -57,8 +57,7 @@ class Term:
         return self.sign * self.length * self.unit
 
 
-@dataclass(frozen=True)
-class Loop:
+class Loop(Struct, frozen=True):
     """One independent loop: the links it goes round, in order, and its vectors (their sum is zero)."""
 
     number: int

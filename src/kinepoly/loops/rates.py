@@ -13,9 +13,9 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.errors import SingularityError
 from kinepoly.geom.tolerances import LOOP_SINGULAR_DET
@@ -29,8 +29,7 @@ __all__ = ["Block", "Equation", "LoopSolution", "solve_loops"]
 _SINGULAR = LOOP_SINGULAR_DET
 
 
-@dataclass(frozen=True)
-class Equation:
+class Equation(Struct, frozen=True):
     """sum of coefficient * unknown = rhs: one real equation (a loop's real or imaginary part, or an input)."""
 
     source: str
@@ -38,8 +37,7 @@ class Equation:
     rhs: float
 
 
-@dataclass(frozen=True)
-class Block:
+class Block(Struct, frozen=True):
     """Unknowns found together: ``kind`` is "input", "cramer" (one loop, 2x2) or "coupled" (several loops)."""
 
     kind: str
@@ -52,8 +50,7 @@ class Block:
     """How many of its equations are inputs' (a motor between moving links: the difference of two rates)."""
 
 
-@dataclass(frozen=True)
-class LoopSolution:
+class LoopSolution(Struct, frozen=True):
     """Every rate from the loop equations at one position: omega, alpha by link; s, s_dot, s_ddot by slider."""
 
     mechanism: Mechanism

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
-from dataclasses import replace
 from typing import Any
+
+from msgspec.structs import replace
 
 from kinepoly.engine.assembly import position_at_input
 from kinepoly.engine.plan import make_plan

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from msgspec import Struct, field
 
 from kinepoly.geom.arrays import Points, Reals, length
 from kinepoly.model.pose import LinkPose
@@ -54,15 +54,14 @@ def _member_span(local_a: tuple[float, float], local_b: tuple[float, float]) -> 
     return np.asarray(second - first), each
 
 
-@dataclass(frozen=True, repr=False)
-class ArrayPose:
+class ArrayPose(Struct, frozen=True):
     """A link's place in the frame at every row."""
 
     origin: Points
     rotation: Points
     still: bool = False
     """The frame itself: world = local at every row."""
-    _found: dict[tuple[float, float, float, float], Points] = field(default_factory=dict, init=False, compare=False)
+    _found: dict[tuple[float, float, float, float], Points] = field(default_factory=dict)
     """``world_at`` of each point given as one number, made once (the closure that places a link and the
     polygons that read its points share it: do not change it in place)."""
 

@@ -10,10 +10,10 @@ plan runs once for every member at once.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
+from msgspec import field
 
 from kinepoly.geom.arrays import Points, Reals
 from kinepoly.geom.vec import Vec
@@ -41,8 +41,7 @@ class RowPoint(tuple[Reals, Reals]):
         return point
 
 
-@dataclass(frozen=True, eq=False, repr=False)
-class FamilyMechanism(Mechanism):
+class FamilyMechanism(Mechanism, frozen=True, eq=False, dict=True):
     """The scene's mechanism whose points ``varied`` (keyed (link, point), each member's x + iy) differ between
     the members, whose rows come ``rows_each`` to a member, every member over the same inputs."""
 

@@ -11,9 +11,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from functools import cached_property
 from typing import TypeVar
+
+from msgspec import Struct
 
 from kinepoly.errors import MobilityError, SceneError
 from kinepoly.scene.spec import LinkInput, Scene, SliderInput, SliderSpec
@@ -24,8 +25,7 @@ Vec = tuple[float, float]
 T = TypeVar("T")
 
 
-@dataclass(frozen=True, repr=False)
-class Revolute:
+class Revolute(Struct, frozen=True):
     """A pin: ``point`` is a point of both ``links``."""
 
     point: str
@@ -48,8 +48,7 @@ def joint_links(joint: Joint) -> tuple[str, str]:
     return (joint.block, joint.guide)
 
 
-@dataclass(frozen=True, repr=False)
-class Drive:
+class Drive(Struct, frozen=True):
     """One input as the joint it drives: ``moving`` turns (about ``joint``'s pin) or slides (the block of
     ``joint``) on ``base``, which is the frame or a moving link. ``index`` 0 is the first input, the one
     a sweep varies."""
@@ -79,8 +78,7 @@ class Drive:
         return self.spec.s_dot if order == 1 else self.spec.s_ddot
 
 
-@dataclass(frozen=True, repr=False)
-class Mechanism:
+class Mechanism(Struct, frozen=True, dict=True):
     """The links (points in their own frames), the joints, the ground and the input of a scene."""
 
     scene: Scene

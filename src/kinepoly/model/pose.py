@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+
+from msgspec import Struct, field
 
 __all__ = ["LinkPose", "Pose"]
 
 Vec = tuple[float, float]
 
 
-@dataclass(frozen=True)
-class LinkPose:
+class LinkPose(Struct, frozen=True):
     """A link's place in the frame: world = (x, y) + R(theta) local; theta in radians."""
 
     x: float
@@ -28,8 +28,7 @@ class LinkPose:
         return (c * dx + s * dy, -s * dx + c * dy)
 
 
-@dataclass(frozen=True)
-class Pose:
+class Pose(Struct, frozen=True):
     """Poses of the links that were solved (only those the question needs)."""
 
     links: dict[str, LinkPose]

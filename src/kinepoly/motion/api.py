@@ -11,9 +11,10 @@ from __future__ import annotations
 import base64
 import os
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
+
+from msgspec import Struct, field
 
 from kinepoly.errors import OutputError, SceneError
 from kinepoly.motion.frames import DEFAULT_PARTS, Frames, make_frames
@@ -37,8 +38,7 @@ _PANEL = {"mechanism": "mechanism", "velocity-polygon": "velocity", "acceleratio
           "instant-centers": "mechanism"}
 
 
-@dataclass(frozen=True)
-class Animation:
+class Animation(Struct, frozen=True):
     """The motion made: its frames (the data drawn), the file's bytes and format, the time taken."""
 
     frames: Frames

@@ -14,10 +14,10 @@ run off the panel at that scale.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct
 
 from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
 from kinepoly.engine.centrode import frame_centrodes
@@ -57,8 +57,7 @@ def fitting_scale(radius: float, room_mm: float = _ROOM_MM) -> float:
     return nice_floor(room_mm / radius)
 
 
-@dataclass(frozen=True)
-class PolygonFrames:
+class PolygonFrames(Struct, frozen=True):
     """One polygon at every frame: ``tips[k, j]`` is tip ``labels[j]`` of frame k in paper mm (pole at 0).
 
     ``images`` are each link's image (tip indices, -1 the pole), ``vectors`` the arrows drawn
@@ -79,8 +78,7 @@ class PolygonFrames:
     """The middle of every frame's polygon (paper mm from the pole): the panel is centred there."""
 
 
-@dataclass(frozen=True)
-class LinkFrames:
+class LinkFrames(Struct, frozen=True):
     """A link's points at every frame (the scene's length unit, the scene's frame); the frame link does not move."""
 
     name: str
@@ -89,8 +87,7 @@ class LinkFrames:
     ground: bool
 
 
-@dataclass(frozen=True)
-class SliderFrames:
+class SliderFrames(Struct, frozen=True):
     """A slide: its guide line (from ``guide_a`` to ``guide_b``), the block's point and the slide's direction."""
 
     name: str
@@ -100,8 +97,7 @@ class SliderFrames:
     direction: Points
 
 
-@dataclass(frozen=True)
-class Trace:
+class Trace(Struct, frozen=True):
     """A point (a path) or an instant center at every frame; ``valid`` False where it has none."""
 
     name: str
@@ -109,8 +105,7 @@ class Trace:
     valid: Bools
 
 
-@dataclass(frozen=True)
-class Value:
+class Value(Struct, frozen=True):
     """A quantity shown beside the drawing, at every row of the sweep (not only the frames)."""
 
     name: str
@@ -120,8 +115,7 @@ class Value:
     order: int
 
 
-@dataclass(frozen=True)
-class Frames:
+class Frames(Struct, frozen=True):
     """Everything a drawing of the motion needs; frame k is the sweep's row ``rows[k]``."""
 
     title: str

@@ -15,12 +15,12 @@ show the mechanism and say so in each polygon's panel.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
+from msgspec.structs import replace
 
 from kinepoly.errors import KinepolyError
 from kinepoly.geom.tolerances import PAPER_SAME_MM, TINY_POSITIVE, TRACKED_REL, TRACKED_TURN_RAD
@@ -86,7 +86,7 @@ def _geared(scene: Scene, solution: Solution, frames: Frames, k: int) -> Scene |
                 phase[side] -= turn
                 changed = True
         gears[g] = GearSpec(gear.name, gear.links, gear.pitch, gear.internal, (phase[0], phase[1]), gear.line)
-    return dataclasses.replace(scene, gears=tuple(gears)) if changed else None
+    return replace(scene, gears=tuple(gears)) if changed else None
 
 
 def _matches(solution: Solution, swept: dict[str, complex], size: float) -> bool:
@@ -96,7 +96,7 @@ def _matches(solution: Solution, swept: dict[str, complex], size: float) -> bool
 def frame_solutions(frames: Frames, scene: Scene) -> list[Solution]:
     """The solution at each frame, on the sweep's assembly."""
     centers = "centers" in frames.parts
-    find = scene.find if centers and scene.find.instant_centers else dataclasses.replace(
+    find = scene.find if centers and scene.find.instant_centers else replace(
         scene.find, instant_centers="all" if centers else ())
     x0, y0, x1, y1 = frames.box
     size = max(x1 - x0, y1 - y0, TINY_POSITIVE)
@@ -104,7 +104,7 @@ def frame_solutions(frames: Frames, scene: Scene) -> list[Solution]:
     for k in range(frames.count):
         row = int(frames.rows[k])
         swept = _swept(frames, k, scene)
-        at = dataclasses.replace(scene, input=_input_at(scene, float(frames.inputs[row])), find=find,
+        at = replace(scene, input=_input_at(scene, float(frames.inputs[row])), find=find,
                                  guess=tuple((p, (z.real, z.imag)) for p, z in swept.items()))
         other = int(frames.rows[k - 1 if k > 0 else min(1, frames.count - 1)])
         toward = _input_at(scene, float(frames.inputs[other]))
@@ -131,16 +131,16 @@ def _solve(scene: Scene, toward: float) -> Solution:
         inp = scene.input
         assert isinstance(inp, LinkInput | SliderInput)
         for nudge in (1e-6, 1e-4, 1e-2):
-            moved = (dataclasses.replace(inp, angle_rad=inp.angle_rad + nudge * toward) if isinstance(inp, LinkInput)
-                     else dataclasses.replace(inp, s=inp.s + nudge * toward))
+            moved = (replace(inp, angle_rad=inp.angle_rad + nudge * toward) if isinstance(inp, LinkInput)
+                     else replace(inp, s=inp.s + nudge * toward))
             try:
-                return solve(dataclasses.replace(scene, input=moved))
+                return solve(replace(scene, input=moved))
             except KinepolyError:
                 continue
         # rates beyond double precision at every nudge: the mechanism where it stands, its polygons left out
-        still = (dataclasses.replace(inp, omega=0.0, alpha=0.0) if isinstance(inp, LinkInput)
-                 else dataclasses.replace(inp, s_dot=0.0, s_ddot=0.0))
-        return dataclasses.replace(solve(dataclasses.replace(scene, input=still)), velocity=None, acceleration=None)
+        still = (replace(inp, omega=0.0, alpha=0.0) if isinstance(inp, LinkInput)
+                 else replace(inp, s_dot=0.0, s_ddot=0.0))
+        return replace(solve(replace(scene, input=still)), velocity=None, acceleration=None)
 
 
 def _figures(solution: Solution, layout: Layout) -> tuple[Any, ...]:
@@ -307,7 +307,7 @@ def frame_sheets(frames: Frames, solutions: list[Solution]) -> Iterator[Sheet]:
     for k, solution in enumerate(solutions):
         shown = all(p is None or bool(p.valid[k]) for p in (frames.velocity, frames.acceleration))
         figures = _figures(solution, layout) if shown else ()
-        frame = dataclasses.replace(layout, figures=figures, labels=LabelCache())
+        frame = replace(layout, figures=figures, labels=LabelCache())
         sheet = build_sheet(solution, SHEET_MM, layout=frame, title_block=False)
         extra: dict[str, list[Item]] = {
             "mechanism": _paths(frames, k, mechanism) if "paths" in frames.parts else [],

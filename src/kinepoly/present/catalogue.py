@@ -24,11 +24,12 @@ import string
 import sys
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 from types import MappingProxyType
 from typing import IO, Any
+
+from msgspec import Struct
 
 from kinepoly.errors import CatalogueError, SceneError
 from kinepoly.geom.tolerances import ANGLE_SAME_DEG, PRINTED_ZERO
@@ -41,8 +42,7 @@ _META = ("language", "code", "decimal", "extends")
 """Keys about the catalogue itself, outside the messages (``extends`` only in a file of a teacher's)."""
 
 
-@dataclass(frozen=True, repr=False)
-class Catalogue:
+class Catalogue(Struct, frozen=True):
     """The messages of one language, keyed ``section.name``; ``decimal`` is its decimal mark."""
 
     code: str

@@ -18,8 +18,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
+
+from msgspec import Struct, field
 
 from kinepoly.geom.tolerances import UNIT_ROUNDOFF
 
@@ -86,8 +87,7 @@ def given_angle(radians: float, unit: str) -> float:
     return degrees + 0.0
 
 
-@dataclass(frozen=True, repr=False)
-class Noise:
+class Noise(Struct, frozen=True):
     """The absolute error floor of each kind (the unit of the kind: mm, rad, mm/s, ...)."""
 
     floors: Mapping[str, float] = field(default_factory=dict)

@@ -17,9 +17,11 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, replace
 from functools import cache, cached_property
 from typing import TYPE_CHECKING
+
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.groups import NewtonGroup
 from kinepoly.engine.steps import Direction, DrawnVector, Step, term_name
@@ -75,8 +77,7 @@ def equivalent_name(params: Mapping[str, object], say: Catalogue) -> str:
     return say.say("higher_pairs.named_link", name=f"{params['centre']}{params['point']}")
 
 
-@dataclass(frozen=True, repr=False)
-class Context:
+class Context(Struct, frozen=True, dict=True):
     """What a step's sentence needs besides the step: the solution it belongs to and the scales it is drawn at.
 
     ``scales`` are paper mm per unit of each polygon, keyed ``velocity`` and ``acceleration``

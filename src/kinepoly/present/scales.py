@@ -23,8 +23,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+from msgspec import Struct
 
 from kinepoly.errors import SceneError
 from kinepoly.geom.hull import diameter
@@ -87,8 +88,7 @@ def polygon_room(paper: tuple[float, float]) -> tuple[float, float]:
     return max(width - 2.0 * _SIDE_MM, 1.0), max(height - 2.0 * _SIDE_MM - _TITLE_MM, 1.0)
 
 
-@dataclass(frozen=True, repr=False)
-class PolygonScale:
+class PolygonScale(Struct, frozen=True):
     """One polygon's scale in mm of paper per unit of the polygon (mm per mm/s, mm per mm/s²)."""
 
     kind: str
@@ -110,8 +110,7 @@ class PolygonScale:
         return self.value < self.wanted * (1.0 - ROUNDING_REL)
 
 
-@dataclass(frozen=True, repr=False)
-class PolygonScales:
+class PolygonScales(Struct, frozen=True):
     """kv and ka of one solution on one paper."""
 
     paper: tuple[float, float]

@@ -9,7 +9,8 @@ of the mechanism. The contact and its normal are the solve's ``contacts`` (``eng
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+
+from msgspec.structs import replace
 
 from kinepoly.geom.profile import outline
 from kinepoly.geom.spline import periodic_spline

@@ -16,11 +16,13 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Iterable, Iterator, Sequence
-from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
+from msgspec import Struct
+from msgspec.structs import replace
+
 from kinepoly.geom.tolerances import PAPER_EXACT_MM, PAPER_SAME_MM, PARALLEL_SIN
-from kinepoly.render.primitives import Arrow, Circle, Item, Path, Stroke, Text, hash_once
+from kinepoly.render.primitives import Arrow, Circle, Item, Path, Stroke, Text
 from kinepoly.render.text import Run, runs_box, text_width
 
 if TYPE_CHECKING:
@@ -59,8 +61,7 @@ at) before it takes the nearest place, crowded. The examples' drawings and hando
 label, 500 points on one coupler 1,900; 2,000 points in a 6 mm square made 17,000 each."""
 
 
-@dataclass(frozen=True)
-class Request:
+class Request(Struct, frozen=True, cache_hash=True):
     """A label to place: near ``anchor``, or beside the segment ``anchor`` -> ``end`` when ``end`` is given.
 
     ``layer`` is where the label goes; ``region`` the rectangle it must stay in; lower
@@ -81,8 +82,6 @@ class Request:
     """Draw a thin circle round the label (a link's number), so it does not read as a point's name."""
     optional: bool = False
     """Leave the label out rather than put it where it touches something (a link's number)."""
-
-    __hash__ = hash_once
 
 
 def item_geometry(item: Item) -> BaseGeometry:

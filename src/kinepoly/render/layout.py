@@ -11,7 +11,8 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.geom.tolerances import FIT_MARGIN_REL, PAPER_ROUNDING_MM, PAPER_SAME_MM
 from kinepoly.present.scales import nice_floor
@@ -95,8 +96,7 @@ def round_step(target: float) -> float:
     return nice_floor(target)
 
 
-@dataclass(frozen=True, repr=False)
-class Content:
+class Content(Struct, frozen=True):
     """What a panel must show: its physical bounding box, the scale it wants (None: free), padding."""
 
     name: str
@@ -118,8 +118,7 @@ class Content:
         return max(min(scales), 0.0)
 
 
-@dataclass(frozen=True, repr=False)
-class Panel:
+class Panel(Struct, frozen=True):
     """A panel of the page: ``rect`` (x0, y0, x1, y1) in paper mm, ``scale`` paper mm per unit."""
 
     name: str

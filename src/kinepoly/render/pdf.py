@@ -17,8 +17,9 @@ import hashlib
 import io
 import zlib
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from typing import Any
+
+from msgspec import Struct, field
 
 from kinepoly.render.primitives import Arrow, Circle, Item, Path, Sheet, Stroke
 
@@ -39,8 +40,7 @@ def _rgb(color: str) -> str:
     return " ".join(_num(int(color[k:k + 2], 16) / 255) for k in (1, 3, 5))
 
 
-@dataclass(frozen=True)
-class _Face:
+class _Face(Struct, frozen=True):
     """What the writer reads of a TrueType file: glyph ids by code point, advances, metrics (font units)."""
 
     path: str
@@ -98,8 +98,7 @@ def _subset(bold: bool, gids: frozenset[int]) -> bytes:
     return out.getvalue()
 
 
-@dataclass
-class _Writer:
+class _Writer(Struct):
     """One PDF document being written: its objects, the glyphs its text uses, its shared layers."""
 
     objects: list[bytes | None] = field(default_factory=list)

@@ -12,8 +12,9 @@ import bisect
 import functools
 import math
 import re
-from dataclasses import dataclass
 from typing import Literal
+
+from msgspec import Struct
 
 from kinepoly.engine.steps import Step, Term, term_name
 from kinepoly.geom.hull import diameter
@@ -47,8 +48,7 @@ TINY_FACTOR = 1.0
 """A vector drawn shorter than its head times this becomes a dot with a label."""
 
 
-@dataclass(frozen=True)
-class FigureVector:
+class FigureVector(Struct, frozen=True):
     label: str
     start: Vec
     end: Vec
@@ -56,21 +56,18 @@ class FigureVector:
     step: int
 
 
-@dataclass(frozen=True)
-class FigureLine:
+class FigureLine(Struct, frozen=True):
     line: Line
     step: int
 
 
-@dataclass(frozen=True)
-class FigureTip:
+class FigureTip(Struct, frozen=True):
     label: str
     value: Vec
     step: int
 
 
-@dataclass(frozen=True)
-class FigureImage:
+class FigureImage(Struct, frozen=True):
     """The image of a link with three or more points: shaded like the link (``index`` in scene order)."""
 
     link: str
@@ -79,8 +76,7 @@ class FigureImage:
     step: int
 
 
-@dataclass(frozen=True)
-class Figure:
+class Figure(Struct, frozen=True):
     """What one polygon shows, in physical units; ``step`` numbers count from 1 over solution.steps."""
 
     kind: Kind

@@ -9,7 +9,8 @@ readers can find it.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from msgspec import Struct
 
 from kinepoly.render.text import Run, runs_box
 
@@ -23,27 +24,16 @@ __all__ = [
     "Sheet",
     "Stroke",
     "Text",
-    "hash_once",
 ]
 
 Point = tuple[float, float]
-
-def hash_once(item: object) -> int:
-    """A frozen value's hash, computed on its first use and kept on it: a handout's pages look the same
-    items and label requests up by value many times (``handout.drawing``, ``render.labels.LabelCache``)."""
-    found: int | None = item.__dict__.get("_hash")
-    if found is None:
-        found = hash(tuple(getattr(item, name) for name in item.__dataclass_fields__))  # type: ignore[attr-defined]
-        object.__setattr__(item, "_hash", found)
-    return found
 
 
 LAYERS = ("mechanism", "higher-pairs", "velocity-polygon", "acceleration-polygon", "instant-centers", "scales", "title")
 """The layers of every sheet, bottom to top. A layer may be empty; it is still written."""
 
 
-@dataclass(frozen=True)
-class Stroke:
+class Stroke(Struct, frozen=True):
     """A line style: colour ``#rrggbb``, width in mm, dash pattern in mm (empty: solid)."""
 
     color: str = "#000000"
@@ -51,8 +41,7 @@ class Stroke:
     dash: tuple[float, ...] = ()
 
 
-@dataclass(frozen=True)
-class Path:
+class Path(Struct, frozen=True, cache_hash=True):
     """A polyline or polygon; ``fill`` colour with ``fill_opacity`` for a closed one."""
 
     points: tuple[Point, ...]
@@ -62,22 +51,16 @@ class Path:
     closed: bool = False
     role: str = ""
 
-    __hash__ = hash_once
 
-
-@dataclass(frozen=True)
-class Circle:
+class Circle(Struct, frozen=True, cache_hash=True):
     center: Point
     radius: float
     stroke: Stroke | None = Stroke()
     fill: str | None = None
     role: str = ""
 
-    __hash__ = hash_once
 
-
-@dataclass(frozen=True)
-class Arrow:
+class Arrow(Struct, frozen=True, cache_hash=True):
     """A vector from ``start`` to ``end`` (the head's tip is exactly ``end``), with a filled head."""
 
     start: Point
@@ -87,8 +70,6 @@ class Arrow:
     head_length: float
     head_half_width: float
     role: str = ""
-
-    __hash__ = hash_once
 
     @property
     def length(self) -> float:
@@ -110,8 +91,7 @@ class Arrow:
         return (self.end[0] - back * ux, self.end[1] - back * uy)
 
 
-@dataclass(frozen=True)
-class Text:
+class Text(Struct, frozen=True, cache_hash=True):
     """A label: runs placed from the baseline-left point (x, y); ``anchor`` is what it names."""
 
     x: float
@@ -121,8 +101,6 @@ class Text:
     role: str = ""
     anchor: Point | None = None
     bold: bool = False
-
-    __hash__ = hash_once
 
     @property
     def box(self) -> tuple[float, float, float, float]:
@@ -137,14 +115,12 @@ class Text:
 Item = Path | Circle | Arrow | Text
 
 
-@dataclass(frozen=True)
-class Layer:
+class Layer(Struct, frozen=True):
     name: str
     items: tuple[Item, ...]
 
 
-@dataclass(frozen=True)
-class Sheet:
+class Sheet(Struct, frozen=True):
     """A page ``width`` x ``height`` mm and its layers in drawing order."""
 
     width: float

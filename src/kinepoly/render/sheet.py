@@ -9,8 +9,9 @@ to that step, the step's new elements highlighted, the step's text in the title 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from typing import Any
+
+from msgspec import Struct, field
 
 from kinepoly.geom.tolerances import FIT_MARGIN_REL, PAPER_ROUNDING_MM, ROUNDING_REL
 from kinepoly.present.clean import format_number
@@ -58,8 +59,7 @@ _NAMES = {"mechanism": "Mechanism", "velocity": "Velocity polygon", "acceleratio
           "centers": "Circle diagram"}
 
 
-@dataclass(frozen=True)
-class Layout:
+class Layout(Struct, frozen=True):
     """Where everything goes, shared by a drawing and its step-by-step sheets."""
 
     width: float
@@ -72,7 +72,7 @@ class Layout:
     """The polygons (``velocity``, ``acceleration``) drawn at a smaller scale than wanted: their headings say so."""
     blocks: tuple[Block, ...] = ()
     """The title block's columns of the whole drawing (made once: a step's sheet takes its first)."""
-    labels: LabelCache = field(default_factory=LabelCache, compare=False, repr=False)
+    labels: LabelCache = field(default_factory=LabelCache)
     """The labels placed on this layout's sheets so far (``render.labels.LabelCache``): placed once, reused."""
 
     def panel(self, name: str) -> Panel | None:
@@ -241,7 +241,7 @@ def motion_layout(solutions: list[Solution], size: tuple[float, float], foot_mm:
     of them draws there, at the largest round scale that fits it. The mechanism takes the left part of the
     page (the circle diagram, when asked, below it), the polygons a column each. A strip ``foot_mm`` high at
     the foot takes the place of the title block (the frame's caption). Each frame's sheet is this layout with
-    that frame's figures (``dataclasses.replace(layout, figures=..., labels=LabelCache())``)."""
+    that frame's figures (``replace(layout, figures=..., labels=LabelCache())``)."""
     width, height = size
     x0, y0, x1, y1 = _drawing_area(width, height, foot_mm)
     mech = _union([mechanism_box(s) for s in solutions] +

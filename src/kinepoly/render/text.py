@@ -12,8 +12,9 @@ import functools
 import re
 import unicodedata
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
+
+from msgspec import Struct
 
 from kinepoly.scene.link_point import LinkPoint
 
@@ -99,8 +100,7 @@ def glyph_em(ch: str, bold: bool) -> float:
 
 
 
-@dataclass(frozen=True)
-class Run:
+class Run(Struct, frozen=True):
     """A piece of text at (dx, dy) from its label's baseline-left point, at em size ``size`` (mm)."""
 
     text: str

@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
+
+from msgspec import Struct
 
 from kinepoly.geom.tolerances import LOUD_ERROR, NOISE_REL
 from kinepoly.present.clean import format_number
@@ -28,8 +29,7 @@ _PAD_MM = 2.5
 _UNIT_MM = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
 
 
-@dataclass(frozen=True)
-class Block:
+class Block(Struct, frozen=True):
     """Lines of text (each a tuple of runs) in one column of the title block; ``items`` drawn extra."""
 
     lines: tuple[tuple[tuple[Run, ...], bool, float], ...]

@@ -22,7 +22,8 @@ pair's common normal as a line edge (``engine.centers``).
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+
+from msgspec.structs import replace
 
 from kinepoly.geom.tolerances import COINCIDENT_REL
 from kinepoly.scene.flat_side import flat_side

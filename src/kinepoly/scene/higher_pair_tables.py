@@ -12,7 +12,7 @@ paths (``gears.1.pitch.2.radius``) and named like sliders (``"23"``).
 
 from __future__ import annotations
 
-from dataclasses import replace
+from msgspec.structs import replace
 
 from kinepoly.scene.lines import KeyPath
 from kinepoly.scene.problems import no_such, show_value, suggest
@@ -322,4 +322,4 @@ class HigherPairTables(ReaderState):
 
 
 def _with(base: CamSpec, **changes: object) -> CamSpec:
-    return replace(base, **changes)  # type: ignore[arg-type]
+    return replace(base, **changes)

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import re
 import tomllib
-from dataclasses import dataclass, field
+
+from msgspec import Struct, field
 
 __all__ = ["DEPTH", "KeyPath", "LineMap", "dotted", "scan_lines"]
 
@@ -23,8 +24,7 @@ in the text: each prefix of a key is a key of the map) and noted in ``LineMap.to
 refuses it before tomllib, whose memory grows with the square of a key's depth, reads it."""
 
 
-@dataclass(repr=False)
-class LineMap:
+class LineMap(Struct):
     """The first line of each key path, and the key path written or open on each line."""
 
     first: dict[KeyPath, int] = field(default_factory=dict)
@@ -46,8 +46,7 @@ class LineMap:
         return None
 
 
-@dataclass(repr=False)
-class _ScanState:
+class _ScanState(Struct):
     lines: LineMap = field(default_factory=LineMap)
     table: KeyPath = ()
     last_key: KeyPath = ()

@@ -7,7 +7,7 @@ point). ``LinkPoint`` makes that text and reads it, here only.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from msgspec import Struct
 
 __all__ = ["SEPARATOR", "LinkPoint", "point_of"]
 
@@ -15,8 +15,7 @@ SEPARATOR = "@"
 """Between the point's name and the link's: no point or link name holds it."""
 
 
-@dataclass(frozen=True, slots=True)
-class LinkPoint:
+class LinkPoint(Struct, frozen=True):
     """``point`` (a point's name), as a point of ``link``; ``link`` None for the point itself (``B``), a link's
     name for the point of that link under it (``B@4``)."""
 

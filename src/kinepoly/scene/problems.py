@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Collection, Iterable
-from dataclasses import dataclass, field
+
+from msgspec import Struct, field
 
 from kinepoly.errors import SceneError
 from kinepoly.scene.lines import KeyPath, LineMap, dotted
@@ -22,8 +23,7 @@ message given as a function (a did-you-mean each, a search of every name) is not
 10,000 unknown names costs what refusing 20 does."""
 
 
-@dataclass(repr=False)
-class ProblemReport:
+class ProblemReport(Struct):
     """Collects problems, each placed at the line of its key path."""
 
     source: str

@@ -8,7 +8,8 @@ against the names it defines.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+
+from msgspec import Struct, field
 
 from kinepoly.geom.tolerances import LAST_BITS_REL
 from kinepoly.scene.lines import KeyPath
@@ -22,8 +23,7 @@ __all__ = ["ReaderState", "polar_point"]
 _POLAR_KEYS = ("polar",)
 
 
-@dataclass(repr=False)
-class ReaderState:
+class ReaderState(Struct):
     """The state of one scene's reading; each section reader checks one section and reports what is wrong."""
 
     report: ProblemReport
@@ -31,7 +31,7 @@ class ReaderState:
     links: dict[str, LinkSpec] | None = None  # None: [links] could not be read at all
     sliders: list[SliderSpec] = field(default_factory=list)
     ground: str | None = None
-    _point_names: tuple[tuple[int, int], set[str]] | None = field(default=None, repr=False, compare=False)
+    _point_names: tuple[tuple[int, int], set[str]] | None = None
 
     # -- names known so far
 

@@ -7,10 +7,11 @@ later stages can still point a user at the right place.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
-from dataclasses import dataclass, field
 from typing import Literal
+
+from msgspec import Struct, field
+from msgspec.structs import replace
 
 __all__ = [
     "CamSpec",
@@ -34,16 +35,14 @@ __all__ = [
 Vector = tuple[float, float]
 
 
-@dataclass(frozen=True)
-class Units:
+class Units(Struct, frozen=True):
     """The scene's units: the length unit of every output and the angle unit of angles shown."""
 
     length: Literal["mm", "cm", "m", "in"] = "mm"
     angle: Literal["deg", "rad"] = "deg"
 
 
-@dataclass(frozen=True)
-class PointSpec:
+class PointSpec(Struct, frozen=True):
     """A named point of a link, in the link's own frame (scene length unit)."""
 
     name: str
@@ -54,8 +53,7 @@ class PointSpec:
     the same point in x, y); a scene written back writes it so."""
 
 
-@dataclass(frozen=True)
-class LinkSpec:
+class LinkSpec(Struct, frozen=True):
     """A rigid body and its named points."""
 
     name: str
@@ -73,8 +71,7 @@ class LinkSpec:
         return tuple(p.name for p in self.points)
 
 
-@dataclass(frozen=True)
-class SliderSpec:
+class SliderSpec(Struct, frozen=True):
     """A prismatic joint: ``block`` slides on ``guide``; ``point`` of the block runs on the line.
 
     ``through`` and ``angle_rad`` give the line in the guide's own frame; the block's local
@@ -90,24 +87,21 @@ class SliderSpec:
     line: int = 0
 
 
-@dataclass(frozen=True)
-class PitchCircle:
+class PitchCircle(Struct, frozen=True):
     """A gear's pitch circle: centred on ``center`` (a point of the gear's link), radius ``radius``."""
 
     center: str
     radius: float
 
 
-@dataclass(frozen=True)
-class PitchLine:
+class PitchLine(Struct, frozen=True):
     """A rack's pitch line, in the rack link's own frame."""
 
     through: Vector
     angle_rad: float
 
 
-@dataclass(frozen=True)
-class GearSpec:
+class GearSpec(Struct, frozen=True):
     """Two pitch curves rolling without slip (``[[gears]]``): ``links[k]`` carries ``pitch[k]``.
 
     ``phase[k]``: at the reference mesh, a circle's x-axis turned by phase points at the pitch point; a
@@ -123,8 +117,7 @@ class GearSpec:
     line: int = 0
 
 
-@dataclass(frozen=True)
-class CamSpec:
+class CamSpec(Struct, frozen=True):
     """A circle (or ``points``) profile on ``cam`` touching ``follower`` (``[[cams]]``): by a roller (``roller`` a
     point of the follower and ``roller_radius``), a flat face (``flat``: through, angle in the follower's frame) or a
     knife edge (``knife``, a point of the follower). ``equivalent``: the link the pair is replaced by."""
@@ -167,8 +160,7 @@ class CamSpec:
         return bool(self.follower_points)
 
 
-@dataclass(frozen=True)
-class LinkInput:
+class LinkInput(Struct, frozen=True):
     """Input: ``link`` turns about its pin with ``relative_to`` (None: the ground); theta, omega, alpha
     given, relative to that link (theta_43 = angle of 3's x-axis from 4's x-axis, omega_43 = omega_3 - omega_4)."""
 
@@ -180,8 +172,7 @@ class LinkInput:
     relative_to: str | None = None
 
 
-@dataclass(frozen=True)
-class SliderInput:
+class SliderInput(Struct, frozen=True):
     """Input: a driven slider, its variable s and derivatives given (lengths per s, per s^2)."""
 
     slider: str
@@ -191,8 +182,7 @@ class SliderInput:
     line: int = 0
 
 
-@dataclass(frozen=True)
-class GivenPoint:
+class GivenPoint(Struct, frozen=True):
     """A point of the one free body of a ``[given]`` scene, with known motion."""
 
     name: str
@@ -201,8 +191,7 @@ class GivenPoint:
     line: int = 0
 
 
-@dataclass(frozen=True)
-class GivenInput:
+class GivenInput(Struct, frozen=True):
     """Input of a ``[given]`` scene: the motion of two points of one link."""
 
     points: tuple[GivenPoint, ...]
@@ -212,8 +201,7 @@ class GivenInput:
 InputSpec = LinkInput | SliderInput | GivenInput
 
 
-@dataclass(frozen=True)
-class FindSpec:
+class FindSpec(Struct, frozen=True):
     """What to find. ``instant_centers`` is a tuple of pair names ("13", "2-14") or "all"."""
 
     velocity: tuple[str, ...] = ()
@@ -229,16 +217,14 @@ class FindSpec:
         return bool(self.acceleration or self.alpha)
 
 
-@dataclass(frozen=True)
-class DrawSpec:
+class DrawSpec(Struct, frozen=True):
     """Drawing options: polygon scales in drawing mm per (length/s) and per (length/s^2)."""
 
     kv: float | None = None
     ka: float | None = None
 
 
-@dataclass(frozen=True)
-class Scene:
+class Scene(Struct, frozen=True, dict=True):
     """A whole scene, loaded and checked for its own consistency (not yet for mobility)."""
 
     title: str
@@ -272,9 +258,9 @@ class Scene:
         kept)."""
         inp = self.input
         if isinstance(inp, LinkInput):
-            return dataclasses.replace(self, input=dataclasses.replace(inp, angle_rad=value))
+            return replace(self, input=replace(inp, angle_rad=value))
         if isinstance(inp, SliderInput):
-            return dataclasses.replace(self, input=dataclasses.replace(inp, s=value))
+            return replace(self, input=replace(inp, s=value))
         raise TypeError("a [given] scene has no input to set")
 
     @functools.cached_property

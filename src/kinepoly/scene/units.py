@@ -11,7 +11,8 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+
+from msgspec import Struct, field
 
 from kinepoly.scene.lines import KeyPath
 from kinepoly.scene.problems import ProblemReport, show_value, suggest
@@ -26,8 +27,7 @@ _MICROMETRES = {"mm": 1_000.0, "cm": 10_000.0, "m": 1_000_000.0, "in": 25_400.0}
 _RADIANS = {"deg": math.pi / 180.0, "rad": 1.0}
 
 
-@dataclass(frozen=True, repr=False)
-class Kind:
+class Kind(Struct, frozen=True):
     """A kind of quantity: how plain numbers and unit strings turn into the stored unit."""
 
     noun: str
@@ -43,8 +43,7 @@ class Kind:
         return f'{self.noun} (a number {self.plain}, or a string like "{self.example}")'
 
 
-@dataclass(frozen=True, repr=False)
-class Kinds:
+class Kinds(Struct, frozen=True):
     length: Kind
     speed: Kind
     accel: Kind

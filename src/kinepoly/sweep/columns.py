@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass, field
 
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct, field
 
 from kinepoly.engine.position import Positions
 from kinepoly.geom.arrays import Bools, Points, Reals
@@ -20,8 +20,7 @@ Raw = tuple[str, Kind, Reals, Bools | None]
 those the row's level allows (None: all of them)."""
 
 
-@dataclass
-class ColumnBuilder:
+class ColumnBuilder(Struct):
     """Collects the columns of one sweep; their validity is settled once every row's level is known."""
 
     mechanism: Mechanism

@@ -20,14 +20,14 @@ refused: a cam's equivalent link is made from the pair's dimensions when the sce
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct, field
+from msgspec.structs import replace
 
 from kinepoly.engine.carry import drive_values
 from kinepoly.engine.groups import PositionPlan
@@ -65,8 +65,7 @@ larger family runs in several batches of whole members (as fast per row: 1.8 mil
 of this size, 0.9 s in batches of a million)."""
 
 
-@dataclass(frozen=True)
-class FamilyColumn:
+class FamilyColumn(Struct, frozen=True):
     """One reported quantity of every member at every row: ``values[k, j]`` member k at input row j; 0.0 where
     ``valid`` is False."""
 
@@ -76,8 +75,7 @@ class FamilyColumn:
     valid: Bools
 
 
-@dataclass(frozen=True, eq=False)
-class FamilyResult:
+class FamilyResult(Struct, frozen=True, eq=False):
     """A family sweep: the input column (the same for every member), each quantity over (members, rows), each
     row's status per member, and how the family was run (``batched``: the plan once for every member)."""
 
@@ -92,10 +90,10 @@ class FamilyResult:
     notices: tuple[Notice, ...] = ()
     """What the scene's own sweep says of the range (every member is swept over the scene's range)."""
     timing: dict[str, float] = field(default_factory=dict)
-    _results: tuple[SweepResult, ...] = field(default=(), repr=False, compare=False)
+    _results: tuple[SweepResult, ...] = ()
     """Batched: the batches' results, ``_per`` members each; else each member's own sweep."""
     _per: int = 1
-    _grid: InputGrid | None = field(default=None, repr=False, compare=False)
+    _grid: InputGrid | None = None
 
     @property
     def members(self) -> int:
@@ -130,15 +128,14 @@ class FamilyResult:
         for name, xy in scene.guess:
             at = complex(positions.point(name)[row]) if positions.ok[row] else complex(*xy)
             guess.append((name, (at.real, at.imag)))
-        return dataclasses.replace(scene, guess=tuple(guess))
+        return replace(scene, guess=tuple(guess))
 
     def _check(self, k: int) -> None:
         if not 0 <= k < self.members:
             raise IndexError(f"member {k} of a family of {self.members}")
 
 
-@dataclass(frozen=True, eq=False)
-class Dimensions:
+class Dimensions(Struct, frozen=True, eq=False):
     """What differs between a family's members: points keyed (link, point) and slide lines' ``through`` keyed by
     slider, each an array of (members, 2)."""
 
@@ -154,19 +151,19 @@ class Dimensions:
             return (float(xy[k, 0]), float(xy[k, 1]))
 
         def link_of(link: LinkSpec) -> LinkSpec:
-            moved = tuple(dataclasses.replace(p, local=row(self.points[(link.name, p.name)]), polar=None)
+            moved = tuple(replace(p, local=row(self.points[(link.name, p.name)]), polar=None)
                           if (link.name, p.name) in self.points else p for p in link.points)
-            return dataclasses.replace(link, points=moved)
+            return replace(link, points=moved)
         def gear_of(gear: GearSpec) -> GearSpec:
             if gear.name not in self.radii:
                 return gear
             circles = [curve for curve in gear.pitch if isinstance(curve, PitchCircle)]  # both (read_dimensions)
             first, second = (PitchCircle(curve.center, r)
                              for curve, r in zip(circles, row(self.radii[gear.name]), strict=True))
-            return dataclasses.replace(gear, pitch=(first, second))
-        sliders = tuple(dataclasses.replace(s, through=row(self.slides[s.name])) if s.name in self.slides else s
+            return replace(gear, pitch=(first, second))
+        sliders = tuple(replace(s, through=row(self.slides[s.name])) if s.name in self.slides else s
                         for s in scene.sliders)
-        return dataclasses.replace(scene, links=tuple(link_of(link) for link in scene.links), sliders=sliders,
+        return replace(scene, links=tuple(link_of(link) for link in scene.links), sliders=sliders,
                                    gears=tuple(gear_of(gear) for gear in scene.gears))
 
     def part(self, first: int, stop: int) -> Dimensions:
@@ -236,8 +233,7 @@ def sweep_family(scene: Scene, points: Mapping[str, npt.ArrayLike] | None = None
                         grid.notices, timing, batches, per, grid)
 
 
-@dataclass(frozen=True, eq=False)
-class MemberPlacer:
+class MemberPlacer(Struct, frozen=True, eq=False):
     """Places a family's members each at an input of its own (one row a member), in one run of the position plan;
     made once for a scene by ``member_placer``."""
 

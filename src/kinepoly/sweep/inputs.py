@@ -26,11 +26,11 @@ the range continuously.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import NamedTuple
 
 import numpy as np
+from msgspec import Struct, field
 
 from kinepoly.engine.centrode import mechanism_size
 from kinepoly.engine.groups import NewtonGroup, PositionPlan
@@ -62,8 +62,7 @@ _ZOOM_ROUNDS = 6
 _NEWTON_EDGE = 100.0
 
 
-@dataclass(frozen=True)
-class InputGrid:
+class InputGrid(Struct, frozen=True):
     """Every row the sweep computes: the input in the scene's unit (``values``) and in radians or
     length (``internal``); ``shown`` marks the rows reported; ``seed_row`` is the scene's input."""
 
@@ -156,8 +155,7 @@ def _evaluate(mechanism: Mechanism, plan: PositionPlan, values: Reals, seed_row:
                            Continuity(seed_row, seed, periodic, run_only=run_only))
 
 
-@dataclass(frozen=True)
-class _Reach:
+class _Reach(Struct, frozen=True):
     """Where the sweep may go: every point within ``radius`` of ``center`` (ten times the mechanism's size)."""
 
     center: complex

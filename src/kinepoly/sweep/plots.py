@@ -9,12 +9,12 @@ are shaded grey, singular rows marked by thin red lines.
 
 from __future__ import annotations
 
-import dataclasses
 import io
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from msgspec.structs import replace
 
 from kinepoly.geom.tolerances import SIZE_FLOOR
 from kinepoly.scene.link_point import LinkPoint
@@ -370,7 +370,7 @@ def _seed_pose(result: SweepResult, link: str) -> tuple[complex, complex] | None
 def _as_shown(result: SweepResult) -> SweepResult:
     """The sweep with its columns by the number rule (``sweep.shown``): no rounding noise drawn on its own axis."""
     shown = shown_values(result)
-    return dataclasses.replace(result, columns=tuple(col._replace(values=shown[col.name]) for col in result.columns))
+    return replace(result, columns=tuple(col._replace(values=shown[col.name]) for col in result.columns))
 
 
 def plot_png(result: SweepResult, dpi: int = 110) -> bytes:

@@ -6,9 +6,8 @@ assembly, so the two positions are of one motion. The geometry is ``engine.finit
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+from msgspec import Struct
 
 from kinepoly.engine.circle_diagram import pair_name
 from kinepoly.engine.finite_pole import FinitePole, finite_pole
@@ -25,8 +24,7 @@ _STEPS = 16
 """Rows the motion from A to B is followed over (continuity needs steps, the pole only the two ends)."""
 
 
-@dataclass(frozen=True)
-class PoleBetween:
+class PoleBetween(Struct, frozen=True):
     """P12 of a link between inputs ``start`` and ``stop``, every posed link at both, and the instant center at A."""
 
     found: FinitePole

@@ -7,12 +7,12 @@ package's face).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Literal, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct, field
 
 from kinepoly.engine.position import Positions
 from kinepoly.geom.arrays import Bools, Reals
@@ -57,8 +57,7 @@ class Column(NamedTuple):
         return ORDER[self.kind]
 
 
-@dataclass(frozen=True)
-class SweepResult:
+class SweepResult(Struct, frozen=True, dict=True):
     """A sweep: the input column, the asked columns, each row's status and warnings."""
 
     scene: Scene
@@ -73,9 +72,9 @@ class SweepResult:
     """The row computed at the scene's own input (among all rows computed, shown or not)."""
     timing: dict[str, float] = field(default_factory=dict)
     """Seconds spent: preparing, finding the range, executing, in all (filled by ``run_sweep`` when done)."""
-    positions: Positions | None = field(default=None, repr=False, compare=False)
+    positions: Positions | None = None
     """The link poses at every row computed (shown or not), read by ``kinepoly.sweep.rows``."""
-    shown: Bools | None = field(default=None, repr=False, compare=False)
+    shown: Bools | None = None
     """Which of the rows computed are shown (the rows of ``input`` and ``columns``)."""
     followers: tuple[Follower, ...] = ()
     """Each cam pair's follower columns (displacement, velocity, acceleration): its s-v-a diagram."""

@@ -22,11 +22,12 @@ import cmath
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
 from functools import cached_property, lru_cache
 
 import numpy as np
 import numpy.typing as npt
+from msgspec import Struct, field
+from msgspec.structs import replace
 
 from kinepoly.check.estimate import polygon_estimate
 from kinepoly.engine.acceleration import AccelerationResult, construct_acceleration
@@ -72,8 +73,7 @@ __all__ = ["PreparedSweep", "cycle_turns", "execute_rows", "gap_notices", "prepa
            "run_sweep", "sweep"]
 
 
-@dataclass
-class _Flags:
+class _Flags(Struct):
     """Each row's level and the reasons, gathered as the stages run."""
 
     level: npt.NDArray[np.int8]
@@ -203,8 +203,7 @@ def _overflow_flags(flags: _Flags, ok: Bools, out: ColumnBuilder) -> None:
                            f"singular: {name} overflowed (beyond the range of double precision)")
 
 
-@dataclass(frozen=True)
-class _Layout:
+class _Layout(Struct, frozen=True):
     """What every call of a prepared sweep reads alike, found once for all its calls: the polygons it builds, each
     asked link's (link, theta, omega, alpha) and each asked point's (label, point, r, v, a) column names (a point's
     as its x and y columns), None where not reported, and the dyads' transmission angles with their columns."""
@@ -344,8 +343,7 @@ def seed_poses(mechanism: Mechanism, plan: PositionPlan) -> dict[str, LinkPose]:
                           "in one definite way (change [input])") from error
 
 
-@dataclass(frozen=True)
-class PreparedSweep:
+class PreparedSweep(Struct, frozen=True, dict=True):
     """What a sweep needs once per scene: the mechanism, what is asked, the plan; the seed assembly (the
     solve's at the scene's own input) is solved when first asked for."""
 

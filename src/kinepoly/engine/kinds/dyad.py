@@ -4,9 +4,9 @@ the polygons the unknown tip is where two direction lines cross (``engine.lines`
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
-
 import numpy as np
+from msgspec import Struct
+from msgspec.structs import replace
 
 from kinepoly.engine.closures import Choice, Closure, close_dyad, other_side
 from kinepoly.engine.dyad_assembly import DyadQuestion, closing_error
@@ -69,8 +69,7 @@ def find(mechanism: Mechanism, known: set[str]) -> Dyad | None:
     return None
 
 
-@dataclass(frozen=True, repr=False)
-class _Pinned:
+class _Pinned(Struct, frozen=True):
     """An RRR or RRP dyad as its polygons draw it, found once for the plan (``PlanConstants.groups``): the first
     link turns about ``p1`` on the known ``k1``, the inner pin is ``p2``; the second link turns about ``p3`` on
     ``k2`` (RRR) or slides on ``k2`` (RRP, ``p3`` None); the links' lengths and the velocity lines' labels."""

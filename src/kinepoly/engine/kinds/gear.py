@@ -3,7 +3,7 @@ the block of a slider on it); its polygons by the pitch point (``engine.gears``,
 
 from __future__ import annotations
 
-from dataclasses import replace
+from msgspec.structs import replace
 
 from kinepoly.engine.gears import place_rolling
 from kinepoly.engine.groups import GearGroup, far_side, free_joints
