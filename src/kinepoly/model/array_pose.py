@@ -82,7 +82,8 @@ class ArrayPose:
                 out = np.empty(len(self.origin), np.complex128)
                 out.fill(at)
             else:
-                out = self.origin + self.rotation * at
+                out = self.rotation * at
+                np.add(self.origin, out, out=out)  # origin + rotation at, in place (``geom.arrays``)
             found[key] = out
             return out
         if self.still:
@@ -129,7 +130,8 @@ def pose_at(at: complex, world: Points, rotation: Points) -> ArrayPose:
     """``pose_from_point`` of a point given as x + iy (``local_point``): one number, or one per row in a family."""
     if isinstance(at, complex) and at == 0:
         return ArrayPose(world, rotation)
-    return ArrayPose(world - rotation * at, rotation)
+    origin = np.asarray(rotation * at)
+    return ArrayPose(np.subtract(world, origin, out=origin), rotation)  # world - rotation at, in place
 
 
 def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, float], world_a: Points,
