@@ -124,15 +124,17 @@ def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) 
     a number: the row does not close.
     """
     # the plain formula step by step, in place where it can (see the module: arrays made in place)
-    d_vec = c2 - c1
+    d_vec = np.asarray(c2 - c1)
     d = length(d_vec)
     inverse = 1.0 / d
     a = d * d
     a += (r1 - r2) * (r1 + r2)
-    a *= 0.5 * inverse  # (d d + (r1 - r2)(r1 + r2)) (0.5 / d)
-    slack = r1 - a
-    slack *= r1 + a  # (r1 - a)(r1 + a)
-    h = np.maximum(slack, 0.0)
+    slack = np.multiply(0.5, inverse)  # 0.5 / d, in the array that becomes the slack
+    a *= slack  # (d d + (r1 - r2)(r1 + r2)) (0.5 / d)
+    h = np.add(r1, a)  # r1 + a, in the array that becomes h
+    np.subtract(r1, a, out=slack)
+    slack *= h  # (r1 - a)(r1 + a)
+    np.maximum(slack, 0.0, out=h)
     np.sqrt(h, out=h)
     a *= inverse  # a / d: real factors before the one complex product
     base = d_vec * a
@@ -140,7 +142,7 @@ def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) 
     np.multiply(h, inverse, out=inverse)  # h / d
     offset = np.asarray(1j * d_vec)
     offset *= inverse
-    left = np.add(base, offset)
+    left = np.add(base, offset, out=d_vec)  # the foot and the offset, in c1c2's array (not needed after)
     return left, np.subtract(base, offset, out=base), slack, d, h  # the foot, a new array, made the right point
 
 
