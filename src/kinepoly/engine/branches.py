@@ -137,7 +137,8 @@ def _no_switch_possible(c: tuple[Points, Points], ok: Bools, periodic: bool, lab
         return True
     own = c[label]
     step = own[1:] - own[:-1]  # np.diff's own subtraction, without its Python wrapper
-    step2 = step.real * step.real + step.imag * step.imag
+    step2 = step.real * step.real
+    step2 += step.imag * step.imag
     if not every:
         step2 = step2[ok[1:] & ok[:-1]]
     longest2 = float(step2.max()) if step2.size else 0.0
@@ -160,7 +161,8 @@ def follow_members(c0: Points, c1: Points, ok: Bools, rows_each: int, seed: int,
     own = (c0 if label == 0 else c1).reshape(members, rows_each)
     fine = ok.reshape(members, rows_each)
     step = own[:, 1:] - own[:, :-1]
-    step2 = step.real * step.real + step.imag * step.imag
+    step2 = step.real * step.real
+    step2 += step.imag * step.imag
     if not every:
         step2 = np.where(fine[:, 1:] & fine[:, :-1], step2, 0.0)
     longest2 = step2.max(axis=1) if rows_each > 1 else np.zeros(members)

@@ -136,7 +136,12 @@ def _largest(*values: Reals | float) -> Reals | float:
 
 def _closes(slack: Reals, scale: Reals | float) -> Bools:
     """The rows where a circle meets (or, within ``ASSEMBLY_REL_TOL``, just touches) the other curve."""
-    return np.asarray(slack >= -ASSEMBLY_REL_TOL * scale * scale)
+    floor = -ASSEMBLY_REL_TOL * scale
+    if isinstance(floor, np.ndarray):
+        floor *= scale  # in place: the same product (``geom.arrays``: arrays made in place)
+    else:
+        floor = floor * scale
+    return np.asarray(slack >= floor)
 
 
 def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...] = ()) -> Closure:
@@ -157,8 +162,10 @@ def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple
     r2 = abs(mech.local_at(j, p2) - mech.local_at(j, p3))
     left, right, slack, d, h = circle_circle(w1, r1, w3, r2)
     longer = np.maximum(r1, r2)  # one number, unless a driven joint makes r1 vary by row
-    singular = np.asarray(~(d > ASSEMBLY_REL_TOL * longer))
-    ok = _closes(slack, np.maximum(d, longer)) & ~singular
+    apart = np.asarray(d > ASSEMBLY_REL_TOL * longer)
+    singular = np.invert(apart)
+    ok = _closes(slack, np.maximum(d, longer))
+    ok &= apart  # closes, and not singular
     if np.ndim(r1) or not r1 > 0:
         ok &= r1 > 0
 

@@ -88,9 +88,11 @@ class Positions(Struct):
         if name in points:
             return points[name]
         poses = self.poses
-        link, at = next(place for place in self.mechanism.places_of(name) if place[0] in poses)  # the first solved
-        found = points[name] = poses[link].world_at(at)
-        return found
+        for link, at in self.mechanism.places_of(name):  # the first solved link that has it
+            if link in poses:
+                found = points[name] = poses[link].world_at(at)
+                return found
+        raise StopIteration(name)
 
     def chord(self, start: str, end: str) -> tuple[Points, Points]:
         """The vector from point ``start`` to point ``end`` at every row, and that vector turned a quarter

@@ -198,10 +198,11 @@ class Polygon:
         known = label in tips  # only a label with a tip already can be a member already
         tips[label] = value
         for link, member in entries:
-            if link not in members:
+            of_link = members.get(link)
+            if of_link is None:
                 members[link] = [member]
-            elif not known or all(m.label != label for m in members[link]):
-                members[link].append(member)
+            elif not known or all(m.label != label for m in of_link):
+                of_link.append(member)
 
     def add_tip(self, link: str, point: str, value: Points) -> str:
         """Record the tip of ``point`` as a point of ``link`` (and of the pin's other links)."""
@@ -222,11 +223,10 @@ class Polygon:
 
     def tip(self, link: str, point: str) -> Points:
         """The tip of ``point`` as a point of ``link``, constructing it when it is not known yet."""
-        key = (link, point)
-        label = self._labels[key] if key in self._labels else self.label(link, point)
-        tips = self.tips
-        if label in tips:
-            return tips[label]
+        label = self._labels.get((link, point)) or self.label(link, point)
+        known = self.tips.get(label)
+        if known is not None:
+            return known
         if link == self.ground:
             self.add_tip(link, point, self.zero)
             return self.zero
@@ -247,14 +247,17 @@ class Polygon:
         rate = self.rate_of(link)
         assert rate is not None
         if self.kind == "velocity":
-            end: Points = start + rate * turned
+            end: Points = rate * turned
+            np.add(start, end, out=end)  # start + rate turned, in place (``geom.arrays``: arrays made in place)
             if self.record:
                 self._record_relative_velocity(link, label, member.label, r, start, end, rate)
             return end
         w = self.omega_of(link)
-        normal = (w * w) * r
-        middle: Points = start - normal if self.normal_sign < 0.0 else start + normal
-        end = middle + rate * turned
+        normal = np.asarray((w * w) * r)
+        middle: Points = np.subtract(start, normal, out=normal) if self.normal_sign < 0.0 else np.add(
+            start, normal, out=normal)  # start -+ normal, in place
+        end = rate * turned
+        np.add(middle, end, out=end)  # middle + rate turned, in place
         if self.record:
             self._record_relative_acceleration(link, label, member.label, r, start, middle, end, w, rate)
         return end
@@ -300,7 +303,8 @@ class Polygon:
         if rigid is not None:
             first_label, second_label, factor = rigid
             a, b = self.tips[first_label], self.tips[second_label]
-            value = np.asarray(a + (b - a) * factor)
+            value = np.asarray((b - a) * factor)
+            np.add(a, value, out=value)  # a + (b - a) factor, in place
             if self.record:
                 first, second = (next(m for m in members if m.label == name) for name in (first_label, second_label))
         else:

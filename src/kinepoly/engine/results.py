@@ -104,8 +104,8 @@ class AccelerationContext:
         start = b.tip(known_link, known_point)
         r, turned = b.positions.chord(known_point, point)
         w = b.omega_of(moving) if omega is None else omega
-        normal = (w * w) * r
-        end = np.asarray(start - normal if self.rules.normal < 0.0 else start + normal)
+        normal = np.asarray((w * w) * r)
+        end = np.subtract(start, normal, out=normal) if self.rules.normal < 0.0 else np.add(start, normal, out=normal)
         size = link_length(b.mechanism, moving, known_point, point) if rigid else None
         named = name or point
         vector = DrawnVector(f"a^n_{named}/{known_point}", b.vec(start), b.vec(end), "normal") if b.record else None

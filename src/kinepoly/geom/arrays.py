@@ -10,6 +10,12 @@ and the same slack decides whether they meet.
 The sweep runs these under ``np.errstate(all="ignore")``: a row where two lines are parallel
 or a circle misses is flagged by its ``sin_angle`` or ``slack``, and whatever its values hold
 is masked before anything is reported (no NaN reaches an output).
+
+Arrays made in place: where a formula's steps make arrays that are needed only by the next step, a step may
+write into one of them (``out=``, ``+=``) rather than make a new one: the same operation on the same operands
+in the same order, so the same bits, with fewer new arrays per call (each costs a fresh buffer). One exception:
+a complex product is never written over one of its own operands, since numpy's loop for a single row then
+rounds differently from its loop for a new array (a solve is a batch of one row).
 """
 
 from __future__ import annotations
@@ -102,8 +108,9 @@ def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLi
     norm1 = length(direction1) if length1 is None else length1
     norm2 = length(direction2) if length2 is None else length2
     along = c2 / w
-    return Crossing(np.asarray(through1 + direction1 * along), w / (norm1 * norm2), along, offset_conjugate,
-                    direction1, w)
+    point = np.asarray(direction1 * along)
+    np.add(through1, point, out=point)  # through1 + direction1 along, in place (see the module)
+    return Crossing(point, w / (norm1 * norm2), along, offset_conjugate, direction1, w)
 
 
 def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) -> tuple[Points, Points, Reals, Reals,
@@ -114,15 +121,26 @@ def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) 
     foot on c1c2), d = |c1 c2|, h the half chord. Coincident centres give a slack that is not
     a number: the row does not close.
     """
-    d_vec = c2 - c1
+    # the plain formula step by step, in place where it can (see the module: arrays made in place)
+    d_vec = np.asarray(c2 - c1)
     d = length(d_vec)
     inverse = 1.0 / d
-    a = (d * d + (r1 - r2) * (r1 + r2)) * (0.5 * inverse)
-    slack = (r1 - a) * (r1 + a)
-    h = np.sqrt(np.maximum(slack, 0.0))
-    base = np.asarray(c1 + d_vec * (a * inverse))  # the foot on c1c2; real factors before the one complex product
-    offset = (1j * d_vec) * (h * inverse)
-    left = np.asarray(base + offset)
+    a = d * d
+    a += (r1 - r2) * (r1 + r2)
+    slack = np.multiply(0.5, inverse)  # 0.5 / d, in the array that becomes the slack
+    a *= slack  # (d d + (r1 - r2)(r1 + r2)) (0.5 / d)
+    h = np.add(r1, a)  # r1 + a, in the array that becomes h
+    np.subtract(r1, a, out=slack)
+    slack *= h  # (r1 - a)(r1 + a)
+    np.maximum(slack, 0.0, out=h)
+    np.sqrt(h, out=h)
+    a *= inverse  # a / d: real factors before the one complex product
+    base = d_vec * a
+    np.add(c1, base, out=base)  # the foot on c1c2
+    np.multiply(h, inverse, out=inverse)  # h / d
+    offset = np.asarray(1j * d_vec)
+    offset *= inverse
+    left = np.add(base, offset, out=d_vec)  # the foot and the offset, in c1c2's array (not needed after)
     return left, np.subtract(base, offset, out=base), slack, d, h  # the foot, a new array, made the right point
 
 

@@ -77,11 +77,14 @@ class ArrayPose(Struct, frozen=True):
             found = self._found
             if key in found:
                 return found[key]
-            if self.still:
+            if self.still and key == (0.0, 0.0, 1.0, 1.0):  # the frame's origin (+0, +0): the zeros it holds
+                out = self.origin
+            elif self.still:
                 out = np.empty(len(self.origin), np.complex128)
                 out.fill(at)
             else:
-                out = self.origin + self.rotation * at
+                out = self.rotation * at
+                np.add(self.origin, out, out=out)  # origin + rotation at, in place (``geom.arrays``)
             found[key] = out
             return out
         if self.still:
@@ -128,7 +131,8 @@ def pose_at(at: complex, world: Points, rotation: Points) -> ArrayPose:
     """``pose_from_point`` of a point given as x + iy (``local_point``): one number, or one per row in a family."""
     if isinstance(at, complex) and at == 0:
         return ArrayPose(world, rotation)
-    return ArrayPose(world - rotation * at, rotation)
+    origin = np.asarray(rotation * at)
+    return ArrayPose(np.subtract(world, origin, out=origin), rotation)  # world - rotation at, in place
 
 
 def pose_from_two_points(local_a: tuple[float, float], local_b: tuple[float, float], world_a: Points,

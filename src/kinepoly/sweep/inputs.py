@@ -113,15 +113,17 @@ def _internal(mechanism: Mechanism, values: Reals) -> Reals:
 
 def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) -> tuple[Reals, Bools, int]:
     """Rows: ``shown`` with the seed slipped in (or bridged to), the mask of shown rows, the seed row."""
+    first, last = float(shown[0]), float(shown[-1])  # the ends as plain numbers: the same arithmetic, less of numpy's
     if full is not None and not periodic:  # the same link position may lie inside the range a turn away
-        low, high = float(min(shown[0], shown[-1])), float(max(shown[0], shown[-1]))
+        low, high = min(first, last), max(first, last)
         middle = 0.5 * (low + high)
         seed = seed + full * round((middle - seed) / full)
     if periodic and full is not None:  # the turn's own copy of the seed: from the lowest row, one turn up
-        low = float(min(shown[0], shown[-1]))
+        low = min(first, last)
         seed = low + (seed - low) % full
-    step = abs(float(shown[1] - shown[0])) if len(shown) > 1 else 1.0
-    nearest = min(max(round((seed - float(shown[0])) / float(shown[1] - shown[0])) if len(shown) > 1 else 0, 0),
+    interval = float(shown[1]) - first if len(shown) > 1 else 1.0
+    step = abs(interval)
+    nearest = min(max(round((seed - first) / interval) if len(shown) > 1 else 0, 0),
                   len(shown) - 1)  # the rows are evenly spaced: the one nearest the seed by arithmetic
     if abs(float(shown[nearest]) - seed) <= SAME_REL * step:
         return shown, np.ones(len(shown), np.bool_), nearest
