@@ -77,9 +77,7 @@ class ArrayPose(Struct, frozen=True):
             found = self._found
             if key in found:
                 return found[key]
-            if self.still and key == (0.0, 0.0, 1.0, 1.0):  # the frame's origin (+0, +0): the zeros it holds
-                out = self.origin
-            elif self.still:
+            if self.still:
                 out = np.empty(len(self.origin), np.complex128)
                 out.fill(at)
             else:

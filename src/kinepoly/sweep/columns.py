@@ -80,6 +80,5 @@ class ColumnBuilder(Struct):
         if any(extra is not None for _, _, _, extra in self.raw):
             return None
         everywhere = np.ones(len(shown) if every else np.count_nonzero(shown), np.bool_)
-        new = tuple.__new__  # a named tuple made as the tuple it is (its own __new__ is a Python function)
-        return tuple([new(Column, (name, kind, np.asarray(values if every else values[shown], np.float64), everywhere))
-                      for name, kind, values, _ in self.raw])
+        return tuple(Column(name, kind, np.asarray(values if every else values[shown], np.float64), everywhere)
+                     for name, kind, values, _ in self.raw)
