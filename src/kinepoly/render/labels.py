@@ -365,11 +365,13 @@ class Placer:
 
     def _far(self, runs: tuple[Run, ...], color: str, role: str, anchor: Point, bold: bool,
              size: tuple[float, float], shift: Point, optional: bool = False, near: Sequence[Box] = (),
-             feet: Sequence[Point] = ()) -> list[Item]:
+             feet: Sequence[Point] = (), shaft: tuple[Point, Point] | None = None) -> list[Item]:
         """The label set out from ``anchor`` with a leader, at the nearest place free of everything; where there is
         none, at the place clear of every other label that the least ink drawn lies under (``_least_inked``): one
         of ``near`` (the places beside the anchor, without a leader) or one out from ``anchor`` or from one of
-        ``feet`` (further points the label may name: along a vector's shaft), its leader from there."""
+        ``feet`` (further points the label may name: along a vector's shaft), its leader from there; where none of
+        those is clear of the other labels, one on a grid over the whole region (``_region_places``), its leader
+        from ``anchor`` or from the nearest point of ``shaft`` (the vector the label names)."""
         import numpy as np
         from shapely.geometry import LineString
 
@@ -407,8 +409,11 @@ class Placer:
         # out from the anchor or from a foot; one on ink counts as crowded.
         self.set_out.append(role)
         boxes, leaders = _set_out_places((anchor, *feet), size, shift)
+        spent = self._spent()
         choice = self._least_inked(np.concatenate([np.asarray(near, dtype=float).reshape(-1, 4), boxes]),
                                    np.concatenate([np.full(len(near), None, dtype=object), leaders]))
+        if choice is None and not spent:  # none of those clear of the other labels: anywhere in the region (once)
+            choice = self._least_inked(*_region_places(self.region, size, anchor, shaft, shift), budgeted=False)
         if choice is not None:
             if choice[2]:
                 self.crowded.append(role)
@@ -418,20 +423,20 @@ class Placer:
         b = _inside_of(_pushed_box(anchor, (1.0, 0.0), size, _RINGS_MM[0]), self.region)
         return self._accept(b, runs, color, role, anchor, bold)
 
-    def _least_inked(self, b: npt.NDArray[np.float64],
-                     leaders: npt.NDArray[np.object_]) -> tuple[Box, Any, bool] | None:
+    def _least_inked(self, b: npt.NDArray[np.float64], leaders: npt.NDArray[np.object_],
+                     budgeted: bool = True) -> tuple[Box, Any, bool] | None:
         """Of the boxes ``b`` (n x 4), each with its leader (None: beside the anchor), the one inside the region
         whose clearance touches no placed label nor leader, whose leader keeps clear of every label, and under which
         the least ink lies (about the area of what is drawn within its clearance; a leader's length weighs
         ``_LEADER_INK_MM2`` per mm): a label crowded by lines stays readable and apart from the other labels. With
         it, its leader and whether the box itself (its clearance aside) touches anything drawn. None when the search
-        has spent its budget already.
+        has spent its budget already (``budgeted``: the search over the whole region runs once whatever it spent).
 
         The boxes and leaders are tested all at once, against the placed geometries near them (``_Placed.near``)."""
         import numpy as np
         import shapely
 
-        if self._spent():
+        if budgeted and self._spent():
             return None
         x0, y0, x1, y1 = self.region
         inside = (b[:, 0] >= x0) & (b[:, 1] >= y0) & (b[:, 2] <= x1) & (b[:, 3] <= y1)
@@ -522,22 +527,63 @@ class Placer:
         if found is not None:
             return self._accept(found, runs, color, role, _mid(start, end), False)
         feet = [(start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])) for t in _ALONG_T[1:]]
-        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0), near=candidates, feet=feet)
+        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0), near=candidates, feet=feet,
+                         shaft=(start, end))
 
 
 def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
                     shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
     """The places a label of ``size`` set out is tried at: on every far ring (``_FAR_RINGS_MM``, then
-    ``_FURTHEST_RINGS_MM``) round each of ``feet``, each with its leader as ``Placer._far`` draws it (from the foot,
-    moved by ``shift``, to 0.3 mm short of the box's nearest point; None within 0.6 mm of the foot). The boxes
+    ``_FURTHEST_RINGS_MM``) round each of ``feet``, each with its leader from the foot (``_leaders``). The boxes
     (n x 4) and the leaders."""
     import numpy as np
-    import shapely
 
     rings = _FAR_RINGS_MM + _FURTHEST_RINGS_MM
     offsets = np.array([_pushed_box((0.0, 0.0), direction, size, ring) for ring in rings for direction in _DIRECTIONS])
     foot = np.repeat(np.asarray(feet, dtype=float), len(offsets), axis=0)
     boxes = np.tile(offsets, (len(feet), 1)) + np.hstack([foot, foot])
+    return boxes, _leaders(boxes, foot, shift)
+
+
+_GRID_MM = 1.5
+"""How far apart the places tried over a whole region are (``_region_places``)."""
+_SHAFT_SPAN = (0.1, 0.9)
+"""Where along a vector's shaft a leader from a place anywhere in the region may start."""
+
+
+def _region_places(region: Box, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
+                   shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
+    """The places a label of ``size`` is tried at where no place out from its anchor is clear of the other labels:
+    on a grid over the whole ``region`` (``_GRID_MM`` apart), each with a leader from ``anchor`` and, for a vector's
+    label, each again with one from the point of ``shaft`` nearest the box's centre (within ``_SHAFT_SPAN`` of its
+    length). The boxes (n x 4) and the leaders (as ``_set_out_places``)."""
+    import numpy as np
+
+    width, height = size
+    xs = np.arange(region[0], region[2] - width, _GRID_MM)
+    ys = np.arange(region[1], region[3] - height, _GRID_MM)
+    gx, gy = (grid.ravel() for grid in np.meshgrid(xs, ys))
+    boxes = np.stack([gx, gy, gx + width, gy + height], axis=1)
+    feet = [np.broadcast_to(np.asarray(anchor, dtype=float), (len(boxes), 2))]
+    if shaft is not None:
+        a, b = np.asarray(shaft[0], dtype=float), np.asarray(shaft[1], dtype=float)
+        d = b - a
+        if float(d @ d) > 0.0:
+            centres = (boxes[:, :2] + boxes[:, 2:]) / 2
+            t = np.clip((centres - a) @ d / float(d @ d), *_SHAFT_SPAN)
+            feet.append(a + t[:, None] * d)
+    foot = np.concatenate(feet)
+    boxes = np.tile(boxes, (len(feet), 1))
+    return boxes, _leaders(boxes, foot, shift)
+
+
+def _leaders(boxes: npt.NDArray[np.float64], foot: npt.NDArray[np.float64],
+             shift: Point) -> npt.NDArray[np.object_]:
+    """Each box's leader as ``Placer._far`` draws it: from its foot, moved by ``shift``, to 0.3 mm short of the box's
+    nearest point; None within 0.6 mm of the foot."""
+    import numpy as np
+    import shapely
+
     nearest = np.clip(foot, boxes[:, :2], boxes[:, 2:])
     length = np.hypot(*(nearest - foot).T)
     drawn = length > 0.6
@@ -545,7 +591,7 @@ def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
     k = ((length[drawn] - 0.3) / length[drawn])[:, None]
     ends = foot[drawn] + k * (nearest[drawn] - foot[drawn])
     leaders[drawn] = shapely.linestrings(np.stack([foot[drawn] + np.asarray(shift), ends], axis=1))
-    return boxes, leaders
+    return leaders
 
 
 def _inside_of(b: Box, region: Box) -> Box:
