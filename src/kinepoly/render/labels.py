@@ -413,7 +413,7 @@ class Placer:
         choice = self._least_inked(np.concatenate([np.asarray(near, dtype=float).reshape(-1, 4), boxes]),
                                    np.concatenate([np.full(len(near), None, dtype=object), leaders]))
         if choice is None and not spent:  # none of those clear of the other labels: anywhere in the region (once)
-            choice = self._least_inked(*_region_places(self.region, size, anchor, shaft, shift), budgeted=False)
+            choice = self._anywhere(size, anchor, shaft, shift)
         if choice is not None:
             if choice[2]:
                 self.crowded.append(role)
@@ -424,13 +424,13 @@ class Placer:
         return self._accept(b, runs, color, role, anchor, bold)
 
     def _least_inked(self, b: npt.NDArray[np.float64], leaders: npt.NDArray[np.object_],
-                     budgeted: bool = True) -> tuple[Box, Any, bool] | None:
+                     budgeted: bool = True) -> tuple[Box, Any, bool, float] | None:
         """Of the boxes ``b`` (n x 4), each with its leader (None: beside the anchor), the one inside the region
         whose clearance touches no placed label nor leader, whose leader keeps clear of every label, and under which
         the least ink lies (about the area of what is drawn within its clearance; a leader's length weighs
         ``_LEADER_INK_MM2`` per mm): a label crowded by lines stays readable and apart from the other labels. With
-        it, its leader and whether the box itself (its clearance aside) touches anything drawn. None when the search
-        has spent its budget already (``budgeted``: the search over the whole region runs once whatever it spent).
+        it, its leader, whether the box itself (its clearance aside) touches anything drawn, and its weight (the ink
+        and the leader's). None when the search has spent its budget already (unless not ``budgeted``).
 
         The boxes and leaders are tested all at once, against the placed geometries near them (``_Placed.near``)."""
         import numpy as np
@@ -474,10 +474,31 @@ class Placer:
             np.add.at(ink, which, shapely.area(pieces) * np.minimum(share, 1.0))
         length = np.zeros(len(b))
         length[lined] = shapely.length(leaders[lined])
-        k = int(np.argmin(ink + _LEADER_INK_MM2 * length))  # the first of the least
+        cost = ink + _LEADER_INK_MM2 * length
+        k = int(np.argmin(cost))  # the first of the least
         box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
         on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(shapely.box(*box), predicate="intersects")))
-        return box, leaders[k], on_ink
+        return box, leaders[k], on_ink, float(cost[k])
+
+    def _anywhere(self, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
+                  shift: Point) -> tuple[Box, Any, bool, float] | None:
+        """``_least_inked`` of the places on a grid over the whole region (``_region_places``), whatever the search
+        spent: tried in order of their leader's length, ``_GRID_CHUNK`` at a time, until the leaders alone weigh
+        more than the best place found (the ink under a place only adds to its leader's weight)."""
+        import numpy as np
+
+        boxes, feet = _region_places(self.region, size, anchor, shaft)
+        _, reach = _leader_reach(boxes, feet)
+        order = np.argsort(reach, kind="stable")
+        best: tuple[Box, Any, bool, float] | None = None
+        for start in range(0, len(order), _GRID_CHUNK):
+            chunk = order[start:start + _GRID_CHUNK]
+            if best is not None and _LEADER_INK_MM2 * (reach[chunk[0]] - 0.6 - math.hypot(*shift)) >= best[3]:
+                break
+            found = self._least_inked(boxes[chunk], _leaders(boxes[chunk], feet[chunk], shift), budgeted=False)
+            if found is not None and (best is None or found[3] < best[3]):
+                best = found
+        return best
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
                  bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False,
@@ -545,18 +566,20 @@ def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
     return boxes, _leaders(boxes, foot, shift)
 
 
-_GRID_MM = 1.5
+_GRID_MM = 2.0
 """How far apart the places tried over a whole region are (``_region_places``)."""
 _SHAFT_SPAN = (0.1, 0.9)
 """Where along a vector's shaft a leader from a place anywhere in the region may start."""
+_GRID_CHUNK = 1000
+"""How many of the grid's places ``Placer._anywhere`` tests at a time."""
 
 
-def _region_places(region: Box, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
-                   shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
+def _region_places(region: Box, size: tuple[float, float], anchor: Point,
+                   shaft: tuple[Point, Point] | None) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """The places a label of ``size`` is tried at where no place out from its anchor is clear of the other labels:
-    on a grid over the whole ``region`` (``_GRID_MM`` apart), each with a leader from ``anchor`` and, for a vector's
-    label, each again with one from the point of ``shaft`` nearest the box's centre (within ``_SHAFT_SPAN`` of its
-    length). The boxes (n x 4) and the leaders (as ``_set_out_places``)."""
+    on a grid over the whole ``region`` (``_GRID_MM`` apart), each with its leader's foot at ``anchor`` and, for a
+    vector's label, each again with its foot at the point of ``shaft`` nearest the box's centre (within
+    ``_SHAFT_SPAN`` of its length). The boxes (n x 4) and the feet (n x 2)."""
     import numpy as np
 
     width, height = size
@@ -572,9 +595,16 @@ def _region_places(region: Box, size: tuple[float, float], anchor: Point, shaft:
             centres = (boxes[:, :2] + boxes[:, 2:]) / 2
             t = np.clip((centres - a) @ d / float(d @ d), *_SHAFT_SPAN)
             feet.append(a + t[:, None] * d)
-    foot = np.concatenate(feet)
-    boxes = np.tile(boxes, (len(feet), 1))
-    return boxes, _leaders(boxes, foot, shift)
+    return np.tile(boxes, (len(feet), 1)), np.concatenate(feet)
+
+
+def _leader_reach(boxes: npt.NDArray[np.float64],
+                  foot: npt.NDArray[np.float64]) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Each box's point nearest its foot, and how far it is."""
+    import numpy as np
+
+    nearest = np.clip(foot, boxes[:, :2], boxes[:, 2:])
+    return nearest, np.hypot(*(nearest - foot).T)
 
 
 def _leaders(boxes: npt.NDArray[np.float64], foot: npt.NDArray[np.float64],
@@ -584,8 +614,7 @@ def _leaders(boxes: npt.NDArray[np.float64], foot: npt.NDArray[np.float64],
     import numpy as np
     import shapely
 
-    nearest = np.clip(foot, boxes[:, :2], boxes[:, 2:])
-    length = np.hypot(*(nearest - foot).T)
+    nearest, length = _leader_reach(boxes, foot)
     drawn = length > 0.6
     leaders = np.full(len(boxes), None, dtype=object)
     k = ((length[drawn] - 0.3) / length[drawn])[:, None]
