@@ -429,7 +429,7 @@ class Placer:
         whose clearance touches no placed label nor leader, whose leader keeps clear of every label, and under which
         the least ink lies (about the area of what is drawn within its clearance; a leader's length weighs
         ``_LEADER_INK_MM2`` per mm): a label crowded by lines stays readable and apart from the other labels. With
-        it, its leader, whether the box itself (its clearance aside) touches anything drawn, and its weight (the ink
+        it, its leader, whether the box comes within half its clearance of anything drawn, and its weight (the ink
         and the leader's). None when the search has spent its budget already (unless not ``budgeted``).
 
         The boxes and leaders are tested all at once, against the placed geometries near them (``_Placed.near``)."""
@@ -477,7 +477,9 @@ class Placer:
         cost = ink + _LEADER_INK_MM2 * length
         k = int(np.argmin(cost))  # the first of the least
         box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
-        on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(shapely.box(*box), predicate="intersects")))
+        h = c / 2  # nearer than that a reader sees the label touch
+        near_box = shapely.box(box[0] - h, box[1] - h, box[2] + h, box[3] + h)
+        on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(near_box, predicate="intersects")))
         return box, leaders[k], on_ink, float(cost[k])
 
     def _anywhere(self, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
