@@ -8,7 +8,8 @@ is taken, the label goes further out with a thin leader line back to its anchor.
 reach is free of the drawing (many tips and short vectors in a small spot of a polygon), the label is
 still kept clear of every other label: it takes the place, near or out on a leader (from its point, or
 from a point along its vector's shaft), under which the least ink lies, and counts as crowded when that
-is not none.
+is not none. Where the other labels wall in every such place (or every leader to it), the places tried lie
+on a grid over the whole region, their leaders from the point or from the shaft's nearest point.
 """
 
 from __future__ import annotations

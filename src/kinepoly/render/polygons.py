@@ -283,8 +283,9 @@ class FigureDrawing:
 
     Each element is drawn once with the step at which it appears (and its highlight); a sheet picks
     those of steps <= ``upto``. Only the labels that join several names at one spot (coinciding tips,
-    the short vectors ending there) depend on which of those names are shown yet; each such label is
-    made once for every set of names it shows. Equal things are one object on every sheet.
+    the short vectors ending there, arrows drawn one on another) depend on which of those names are shown
+    yet; each such label is made once for every set of names it shows. Equal things are one object on every
+    sheet.
     """
 
     def __init__(self, figure: Figure, panel: Panel) -> None:
