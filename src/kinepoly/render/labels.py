@@ -503,6 +503,34 @@ class Placer:
                 best = found
         return best
 
+    def where_it_was(self, was: list[Item], runs: tuple[Run, ...], color: str, role: str,
+                     anchor: Point) -> list[Item] | None:
+        """The label at the place of ``was`` (the label it grew from, as placed on the sheet before): its box's top
+        left corner kept, and its leader, if it had one, from the same point; None when that place is not free of
+        everything or its leader not clear of the other labels."""
+        from shapely.geometry import LineString
+
+        self._start = self._placed.scanned
+        text = was[-1]
+        if not isinstance(text, Text):
+            return None
+        x0, y0, x1, y1 = runs_box(runs)
+        b = (text.box[0], text.box[3] - (y1 - y0), text.box[0] + (x1 - x0), text.box[3])
+        if not next(self._free_of([b], False)):
+            return None
+        line = next((item for item in was if isinstance(item, Path) and item.role.startswith("leader ")), None)
+        leader = None
+        if line is not None:
+            start = line.points[0]
+            near = (min(max(start[0], b[0]), b[2]), min(max(start[1], b[1]), b[3]))
+            length = math.hypot(near[0] - start[0], near[1] - start[1])
+            if length > 0.6:
+                k = (length - 0.3) / length
+                leader = LineString([start, (start[0] + k * (near[0] - start[0]), start[1] + k * (near[1] - start[1]))])
+                if not self._leader_ok(leader, False):
+                    return None
+        return self._accept(b, runs, color, role, anchor, False, leader)
+
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
                  bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False,
                  far: bool = False) -> list[Item]:
@@ -782,7 +810,8 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
             base.add(entry)
         hard = [g for item in near for g in cache.pieces(item)]
         soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
-        placed, crowded, set_out = _tries(region, requests, order, kept, hard, soft, base)
+        placed, crowded, set_out = _tries(region, requests, order, kept, hard, soft, base,
+                                          _grown(cache, region, requests, kept))
     else:
         placed, crowded, set_out = [kept[k] for k in range(len(requests))], [], []
     for entry in placed:
@@ -798,13 +827,33 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
     return placed, crowded, set_out
 
 
+def _grown(cache: LabelCache, region: Box, requests: Sequence[Request],
+           kept: dict[int, Placed]) -> dict[int, list[Item]]:
+    """The labels of arrows drawn one on another whose text grew since the region's sheet before (a name joined
+    them): for each request not kept, the items of the label its shaft had there."""
+    last = cache._last.get(region)
+    if last is None:
+        return {}
+    before: dict[tuple[str, Point, Point], list[Item]] = {}
+    for request, entries in last[0].items():
+        if request.end is not None and entries:
+            before.setdefault((request.layer, request.anchor, request.end), entries[0][1])
+    out: dict[int, list[Item]] = {}
+    for k, request in enumerate(requests):
+        was = before.get((request.layer, request.anchor, request.end)) if request.end is not None else None
+        if k not in kept and was and request.role != was[-1].role:
+            out[k] = was
+    return out
+
+
 def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dict[int, Placed], hard: list[Any],
-           soft: list[Any], base: _Placed) -> tuple[list[Placed], list[str], list[str]]:
+           soft: list[Any], base: _Placed,
+           grown: dict[int, list[Item]] | None = None) -> tuple[list[Placed], list[str], list[str]]:
     """The best of up to ``_TRIES`` placements of the requests not kept, each with the labels that found no free
     place before (``Placer.set_out``) moved to the front; its labels, the roles crowded and the roles set out."""
     best: tuple[list[Placed], list[str], list[str]] | None = None
     for _ in range(_TRIES):
-        placed, crowded, set_out = _attempt(region, requests, order, kept, hard, soft, base.copy())
+        placed, crowded, set_out = _attempt(region, requests, order, kept, hard, soft, base.copy(), grown)
         if best is not None and len(set_out) >= len(best[2]):
             break  # moving the labels set out first did not help
         best = (placed, crowded, set_out)
@@ -841,16 +890,22 @@ def _crowd(requests: Sequence[Request]) -> set[int]:
 
 
 def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kept: dict[int, Placed],
-             hard: list[Any], soft: list[Any], placed_so_far: _Placed) -> tuple[list[Placed], list[str], list[str]]:
+             hard: list[Any], soft: list[Any], placed_so_far: _Placed,
+             grown: dict[int, list[Item]] | None = None) -> tuple[list[Placed], list[str], list[str]]:
     """One placement of the requests not kept, in ``order``; every request's label, the roles crowded and the roles
-    set out (``Placer.set_out``)."""
+    set out (``Placer.set_out``). A label in ``grown`` (``_grown``) is tried first where its shorter text was."""
     placer = Placer(region, hard, soft, placed_so_far)
     out: dict[int, Placed] = dict(kept)
     crowd = _crowd(requests)
     for k in order:
         request = requests[k]
         before = len(placed_so_far)
-        if request.end is None:
+        was = (grown or {}).get(k)
+        found = None if was is None else placer.where_it_was(was, request.runs, request.color, request.role,
+                                                              _mid(request.anchor, request.end or request.anchor))
+        if found is not None:
+            items = found
+        elif request.end is None:
             items = placer.at_point(request.anchor, request.runs, request.color, request.role, request.bold,
                                     request.gap, request.ring, request.optional, far=k in crowd)
         else:
