@@ -46,6 +46,50 @@ def test_no_two_labels_overlap_where_a_long_chains_polygon_tips_cluster(paper: s
     assert len(labels) > 100 and len(leaders) > 10  # the chain's labels are all drawn, the crowded set out
 
 
+@pytest.mark.slow  # about 1.5 s of CPU each
+@pytest.mark.parametrize("paper", ["A4", "A3"])
+def test_no_two_labels_overlap_on_a_fifteen_loop_chains_drawing(paper: str) -> None:
+    """A chain of fifteen four-bar loops (the scaling benchmark's): its last loops' points converge, their arrows are
+    drawn one on another and named in one label, and a label no place out from its point leaves clear of the other
+    labels is set where one is, anywhere in its panel, and no label lies on another's leader (before: 41 pairs
+    overlapping on A4, 28 on A3, and labels on leaders)."""
+    solution = chain(15)
+    sheet = build_sheet(solution, layout=layout_sheet(solution, paper, grow=False))
+    overlapping = [c for c in conflicts(sheet) if c.other.startswith(("text ", "Path 'leader "))]
+    assert not overlapping, "\n".join(map(str, overlapping))
+    texts = [item for item in sheet.items() if isinstance(item, Text) and item.anchor is not None]
+    assert len(texts) > 120  # the chain's labels are all drawn (144 on A4)
+
+
+def test_arrows_drawn_one_on_another_are_named_in_one_label() -> None:
+    """The fifteen-loop chain's last points converge: v_Q13, v_Q14 and v_Q15 are drawn one on another, and so are
+    a_P8 to a_Q15 (before: a label each, the same text three times at one spot, sixteen labels along one shaft).
+    Each shaft drawn has one label, which names every arrow drawn there."""
+    from kinepoly.render.polygons import FigureDrawing
+
+    def spot(p: tuple[float, float]) -> tuple[float, float]:
+        return (round(p[0], 2), round(p[1], 2))
+
+    solution = chain(15)
+    layout = layout_sheet(solution, "A4", grow=False)
+    joined = 0
+    for figure in layout.figures:
+        panel = layout.panel(figure.kind)
+        assert panel is not None
+        items, requests = FigureDrawing(figure, panel).at()
+        named = {(spot(r.anchor), spot(r.end)): r.role.removeprefix("vector ").split(", ")
+                 for r in requests if r.end is not None}
+        labelled = [(spot(r.anchor), spot(r.end)) for r in requests if r.end is not None]
+        assert len(labelled) == len(named)  # one label per shaft
+        arrows = [item for item in items if isinstance(item, Arrow)]
+        assert {(spot(a.start), spot(a.end)) for a in arrows} == set(named)
+        for arrow in arrows:
+            names = {n for name in named[(spot(arrow.start), spot(arrow.end))] for n in name.split(" = ")}
+            assert set(arrow.role.removeprefix("vector ").split(" = ")) <= names
+        joined += sum(len(names) > 1 for names in named.values())
+    assert joined >= 2
+
+
 def test_the_layout_scenes_include_six_bars_and_the_whitworth() -> None:
     names = {p.stem for p in SCENES}
     assert {"centers-six-bar", "triad", "stephenson", "whitworth", "toggle-press", "shaper"} <= names
@@ -103,3 +147,30 @@ def test_labels_with_no_free_place_are_set_clear_of_each_other() -> None:
     assert len(boxes) == 12
     assert not [(i, j) for i in range(12) for j in range(i) if boxes[i].intersects(boxes[j])]
     assert placer.crowded == placer.set_out == [f"tip p{k}" for k in range(12)]
+
+
+def test_a_label_walled_in_by_other_labels_is_set_where_a_leader_reaches_it_clear_of_them() -> None:
+    """A vector's label whose shaft is walled in by other labels from 12 % to 88 % of its length: every place beside
+    the shaft touches the wall, and every leader from its middle or from the points along it that the far rings start
+    from crosses it. The label is set where a leader from the shaft's free part reaches it, clear of every label
+    (before: at its middle, on the wall)."""
+    from shapely.geometry import LineString, box
+
+    wall = [box(62.0, 101.5, 138.0, 102.0), box(62.0, 98.0, 138.0, 98.5), box(62.0, 98.0, 62.5, 102.0),
+            box(137.5, 98.0, 138.0, 102.0)]
+    placed = labels._Placed()
+    for brick in wall:
+        placed.append(brick)
+    shaft = Arrow((50.0, 100.0), (150.0, 100.0), "#000000", 0.35, 2.6, 0.75, role="vector v_B")
+    placer = labels.Placer((0.0, 0.0, 200.0, 200.0), labels.item_pieces(shaft), [], placed)
+    items = placer.along(shaft.start, shaft.end, plain_runs("v_B", 2.6), role="vector v_B")
+    text = items[-1]
+    assert isinstance(text, Text)
+    label = box(*text.box).buffer(labels.CLEARANCE_MM / 2, join_style="mitre")
+    assert not any(label.intersects(brick) for brick in wall)
+    leaders = [item for item in items if isinstance(item, Line) and item.role == "leader vector v_B"]
+    assert len(leaders) == 1
+    leader = LineString(leaders[0].points)
+    assert not any(leader.intersects(brick) for brick in wall)
+    assert leader.coords[0][1] == pytest.approx(100.0) and not 62.0 <= leader.coords[0][0] <= 138.0  # from the shaft
+    assert placer.set_out == ["vector v_B"]

@@ -62,6 +62,29 @@ def test_a_label_stays_where_the_sheet_before_showed_it() -> None:
     assert kept > 0 and moved <= kept // 5, (kept, moved)
 
 
+def test_a_shafts_label_that_gains_a_name_stays_where_it_was() -> None:
+    """Arrows drawn one on another share a label (a long chain's converging points), which gains a name on the
+    page where another arrow joins them: its top left corner stays where the page before showed it (before: placed
+    anew, centred beside the shaft's middle, so every name moved)."""
+    from kinepoly.render.text import plain_runs
+
+    region = (0.0, 0.0, 200.0, 200.0)
+    arrow = Arrow((50.0, 100.0), (150.0, 100.0), "#000000", 0.35, 2.6, 0.75, role="vector a_P8")
+    cache = labels.LabelCache()
+
+    def page(names: str) -> Text:
+        request = labels.Request("acceleration-polygon", region, plain_runs(names, 2.6), arrow.start, arrow.end,
+                                 role=f"vector {names}", priority=4)
+        placed = labels.place([request], [arrow], cache)["acceleration-polygon"]
+        text = placed[-1]
+        assert isinstance(text, Text) and text.role == request.role
+        return text
+
+    first, second = page("a_P8, a_Q8"), page("a_P8, a_Q8, a_P9")
+    assert second.box[0] == pytest.approx(first.box[0]) and second.box[3] == pytest.approx(first.box[3])
+    assert second.box[2] > first.box[2] + 1.0
+
+
 def test_a_thing_drawn_on_many_sheets_is_one_object() -> None:
     """The polygons are drawn once per layout (``FigureDrawing``): an arrow, a direction line, a tip's label
     request shown on several step sheets is the same object on each, not an equal copy made anew."""

@@ -8,7 +8,8 @@ is taken, the label goes further out with a thin leader line back to its anchor.
 reach is free of the drawing (many tips and short vectors in a small spot of a polygon), the label is
 still kept clear of every other label: it takes the place, near or out on a leader (from its point, or
 from a point along its vector's shaft), under which the least ink lies, and counts as crowded when that
-is not none.
+is not none. Where the other labels wall in every such place (or every leader to it), the places tried lie
+on a grid over the whole region, their leaders from the point or from the shaft's nearest point.
 """
 
 from __future__ import annotations
@@ -364,11 +365,13 @@ class Placer:
 
     def _far(self, runs: tuple[Run, ...], color: str, role: str, anchor: Point, bold: bool,
              size: tuple[float, float], shift: Point, optional: bool = False, near: Sequence[Box] = (),
-             feet: Sequence[Point] = ()) -> list[Item]:
+             feet: Sequence[Point] = (), shaft: tuple[Point, Point] | None = None) -> list[Item]:
         """The label set out from ``anchor`` with a leader, at the nearest place free of everything; where there is
         none, at the place clear of every other label that the least ink drawn lies under (``_least_inked``): one
         of ``near`` (the places beside the anchor, without a leader) or one out from ``anchor`` or from one of
-        ``feet`` (further points the label may name: along a vector's shaft), its leader from there."""
+        ``feet`` (further points the label may name: along a vector's shaft), its leader from there; where none of
+        those is clear of the other labels, one on a grid over the whole region (``_region_places``), its leader
+        from ``anchor`` or from the nearest point of ``shaft`` (the vector the label names)."""
         import numpy as np
         from shapely.geometry import LineString
 
@@ -406,8 +409,11 @@ class Placer:
         # out from the anchor or from a foot; one on ink counts as crowded.
         self.set_out.append(role)
         boxes, leaders = _set_out_places((anchor, *feet), size, shift)
+        spent = self._spent()
         choice = self._least_inked(np.concatenate([np.asarray(near, dtype=float).reshape(-1, 4), boxes]),
                                    np.concatenate([np.full(len(near), None, dtype=object), leaders]))
+        if choice is None and not spent:  # none of those clear of the other labels: anywhere in the region (once)
+            choice = self._anywhere(size, anchor, shaft, shift)
         if choice is not None:
             if choice[2]:
                 self.crowded.append(role)
@@ -417,20 +423,20 @@ class Placer:
         b = _inside_of(_pushed_box(anchor, (1.0, 0.0), size, _RINGS_MM[0]), self.region)
         return self._accept(b, runs, color, role, anchor, bold)
 
-    def _least_inked(self, b: npt.NDArray[np.float64],
-                     leaders: npt.NDArray[np.object_]) -> tuple[Box, Any, bool] | None:
+    def _least_inked(self, b: npt.NDArray[np.float64], leaders: npt.NDArray[np.object_],
+                     budgeted: bool = True) -> tuple[Box, Any, bool, float] | None:
         """Of the boxes ``b`` (n x 4), each with its leader (None: beside the anchor), the one inside the region
         whose clearance touches no placed label nor leader, whose leader keeps clear of every label, and under which
         the least ink lies (about the area of what is drawn within its clearance; a leader's length weighs
         ``_LEADER_INK_MM2`` per mm): a label crowded by lines stays readable and apart from the other labels. With
-        it, its leader and whether the box itself (its clearance aside) touches anything drawn. None when the search
-        has spent its budget already.
+        it, its leader, whether the box comes within half its clearance of anything drawn, and its weight (the ink
+        and the leader's). None when the search has spent its budget already (unless not ``budgeted``).
 
         The boxes and leaders are tested all at once, against the placed geometries near them (``_Placed.near``)."""
         import numpy as np
         import shapely
 
-        if self._spent():
+        if budgeted and self._spent():
             return None
         x0, y0, x1, y1 = self.region
         inside = (b[:, 0] >= x0) & (b[:, 1] >= y0) & (b[:, 2] <= x1) & (b[:, 3] <= y1)
@@ -468,10 +474,61 @@ class Placer:
             np.add.at(ink, which, shapely.area(pieces) * np.minimum(share, 1.0))
         length = np.zeros(len(b))
         length[lined] = shapely.length(leaders[lined])
-        k = int(np.argmin(ink + _LEADER_INK_MM2 * length))  # the first of the least
+        cost = ink + _LEADER_INK_MM2 * length
+        k = int(np.argmin(cost))  # the first of the least
         box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
-        on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(shapely.box(*box), predicate="intersects")))
-        return box, leaders[k], on_ink
+        h = c / 2  # nearer than that a reader sees the label touch
+        near_box = shapely.box(box[0] - h, box[1] - h, box[2] + h, box[3] + h)
+        on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(near_box, predicate="intersects")))
+        return box, leaders[k], on_ink, float(cost[k])
+
+    def _anywhere(self, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
+                  shift: Point) -> tuple[Box, Any, bool, float] | None:
+        """``_least_inked`` of the places on a grid over the whole region (``_region_places``), whatever the search
+        spent: tried in order of their leader's length, ``_GRID_CHUNK`` at a time, until the leaders alone weigh
+        more than the best place found (the ink under a place only adds to its leader's weight)."""
+        import numpy as np
+
+        boxes, feet = _region_places(self.region, size, anchor, shaft)
+        _, reach = _leader_reach(boxes, feet)
+        order = np.argsort(reach, kind="stable")
+        best: tuple[Box, Any, bool, float] | None = None
+        for start in range(0, len(order), _GRID_CHUNK):
+            chunk = order[start:start + _GRID_CHUNK]
+            if best is not None and _LEADER_INK_MM2 * (reach[chunk[0]] - 0.6 - math.hypot(*shift)) >= best[3]:
+                break
+            found = self._least_inked(boxes[chunk], _leaders(boxes[chunk], feet[chunk], shift), budgeted=False)
+            if found is not None and (best is None or found[3] < best[3]):
+                best = found
+        return best
+
+    def where_it_was(self, was: list[Item], runs: tuple[Run, ...], color: str, role: str,
+                     anchor: Point) -> list[Item] | None:
+        """The label at the place of ``was`` (the label it grew from, as placed on the sheet before): its box's top
+        left corner kept, and its leader, if it had one, from the same point; None when that place is not free of
+        everything or its leader not clear of the other labels."""
+        from shapely.geometry import LineString
+
+        self._start = self._placed.scanned
+        text = was[-1]
+        if not isinstance(text, Text):
+            return None
+        x0, y0, x1, y1 = runs_box(runs)
+        b = (text.box[0], text.box[3] - (y1 - y0), text.box[0] + (x1 - x0), text.box[3])
+        if not next(self._free_of([b], False)):
+            return None
+        line = next((item for item in was if isinstance(item, Path) and item.role.startswith("leader ")), None)
+        leader = None
+        if line is not None:
+            start = line.points[0]
+            near = (min(max(start[0], b[0]), b[2]), min(max(start[1], b[1]), b[3]))
+            length = math.hypot(near[0] - start[0], near[1] - start[1])
+            if length > 0.6:
+                k = (length - 0.3) / length
+                leader = LineString([start, (start[0] + k * (near[0] - start[0]), start[1] + k * (near[1] - start[1]))])
+                if not self._leader_ok(leader, False):
+                    return None
+        return self._accept(b, runs, color, role, anchor, False, leader)
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
                  bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False,
@@ -521,30 +578,79 @@ class Placer:
         if found is not None:
             return self._accept(found, runs, color, role, _mid(start, end), False)
         feet = [(start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])) for t in _ALONG_T[1:]]
-        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0), near=candidates, feet=feet)
+        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0), near=candidates, feet=feet,
+                         shaft=(start, end))
 
 
 def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
                     shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
     """The places a label of ``size`` set out is tried at: on every far ring (``_FAR_RINGS_MM``, then
-    ``_FURTHEST_RINGS_MM``) round each of ``feet``, each with its leader as ``Placer._far`` draws it (from the foot,
-    moved by ``shift``, to 0.3 mm short of the box's nearest point; None within 0.6 mm of the foot). The boxes
+    ``_FURTHEST_RINGS_MM``) round each of ``feet``, each with its leader from the foot (``_leaders``). The boxes
     (n x 4) and the leaders."""
     import numpy as np
-    import shapely
 
     rings = _FAR_RINGS_MM + _FURTHEST_RINGS_MM
     offsets = np.array([_pushed_box((0.0, 0.0), direction, size, ring) for ring in rings for direction in _DIRECTIONS])
     foot = np.repeat(np.asarray(feet, dtype=float), len(offsets), axis=0)
     boxes = np.tile(offsets, (len(feet), 1)) + np.hstack([foot, foot])
+    return boxes, _leaders(boxes, foot, shift)
+
+
+_GRID_MM = 2.0
+"""How far apart the places tried over a whole region are (``_region_places``)."""
+_SHAFT_SPAN = (0.1, 0.9)
+"""Where along a vector's shaft a leader from a place anywhere in the region may start."""
+_GRID_CHUNK = 1000
+"""How many of the grid's places ``Placer._anywhere`` tests at a time."""
+
+
+def _region_places(region: Box, size: tuple[float, float], anchor: Point,
+                   shaft: tuple[Point, Point] | None) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """The places a label of ``size`` is tried at where no place out from its anchor is clear of the other labels:
+    on a grid over the whole ``region`` (``_GRID_MM`` apart), each with its leader's foot at ``anchor`` and, for a
+    vector's label, each again with its foot at the point of ``shaft`` nearest the box's centre (within
+    ``_SHAFT_SPAN`` of its length). The boxes (n x 4) and the feet (n x 2)."""
+    import numpy as np
+
+    width, height = size
+    xs = np.arange(region[0], region[2] - width, _GRID_MM)
+    ys = np.arange(region[1], region[3] - height, _GRID_MM)
+    gx, gy = (grid.ravel() for grid in np.meshgrid(xs, ys))
+    boxes = np.stack([gx, gy, gx + width, gy + height], axis=1)
+    feet = [np.broadcast_to(np.asarray(anchor, dtype=float), (len(boxes), 2))]
+    if shaft is not None:
+        a, b = np.asarray(shaft[0], dtype=float), np.asarray(shaft[1], dtype=float)
+        d = b - a
+        if float(d @ d) > 0.0:
+            centres = (boxes[:, :2] + boxes[:, 2:]) / 2
+            t = np.clip((centres - a) @ d / float(d @ d), *_SHAFT_SPAN)
+            feet.append(a + t[:, None] * d)
+    return np.tile(boxes, (len(feet), 1)), np.concatenate(feet)
+
+
+def _leader_reach(boxes: npt.NDArray[np.float64],
+                  foot: npt.NDArray[np.float64]) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Each box's point nearest its foot, and how far it is."""
+    import numpy as np
+
     nearest = np.clip(foot, boxes[:, :2], boxes[:, 2:])
-    length = np.hypot(*(nearest - foot).T)
+    return nearest, np.hypot(*(nearest - foot).T)
+
+
+def _leaders(boxes: npt.NDArray[np.float64], foot: npt.NDArray[np.float64],
+             shift: Point) -> npt.NDArray[np.object_]:
+    """Each box's leader as ``Placer._far`` draws it: from its foot, moved by ``shift``, to 0.3 mm short of the box's
+    nearest point; None within 0.6 mm of the foot."""
+    import numpy as np
+    import shapely
+
+    nearest, length = _leader_reach(boxes, foot)
     drawn = length > 0.6
     leaders = np.full(len(boxes), None, dtype=object)
     k = ((length[drawn] - 0.3) / length[drawn])[:, None]
     ends = foot[drawn] + k * (nearest[drawn] - foot[drawn])
     leaders[drawn] = shapely.linestrings(np.stack([foot[drawn] + np.asarray(shift), ends], axis=1))
-    return boxes, leaders
+    return leaders
 
 
 def _inside_of(b: Box, region: Box) -> Box:
@@ -703,7 +809,8 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
             base.add(entry)
         hard = [g for item in near for g in cache.pieces(item)]
         soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
-        placed, crowded, set_out = _tries(region, requests, order, kept, hard, soft, base)
+        placed, crowded, set_out = _tries(region, requests, order, kept, hard, soft, base,
+                                          _grown(cache, region, requests, kept))
     else:
         placed, crowded, set_out = [kept[k] for k in range(len(requests))], [], []
     for entry in placed:
@@ -719,13 +826,33 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
     return placed, crowded, set_out
 
 
+def _grown(cache: LabelCache, region: Box, requests: Sequence[Request],
+           kept: dict[int, Placed]) -> dict[int, list[Item]]:
+    """The labels of arrows drawn one on another whose text grew since the region's sheet before (a name joined
+    them): for each request not kept, the items of the label its shaft had there."""
+    last = cache._last.get(region)
+    if last is None:
+        return {}
+    before: dict[tuple[str, Point, Point], list[Item]] = {}
+    for request, entries in last[0].items():
+        if request.end is not None and entries:
+            before.setdefault((request.layer, request.anchor, request.end), entries[0][1])
+    out: dict[int, list[Item]] = {}
+    for k, request in enumerate(requests):
+        was = before.get((request.layer, request.anchor, request.end)) if request.end is not None else None
+        if k not in kept and was and request.role != was[-1].role:
+            out[k] = was
+    return out
+
+
 def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dict[int, Placed], hard: list[Any],
-           soft: list[Any], base: _Placed) -> tuple[list[Placed], list[str], list[str]]:
+           soft: list[Any], base: _Placed,
+           grown: dict[int, list[Item]] | None = None) -> tuple[list[Placed], list[str], list[str]]:
     """The best of up to ``_TRIES`` placements of the requests not kept, each with the labels that found no free
     place before (``Placer.set_out``) moved to the front; its labels, the roles crowded and the roles set out."""
     best: tuple[list[Placed], list[str], list[str]] | None = None
     for _ in range(_TRIES):
-        placed, crowded, set_out = _attempt(region, requests, order, kept, hard, soft, base.copy())
+        placed, crowded, set_out = _attempt(region, requests, order, kept, hard, soft, base.copy(), grown)
         if best is not None and len(set_out) >= len(best[2]):
             break  # moving the labels set out first did not help
         best = (placed, crowded, set_out)
@@ -762,16 +889,22 @@ def _crowd(requests: Sequence[Request]) -> set[int]:
 
 
 def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kept: dict[int, Placed],
-             hard: list[Any], soft: list[Any], placed_so_far: _Placed) -> tuple[list[Placed], list[str], list[str]]:
+             hard: list[Any], soft: list[Any], placed_so_far: _Placed,
+             grown: dict[int, list[Item]] | None = None) -> tuple[list[Placed], list[str], list[str]]:
     """One placement of the requests not kept, in ``order``; every request's label, the roles crowded and the roles
-    set out (``Placer.set_out``)."""
+    set out (``Placer.set_out``). A label in ``grown`` (``_grown``) is tried first where its shorter text was."""
     placer = Placer(region, hard, soft, placed_so_far)
     out: dict[int, Placed] = dict(kept)
     crowd = _crowd(requests)
     for k in order:
         request = requests[k]
         before = len(placed_so_far)
-        if request.end is None:
+        was = (grown or {}).get(k)
+        found = None if was is None else placer.where_it_was(was, request.runs, request.color, request.role,
+                                                              _mid(request.anchor, request.end or request.anchor))
+        if found is not None:
+            items = found
+        elif request.end is None:
             items = placer.at_point(request.anchor, request.runs, request.color, request.role, request.bold,
                                     request.gap, request.ring, request.optional, far=k in crowd)
         else:

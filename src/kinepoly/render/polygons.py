@@ -279,8 +279,9 @@ class FigureDrawing:
 
     Each element is drawn once with the step at which it appears (and its highlight); a sheet picks
     those of steps <= ``upto``. Only the labels that join several names at one spot (coinciding tips,
-    the short vectors ending there) depend on which of those names are shown yet; each such label is
-    made once for every set of names it shows. Equal things are one object on every sheet.
+    the short vectors ending there, arrows drawn one on another) depend on which of those names are shown
+    yet; each such label is made once for every set of names it shows. Equal things are one object on every
+    sheet.
     """
 
     def __init__(self, figure: Figure, panel: Panel) -> None:
@@ -343,6 +344,22 @@ class FigureDrawing:
                                               priority=3, gap=gap)
         return found
 
+    def _shaft_label(self, group: tuple[Request, ...]) -> Request:
+        """The label of the arrows drawn one on another: the first's, or their names joined (``a_P11, a_Q11``; an
+        arrow's own equal names, ``v_Q3 = v_P3``, listed so too)."""
+        labels = tuple(dict.fromkeys(request.role.removeprefix("vector ") for request in group))
+        if len(labels) == 1:
+            return group[0]
+        names = tuple(dict.fromkeys(name for label in labels for name in label.split(" = ")))
+        first = group[0]
+        key = ("shaft", names, first.anchor, first.end)
+        found = self._made.get(key)
+        if not isinstance(found, Request):
+            runs = _with_vectors((), [(name, first.color) for name in names])
+            found = self._made[key] = Request(self._layer, self._region, runs, first.anchor, first.end,
+                                              color=first.color, role="vector " + ", ".join(names), priority=4)
+        return found
+
     def _dot(self, tip: FigureTip, at: Point, highlight: bool) -> Item:
         """The dot of the tips at one spot, named by the first of them; or its highlight."""
         key = ("highlight" if highlight else "dot", tip.label)
@@ -374,17 +391,21 @@ class FigureDrawing:
         dots: list[Item] = []
         tiny: dict[tuple[float, float], list[tuple[str, str]]] = {}
         """The vectors too short to draw, by where they end: named in one label there (with the tip's, if one is)."""
+        shafts: dict[tuple[Point, Point], list[Request]] = {}
+        """The labels of the arrows drawn, by where they start and end: arrows drawn one on another (a long chain's
+        converging points) are named in one label."""
         for step, drawn, request, halo, short in self._vectors:
             if step > last:
                 continue
             if request is not None:
                 items.append(drawn)
-                requests.append(request)
+                shafts.setdefault((_spot(request.anchor), _spot(request.end or request.anchor)), []).append(request)
             elif short is not None:
                 dots.append(drawn)
                 tiny.setdefault(short[0], []).append(short[1:])
             if step == upto:
                 halos.append(halo)
+        requests += [self._shaft_label(tuple(group)) for group in shafts.values()]
         items += dots
         pole = self._pole_point
         items.append(self._pole)
