@@ -14,6 +14,7 @@ on a grid over the whole region, their leaders from the point or from the shaft'
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from collections.abc import Iterable, Iterator, Sequence
@@ -168,7 +169,15 @@ def _pushed_box(anchor: Point, direction: Point, size: tuple[float, float], gap:
     hypot(max(|ux| t - a, 0), max(|uy| t - b, 0)); the least t at which that reaches ``gap``.
     """
     a, b = size[0] / 2, size[1] / 2
-    ux, uy = abs(direction[0]), abs(direction[1])
+    t = _push(abs(direction[0]), abs(direction[1]), a, b, gap)
+    cx, cy = anchor[0] + direction[0] * t, anchor[1] + direction[1] * t
+    return (cx - a, cy - b, cx + a, cy + b)
+
+
+@functools.lru_cache(maxsize=4096)
+def _push(ux: float, uy: float, a: float, b: float, gap: float) -> float:
+    """How far ``_pushed_box`` moves a box of half sizes (a, b) along (ux, uy) (both >= 0); the same few labels
+    and directions come again and again, so it is kept."""
     candidates = []
     if ux > PARALLEL_SIN and uy * (a + gap) / ux <= b + PAPER_EXACT_MM:
         candidates.append((a + gap) / ux)
@@ -180,13 +189,13 @@ def _pushed_box(anchor: Point, direction: Point, size: tuple[float, float], gap:
         t = p + math.sqrt(p * p - q)
         if ux * t >= a - PAPER_EXACT_MM and uy * t >= b - PAPER_EXACT_MM:
             candidates.append(t)
-    t = min(candidates) if candidates else gap + a + b
-    cx, cy = anchor[0] + direction[0] * t, anchor[1] + direction[1] * t
-    return (cx - a, cy - b, cx + a, cy + b)
+    return min(candidates) if candidates else gap + a + b
 
 
 class _Placed:
-    """The geometries placed so far (labels, leaders), found by a grid of cells: only near ones are tested."""
+    """The geometries placed so far (labels, leaders), found by a grid of cells: only near ones are tested.
+
+    A label's geometry is its box (a ring's too: the box round it); a leader's is its line with its width."""
 
     _CELL_MM = 8.0
 
@@ -221,9 +230,10 @@ class _Placed:
         for k, (geometry, box) in enumerate(zip(geometries, bounds, strict=True)):
             self.append(geometry, has_leader and k == 1, box)
 
-    def touches(self, geometry: Any, labels_only: bool = False, distance: float = 0.0) -> bool:
+    def touches(self, geometry: Any, labels_only: bool = False, distance: float = 0.0, box: bool = False) -> bool:
         """Whether ``geometry`` comes within ``distance`` of any placed geometry (``labels_only``: of any placed
-        label, leaders aside)."""
+        label, leaders aside). ``box``: ``geometry`` is a box (a rectangle along the axes); a placed label is one
+        too, so it meets the label where their bounds meet, with no further test."""
         import shapely
 
         x0, y0, x1, y1 = geometry.bounds
@@ -238,6 +248,8 @@ class _Placed:
                 self.scanned += 1
                 b = self._bounds[index]
                 if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0:
+                    if box and distance <= 0.0 and index not in self._leaders:
+                        return True
                     g = self.geometries[index]
                     if geometry.intersects(g) if distance <= 0.0 else shapely.dwithin(geometry, g, distance):
                         return True
@@ -280,11 +292,16 @@ class Placer:
     def __init__(self, region: Box, hard: list[Any], soft: list[Any], placed: _Placed) -> None:
         """``hard``: what is drawn near the region (``item_pieces``), which a label may not touch; ``soft``: the
         light shading there, which it avoids where it can; ``placed``: the labels placed so far."""
+        import numpy as np
+        import shapely
         from shapely import STRtree
 
         self.region = region
         self._hard, self._soft = hard, soft
         self._hard_tree = STRtree(self._hard)
+        self._hard_array = np.asarray(self._hard, dtype=object).reshape(-1)
+        self._hard_bounds = shapely.bounds(self._hard_array).reshape(-1, 4)
+        self._hard_areas = shapely.area(self._hard)
         self._soft_tree = STRtree(self._soft)
         self._placed = placed
         self._start = 0
@@ -302,19 +319,29 @@ class Placer:
         """For each of ``boxes`` in turn, whether it lies inside the region, its clearance touching nothing
         drawn (with ``avoid_fill`` no shading either) and no placed label; the drawing is tested for all
         boxes at once, the placed labels box by box as asked (the first free one often ends the search)."""
-        import numpy as np
-        import shapely
-
         if not boxes:
             return
-        c = CLEARANCE_MM
-        b = np.asarray(boxes, dtype=float)
-        grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
-        taken = set(self._hard_tree.query(grown, predicate="intersects")[0].tolist())
+        grown = _grown_boxes(boxes)
+        yield from self._free_among(boxes, grown, self._on_drawing(grown, avoid_fill))
+
+    def _on_drawing(self, grown: Any, avoid_fill: bool, hard: set[int] | None = None) -> set[int]:
+        """The indexes of the ``grown`` boxes that touch something drawn (with ``avoid_fill`` some shading too);
+        ``hard``: those that touch something drawn, when known already."""
+        taken = set(self._on_hard(grown)) if hard is None else set(hard)
         if avoid_fill:
             taken |= set(self._soft_tree.query(grown, predicate="intersects")[0].tolist())
+        return taken
+
+    def _on_hard(self, grown: Any) -> list[int]:
+        """The indexes of the ``grown`` boxes that touch something drawn (``_touching``)."""
+        import numpy as np
+
+        return np.flatnonzero(_touching(self._hard_tree, self._hard_bounds, grown)).tolist()
+
+    def _free_among(self, boxes: Sequence[Box], grown: Any, taken: set[int]) -> Iterator[bool]:
+        """``_free_of`` with the boxes that touch the drawing (``taken``) known: the placed labels tested box by box."""
         for k, box in enumerate(boxes):
-            yield k not in taken and self._inside(box) and not self._placed.touches(grown[k])
+            yield k not in taken and self._inside(box) and not self._placed.touches(grown[k], box=True)
 
     def _leader_ok(self, line: Any, strict: bool) -> bool:
         """A leader (its centre line) keeps its clearance from every label (other leaders may meet it, at a spot
@@ -355,8 +382,13 @@ class Placer:
         return self._placed.scanned - self._start > _SEARCH_BUDGET
 
     def _near(self, candidates: Sequence[Box]) -> Box | None:
+        if not candidates:
+            return None
+        grown = _grown_boxes(candidates)
+        hard = self._on_drawing(grown, False)  # tested against the drawing once for both rounds
         for avoid_fill in (True, False):
-            for b, free in zip(candidates, self._free_of(candidates, avoid_fill), strict=True):
+            taken = self._on_drawing(grown, True, hard) if avoid_fill else hard
+            for b, free in zip(candidates, self._free_among(candidates, grown, taken), strict=True):
                 if free:
                     return b
                 if self._spent():
@@ -443,44 +475,75 @@ class Placer:
         b, leaders = b[inside], leaders[inside]
         if not len(b):
             return None
+        lined = leaders != None  # noqa: E711 (elementwise)
+        length = np.zeros(len(b))
+        length[lined] = shapely.length(leaders[lined])
+        weight = _LEADER_INK_MM2 * length
+        # In order of the leaders' weight, a chunk at a time, until the leaders alone weigh more than the best place
+        # found (the ink under a place only adds to it): the same place as all of them tested at once.
+        order = np.argsort(weight, kind="stable")
+        best: tuple[float, int, float] | None = None  # its weight, index and ink
+        start, size = 0, _INK_CHUNK
+        while start < len(order) and (best is None or weight[order[start]] <= best[0]):
+            chunk = np.sort(order[start:start + size])
+            start, size = start + size, 2 * size
+            found = self._inked(b[chunk], leaders[chunk], lined[chunk], weight[chunk])
+            if found is not None:
+                cost, k, ink = found
+                if best is None or cost < best[0] or (cost == best[0] and chunk[k] < best[1]):
+                    best = (cost, int(chunk[k]), ink)
+        if best is None:
+            return None
+        cost, k, ink = best
+        box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
+        h = CLEARANCE_MM / 2  # nearer than that a reader sees the label touch
+        near_box = shapely.box(box[0] - h, box[1] - h, box[2] + h, box[3] + h)
+        on_ink = bool(ink) and bool(len(self._hard_tree.query(near_box, predicate="intersects")))
+        return box, leaders[k], on_ink, cost
+
+    def _inked(self, b: npt.NDArray[np.float64], leaders: npt.NDArray[np.object_], lined: npt.NDArray[np.bool_],
+               weight: npt.NDArray[np.float64]) -> tuple[float, int, float] | None:
+        """Of the boxes ``b`` inside the region (``_least_inked``), each with its leader (``lined``: it has one) and
+        the leader's weight, the first of those with the least weight and ink that are clear of the placed labels:
+        its weight with the ink, its index and its ink; None when none is clear."""
+        import numpy as np
+        import shapely
+
         c = CLEARANCE_MM
         grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
-        lined = leaders != None  # noqa: E711 (elementwise)
         reach = LEADER.width / 2 + CLEARANCE_MM
         ok = np.ones(len(b), dtype=bool)
         e0, e1, e2, e3 = (float(v) for v in shapely.total_bounds(np.concatenate([grown, leaders[lined]])))
         near = self._placed.near((e0, e1, e2, e3), reach)
         if near:  # clear of the placed labels and leaders, and its leader clear of the placed labels
-            placed = shapely.STRtree([self._placed.geometries[i] for i in near])
-            ok[placed.query(grown, predicate="intersects")[0]] = False
             labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
+            lines = np.empty(len(near) - len(labels), dtype=object)
+            lines[:] = [self._placed.geometries[i] for i in near if self._placed.is_leader(i)]
+            label_tree = shapely.STRtree(labels)
+            ok[label_tree.query(grown)[0]] = False  # a placed label is its box: it meets a box where their bounds do
+            if len(lines):
+                ok[_touching(shapely.STRtree(lines), shapely.bounds(lines), grown)] = False
             tested = np.flatnonzero(ok & lined)
             if len(tested) and labels:
-                crossed = shapely.STRtree(labels).query(leaders[tested], predicate="dwithin", distance=reach)[0]
+                crossed = label_tree.query(leaders[tested], predicate="dwithin", distance=reach)[0]
                 ok[tested[crossed]] = False
-        b, leaders, grown, lined = b[ok], leaders[ok], grown[ok], lined[ok]
-        if not len(b):
+        kept = np.flatnonzero(ok)
+        if not len(kept):
             return None
+        b, grown = b[kept], grown[kept]
         ink = np.zeros(len(b))
         which, hit = self._hard_tree.query(grown, predicate="intersects")
         if len(which):  # each piece's area times the share of its bounds the box covers: cheap, and near enough
-            pieces = np.asarray(self._hard, dtype=object)[hit]
-            bounds = shapely.bounds(pieces)
+            bounds, areas = self._hard_bounds[hit], self._hard_areas[hit]
             g = b[which]
             wide = np.minimum(g[:, 2] + c, bounds[:, 2]) - np.maximum(g[:, 0] - c, bounds[:, 0])
             high = np.minimum(g[:, 3] + c, bounds[:, 3]) - np.maximum(g[:, 1] - c, bounds[:, 1])
             spans = np.maximum(bounds[:, 2] - bounds[:, 0], 1e-9) * np.maximum(bounds[:, 3] - bounds[:, 1], 1e-9)
             share = np.clip(wide, 0.0, None) * np.clip(high, 0.0, None) / spans
-            np.add.at(ink, which, shapely.area(pieces) * np.minimum(share, 1.0))
-        length = np.zeros(len(b))
-        length[lined] = shapely.length(leaders[lined])
-        cost = ink + _LEADER_INK_MM2 * length
+            np.add.at(ink, which, areas * np.minimum(share, 1.0))
+        cost = ink + weight[kept]
         k = int(np.argmin(cost))  # the first of the least
-        box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
-        h = c / 2  # nearer than that a reader sees the label touch
-        near_box = shapely.box(box[0] - h, box[1] - h, box[2] + h, box[3] + h)
-        on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(near_box, predicate="intersects")))
-        return box, leaders[k], on_ink, float(cost[k])
+        return float(cost[k]), int(kept[k]), float(ink[k])
 
     def _anywhere(self, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
                   shift: Point) -> tuple[Box, Any, bool, float] | None:
@@ -582,6 +645,40 @@ class Placer:
                          shaft=(start, end))
 
 
+def _within(inner: npt.NDArray[np.float64], outer: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
+    """Whether each of the bounds ``inner`` (n x 4) lies within the bounds ``outer`` (n x 4), edges included."""
+    return ((inner[:, 0] >= outer[:, 0]) & (inner[:, 1] >= outer[:, 1])
+            & (inner[:, 2] <= outer[:, 2]) & (inner[:, 3] <= outer[:, 3]))
+
+
+def _touching(tree: Any, bounds: npt.NDArray[np.float64], boxes: Any) -> npt.NDArray[np.bool_]:
+    """For each of ``boxes`` (an array of polygons), whether it meets any of the geometries of ``tree`` (``bounds``
+    theirs): as ``tree.query(boxes, predicate="intersects")`` finds, with less work. A box that holds a geometry's
+    bounds within its own meets it; only the other boxes are tested exactly."""
+    import numpy as np
+    import shapely
+
+    met = np.zeros(len(boxes), dtype=bool)
+    which, hit = tree.query(boxes)  # the pairs whose bounds meet
+    if not len(which):
+        return met
+    met[which[_within(bounds[hit], shapely.bounds(boxes)[which])]] = True
+    rest = np.unique(which[~met[which]])
+    if len(rest):
+        met[rest[tree.query(boxes[rest], predicate="intersects")[0]]] = True
+    return met
+
+
+def _grown_boxes(boxes: Sequence[Box]) -> Any:
+    """The boxes grown by the clearance, as shapely polygons."""
+    import numpy as np
+    import shapely
+
+    c = CLEARANCE_MM
+    b = np.asarray(boxes, dtype=float)
+    return shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
+
+
 def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
                     shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
     """The places a label of ``size`` set out is tried at: on every far ring (``_FAR_RINGS_MM``, then
@@ -602,6 +699,9 @@ _SHAFT_SPAN = (0.1, 0.9)
 """Where along a vector's shaft a leader from a place anywhere in the region may start."""
 _GRID_CHUNK = 1000
 """How many of the grid's places ``Placer._anywhere`` tests at a time."""
+"""How many of the grid's places ``Placer._anywhere`` tests at a time."""
+_INK_CHUNK = 128
+"""How many places ``Placer._least_inked`` tests first (the lightest leaders), twice as many each time after."""
 
 
 def _region_places(region: Box, size: tuple[float, float], anchor: Point,
@@ -859,7 +959,10 @@ def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dic
         if not set_out or len(set_out) > _FEW:
             break  # none set out, or so many that the polygon's own points crowd: moving them first cannot help
         first = [k for k in order if requests[k].role in set_out]
-        order = first + [k for k in order if k not in first]
+        again = first + [k for k in order if k not in first]
+        if again == order:
+            break  # the same order again (every label set out was first already): the same placement
+        order = again
     assert best is not None
     return best
 
