@@ -420,6 +420,8 @@ class Placer:
         # then one that must cross something.
         free: list[tuple[Box, Any]] = []
         for rings in _FAR_RING_GROUPS:
+            if self._spent():
+                break  # its first test would end the search: nothing more is tried (the search only grows)
             candidates = [_pushed_box(anchor, direction, size, ring) for ring in rings for direction in _DIRECTIONS]
             for b, ok in zip(candidates, self._free_of(candidates, False), strict=True):
                 if self._spent():
@@ -487,7 +489,8 @@ class Placer:
         while start < len(order) and (best is None or weight[order[start]] <= best[0]):
             chunk = np.sort(order[start:start + size])
             start, size = start + size, 2 * size
-            found = self._inked(b[chunk], leaders[chunk], lined[chunk], weight[chunk])
+            found = self._inked(b[chunk], leaders[chunk], lined[chunk], weight[chunk],
+                                math.inf if best is None else best[0])
             if found is not None:
                 cost, k, ink = found
                 if best is None or cost < best[0] or (cost == best[0] and chunk[k] < best[1]):
@@ -502,48 +505,63 @@ class Placer:
         return box, leaders[k], on_ink, cost
 
     def _inked(self, b: npt.NDArray[np.float64], leaders: npt.NDArray[np.object_], lined: npt.NDArray[np.bool_],
-               weight: npt.NDArray[np.float64]) -> tuple[float, int, float] | None:
+               weight: npt.NDArray[np.float64], bound: float) -> tuple[float, int, float] | None:
         """Of the boxes ``b`` inside the region (``_least_inked``), each with its leader (``lined``: it has one) and
-        the leader's weight, the first of those with the least weight and ink that are clear of the placed labels:
-        its weight with the ink, its index and its ink; None when none is clear."""
+        the leader's weight, the first of those with the least weight and ink that are clear of the placed labels and
+        whose leaders are: its weight with the ink, its index and its ink; None when none weighing at most ``bound``
+        is clear.
+
+        The placed labels' boxes are tested first (bounds only: a label is its box), then the ink under the boxes
+        clear of them weighed, and only then the placed leaders and the boxes' own leaders tested, the lightest
+        boxes first, a few at a time, until one is clear."""
         import numpy as np
         import shapely
 
         c = CLEARANCE_MM
         grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
         reach = LEADER.width / 2 + CLEARANCE_MM
-        ok = np.ones(len(b), dtype=bool)
         e0, e1, e2, e3 = (float(v) for v in shapely.total_bounds(np.concatenate([grown, leaders[lined]])))
         near = self._placed.near((e0, e1, e2, e3), reach)
-        if near:  # clear of the placed labels and leaders, and its leader clear of the placed labels
-            labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
-            lines = np.empty(len(near) - len(labels), dtype=object)
-            lines[:] = [self._placed.geometries[i] for i in near if self._placed.is_leader(i)]
-            label_tree = shapely.STRtree(labels)
-            ok[label_tree.query(grown)[0]] = False  # a placed label is its box: it meets a box where their bounds do
-            if len(lines):
-                ok[_touching(shapely.STRtree(lines), shapely.bounds(lines), grown)] = False
-            tested = np.flatnonzero(ok & lined)
-            if len(tested) and labels:
-                crossed = label_tree.query(leaders[tested], predicate="dwithin", distance=reach)[0]
-                ok[tested[crossed]] = False
+        labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
+        lines = np.empty(len(near) - len(labels), dtype=object)
+        lines[:] = [self._placed.geometries[i] for i in near if self._placed.is_leader(i)]
+        label_tree = shapely.STRtree(labels)
+        ok = np.ones(len(b), dtype=bool)
+        ok[label_tree.query(grown)[0]] = False  # a placed label is its box: it meets a box where their bounds do
         kept = np.flatnonzero(ok)
         if not len(kept):
             return None
-        b, grown = b[kept], grown[kept]
-        ink = np.zeros(len(b))
-        which, hit = self._hard_tree.query(grown, predicate="intersects")
+        ink = np.zeros(len(kept))
+        which, hit = self._hard_tree.query(grown[kept], predicate="intersects")
         if len(which):  # each piece's area times the share of its bounds the box covers: cheap, and near enough
             bounds, areas = self._hard_bounds[hit], self._hard_areas[hit]
-            g = b[which]
+            g = b[kept][which]
             wide = np.minimum(g[:, 2] + c, bounds[:, 2]) - np.maximum(g[:, 0] - c, bounds[:, 0])
             high = np.minimum(g[:, 3] + c, bounds[:, 3]) - np.maximum(g[:, 1] - c, bounds[:, 1])
             spans = np.maximum(bounds[:, 2] - bounds[:, 0], 1e-9) * np.maximum(bounds[:, 3] - bounds[:, 1], 1e-9)
             share = np.clip(wide, 0.0, None) * np.clip(high, 0.0, None) / spans
             np.add.at(ink, which, areas * np.minimum(share, 1.0))
         cost = ink + weight[kept]
-        k = int(np.argmin(cost))  # the first of the least
-        return float(cost[k]), int(kept[k]), float(ink[k])
+        order = np.argsort(cost, kind="stable")  # the least first, the first of equals first
+        order = order[cost[order] <= bound]
+        line_tree = shapely.STRtree(lines) if len(lines) else None
+        line_bounds = shapely.bounds(lines).reshape(-1, 4)
+        start, size = 0, _CLEAR_CHUNK
+        while start < len(order):
+            part = order[start:start + size]
+            start, size = start + size, 2 * size
+            boxes = kept[part]
+            clear = np.ones(len(part), dtype=bool)
+            if line_tree is not None:  # clear of the placed leaders
+                clear[_touching(line_tree, line_bounds, grown[boxes])] = False
+            tested = np.flatnonzero(clear & lined[boxes])
+            if len(tested) and labels:  # its leader clear of the placed labels
+                clear[tested[label_tree.query(leaders[boxes[tested]], predicate="dwithin", distance=reach)[0]]] = False
+            found = np.flatnonzero(clear)
+            if len(found):
+                j = part[found[0]]
+                return float(cost[j]), int(kept[j]), float(ink[j])
+        return None
 
     def _anywhere(self, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
                   shift: Point) -> tuple[Box, Any, bool, float] | None:
@@ -702,6 +720,9 @@ _GRID_CHUNK = 1000
 """How many of the grid's places ``Placer._anywhere`` tests at a time."""
 _INK_CHUNK = 128
 """How many places ``Placer._least_inked`` tests first (the lightest leaders), twice as many each time after."""
+_CLEAR_CHUNK = 8
+"""How many of them, the lightest first, ``Placer._inked`` tests against the placed leaders at first, twice as many
+each time after."""
 
 
 def _region_places(region: Box, size: tuple[float, float], anchor: Point,
