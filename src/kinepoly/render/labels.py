@@ -220,8 +220,15 @@ class _Placed:
         self.geometries.append(geometry)
         bounds = bounds if bounds is not None else tuple(geometry.bounds)
         self._bounds.append(bounds)
-        for key in self._keys(bounds):
-            self._cells.setdefault(key, []).append(index)
+        c, cells = self._CELL_MM, self._cells
+        rows = range(math.floor(bounds[1] / c), math.floor(bounds[3] / c) + 1)
+        for i in range(math.floor(bounds[0] / c), math.floor(bounds[2] / c) + 1):  # the cells of ``_keys``
+            for j in rows:
+                found = cells.get((i, j))
+                if found is None:
+                    cells[i, j] = [index]
+                else:
+                    found.append(index)
 
     def add(self, placed: Placed) -> None:
         """A placed label's geometries: its box (with its ring), then its leader if it has one."""
@@ -238,22 +245,28 @@ class _Placed:
 
         x0, y0, x1, y1 = geometry.bounds
         x0, y0, x1, y1 = x0 - distance, y0 - distance, x1 + distance, y1 + distance
-        self.scanned += 1
+        c, cells, all_bounds, leaders = self._CELL_MM, self._cells, self._bounds, self._leaders
+        scanned = self.scanned + 1
         seen: set[int] = set()
-        for key in self._keys((x0, y0, x1, y1)):
-            for index in self._cells.get(key, ()):
-                if index in seen or (labels_only and index in self._leaders):
-                    continue
-                seen.add(index)
-                self.scanned += 1
-                b = self._bounds[index]
-                if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0:
-                    if box and distance <= 0.0 and index not in self._leaders:
-                        return True
-                    g = self.geometries[index]
-                    if geometry.intersects(g) if distance <= 0.0 else shapely.dwithin(geometry, g, distance):
-                        return True
-        return False
+        rows = range(math.floor(y0 / c), math.floor(y1 / c) + 1)
+        try:
+            for i in range(math.floor(x0 / c), math.floor(x1 / c) + 1):  # the cells of ``_keys``, in its order
+                for j in rows:
+                    for index in cells.get((i, j), ()):
+                        if index in seen or (labels_only and index in leaders):
+                            continue
+                        seen.add(index)
+                        scanned += 1
+                        b = all_bounds[index]
+                        if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0:
+                            if box and distance <= 0.0 and index not in leaders:
+                                return True
+                            g = self.geometries[index]
+                            if geometry.intersects(g) if distance <= 0.0 else shapely.dwithin(geometry, g, distance):
+                                return True
+            return False
+        finally:
+            self.scanned = scanned
 
     def near(self, bounds: Box, distance: float = 0.0) -> list[int]:
         """The indexes of the placed geometries whose bounds come within ``distance`` of ``bounds``; counted in
@@ -526,13 +539,13 @@ class Placer:
         lines = np.empty(len(near) - len(labels), dtype=object)
         lines[:] = [self._placed.geometries[i] for i in near if self._placed.is_leader(i)]
         label_tree = shapely.STRtree(labels)
-        ok = np.ones(len(b), dtype=bool)
+        ok = weight <= bound  # a heavier leader cannot win, whatever the ink
         ok[label_tree.query(grown)[0]] = False  # a placed label is its box: it meets a box where their bounds do
         kept = np.flatnonzero(ok)
         if not len(kept):
             return None
         ink = np.zeros(len(kept))
-        which, hit = self._hard_tree.query(grown[kept], predicate="intersects")
+        which, hit = _meeting(self._hard_tree, self._hard_array, self._hard_bounds, grown[kept])
         if len(which):  # each piece's area times the share of its bounds the box covers: cheap, and near enough
             bounds, areas = self._hard_bounds[hit], self._hard_areas[hit]
             g = b[kept][which]
@@ -667,6 +680,23 @@ def _within(inner: npt.NDArray[np.float64], outer: npt.NDArray[np.float64]) -> n
     """Whether each of the bounds ``inner`` (n x 4) lies within the bounds ``outer`` (n x 4), edges included."""
     return ((inner[:, 0] >= outer[:, 0]) & (inner[:, 1] >= outer[:, 1])
             & (inner[:, 2] <= outer[:, 2]) & (inner[:, 3] <= outer[:, 3]))
+
+
+def _meeting(tree: Any, geometries: npt.NDArray[np.object_], bounds: npt.NDArray[np.float64],
+             boxes: Any) -> tuple[npt.NDArray[np.intp], npt.NDArray[np.intp]]:
+    """``tree.query(boxes, predicate="intersects")`` (``geometries`` the tree's, ``bounds`` theirs; ``boxes`` an
+    array of polygons): the same pairs in the same order, with less work. A geometry whose bounds lie within a box's
+    meets it; only the other pairs whose bounds meet are tested exactly."""
+    import numpy as np
+    import shapely
+
+    which, hit = tree.query(boxes)  # the pairs whose bounds meet, in the order the predicate keeps
+    if not len(which):
+        return which, hit
+    keep = _within(bounds[hit], shapely.bounds(boxes)[which])
+    rest = np.flatnonzero(~keep)
+    keep[rest] = shapely.intersects(boxes[which[rest]], geometries[hit[rest]])
+    return which[keep], hit[keep]
 
 
 def _touching(tree: Any, bounds: npt.NDArray[np.float64], boxes: Any) -> npt.NDArray[np.bool_]:
