@@ -747,7 +747,6 @@ _SHAFT_SPAN = (0.1, 0.9)
 """Where along a vector's shaft a leader from a place anywhere in the region may start."""
 _GRID_CHUNK = 1000
 """How many of the grid's places ``Placer._anywhere`` tests at a time."""
-"""How many of the grid's places ``Placer._anywhere`` tests at a time."""
 _INK_CHUNK = 128
 """How many places ``Placer._least_inked`` tests first (the lightest leaders), twice as many each time after."""
 _CLEAR_CHUNK = 8
