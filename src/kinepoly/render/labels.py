@@ -301,6 +301,8 @@ class Placer:
 
     _candidates: int | None = None
     """How many of a label's near places are made, nearest first (None: all)."""
+    _tested: tuple[Sequence[Box], Any, set[int]] | None = None
+    """The boxes ``_free_of`` tested last against the drawing, grown by the clearance, and those that touch it."""
 
     def __init__(self, region: Box, hard: list[Any], soft: list[Any], placed: _Placed) -> None:
         """``hard``: what is drawn near the region (``item_pieces``), which a label may not touch; ``soft``: the
@@ -331,28 +333,20 @@ class Placer:
     def _free_of(self, boxes: Sequence[Box], avoid_fill: bool) -> Iterator[bool]:
         """For each of ``boxes`` in turn, whether it lies inside the region, its clearance touching nothing
         drawn (with ``avoid_fill`` no shading either) and no placed label; the drawing is tested for all
-        boxes at once, the placed labels box by box as asked (the first free one often ends the search)."""
-        if not boxes:
-            return
-        grown = _grown_boxes(boxes)
-        yield from self._free_among(boxes, grown, self._on_drawing(grown, avoid_fill))
-
-    def _on_drawing(self, grown: Any, avoid_fill: bool, hard: set[int] | None = None) -> set[int]:
-        """The indexes of the ``grown`` boxes that touch something drawn (with ``avoid_fill`` some shading too);
-        ``hard``: those that touch something drawn, when known already."""
-        taken = set(self._on_hard(grown)) if hard is None else set(hard)
-        if avoid_fill:
-            taken |= set(self._soft_tree.query(grown, predicate="intersects")[0].tolist())
-        return taken
-
-    def _on_hard(self, grown: Any) -> list[int]:
-        """The indexes of the ``grown`` boxes that touch something drawn (``_touching``)."""
+        boxes at once, the placed labels box by box as asked (the first free one often ends the search).
+        Asked again for the same boxes (``_near``'s second round), the drawing is not tested again."""
         import numpy as np
 
-        return np.flatnonzero(_touching(self._hard_tree, self._hard_bounds, grown)).tolist()
-
-    def _free_among(self, boxes: Sequence[Box], grown: Any, taken: set[int]) -> Iterator[bool]:
-        """``_free_of`` with the boxes that touch the drawing (``taken``) known: the placed labels tested box by box."""
+        if not boxes:
+            return
+        if self._tested is not None and self._tested[0] is boxes:
+            _, grown, taken = self._tested
+        else:
+            grown = _grown_boxes(boxes)
+            taken = set(np.flatnonzero(_touching(self._hard_tree, self._hard_bounds, grown)).tolist())
+            self._tested = (boxes, grown, taken)
+        if avoid_fill:
+            taken = taken | set(self._soft_tree.query(grown, predicate="intersects")[0].tolist())
         for k, box in enumerate(boxes):
             yield k not in taken and self._inside(box) and not self._placed.touches(grown[k], box=True)
 
@@ -395,13 +389,8 @@ class Placer:
         return self._placed.scanned - self._start > _SEARCH_BUDGET
 
     def _near(self, candidates: Sequence[Box]) -> Box | None:
-        if not candidates:
-            return None
-        grown = _grown_boxes(candidates)
-        hard = self._on_drawing(grown, False)  # tested against the drawing once for both rounds
         for avoid_fill in (True, False):
-            taken = self._on_drawing(grown, True, hard) if avoid_fill else hard
-            for b, free in zip(candidates, self._free_among(candidates, grown, taken), strict=True):
+            for b, free in zip(candidates, self._free_of(candidates, avoid_fill), strict=True):
                 if free:
                     return b
                 if self._spent():
