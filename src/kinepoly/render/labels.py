@@ -14,6 +14,7 @@ on a grid over the whole region, their leaders from the point or from the shaft'
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from collections.abc import Iterable, Iterator, Sequence
@@ -168,7 +169,15 @@ def _pushed_box(anchor: Point, direction: Point, size: tuple[float, float], gap:
     hypot(max(|ux| t - a, 0), max(|uy| t - b, 0)); the least t at which that reaches ``gap``.
     """
     a, b = size[0] / 2, size[1] / 2
-    ux, uy = abs(direction[0]), abs(direction[1])
+    t = _push(abs(direction[0]), abs(direction[1]), a, b, gap)
+    cx, cy = anchor[0] + direction[0] * t, anchor[1] + direction[1] * t
+    return (cx - a, cy - b, cx + a, cy + b)
+
+
+@functools.lru_cache(maxsize=4096)
+def _push(ux: float, uy: float, a: float, b: float, gap: float) -> float:
+    """How far ``_pushed_box`` moves a box of half sizes (a, b) along (ux, uy) (both >= 0); the same few labels
+    and directions come again and again, so it is kept."""
     candidates = []
     if ux > PARALLEL_SIN and uy * (a + gap) / ux <= b + PAPER_EXACT_MM:
         candidates.append((a + gap) / ux)
@@ -180,13 +189,13 @@ def _pushed_box(anchor: Point, direction: Point, size: tuple[float, float], gap:
         t = p + math.sqrt(p * p - q)
         if ux * t >= a - PAPER_EXACT_MM and uy * t >= b - PAPER_EXACT_MM:
             candidates.append(t)
-    t = min(candidates) if candidates else gap + a + b
-    cx, cy = anchor[0] + direction[0] * t, anchor[1] + direction[1] * t
-    return (cx - a, cy - b, cx + a, cy + b)
+    return min(candidates) if candidates else gap + a + b
 
 
 class _Placed:
-    """The geometries placed so far (labels, leaders), found by a grid of cells: only near ones are tested."""
+    """The geometries placed so far (labels, leaders), found by a grid of cells: only near ones are tested.
+
+    A label's geometry is its box (a ring's too: the box round it); a leader's is its line with its width."""
 
     _CELL_MM = 8.0
 
@@ -211,8 +220,15 @@ class _Placed:
         self.geometries.append(geometry)
         bounds = bounds if bounds is not None else tuple(geometry.bounds)
         self._bounds.append(bounds)
-        for key in self._keys(bounds):
-            self._cells.setdefault(key, []).append(index)
+        c, cells = self._CELL_MM, self._cells
+        rows = range(math.floor(bounds[1] / c), math.floor(bounds[3] / c) + 1)
+        for i in range(math.floor(bounds[0] / c), math.floor(bounds[2] / c) + 1):  # the cells of ``_keys``
+            for j in rows:
+                found = cells.get((i, j))
+                if found is None:
+                    cells[i, j] = [index]
+                else:
+                    found.append(index)
 
     def add(self, placed: Placed) -> None:
         """A placed label's geometries: its box (with its ring), then its leader if it has one."""
@@ -221,27 +237,36 @@ class _Placed:
         for k, (geometry, box) in enumerate(zip(geometries, bounds, strict=True)):
             self.append(geometry, has_leader and k == 1, box)
 
-    def touches(self, geometry: Any, labels_only: bool = False, distance: float = 0.0) -> bool:
+    def touches(self, geometry: Any, labels_only: bool = False, distance: float = 0.0, box: bool = False) -> bool:
         """Whether ``geometry`` comes within ``distance`` of any placed geometry (``labels_only``: of any placed
-        label, leaders aside)."""
+        label, leaders aside). ``box``: ``geometry`` is a box (a rectangle along the axes); a placed label is one
+        too, so it meets the label where their bounds meet, with no further test."""
         import shapely
 
         x0, y0, x1, y1 = geometry.bounds
         x0, y0, x1, y1 = x0 - distance, y0 - distance, x1 + distance, y1 + distance
-        self.scanned += 1
+        c, cells, all_bounds, leaders = self._CELL_MM, self._cells, self._bounds, self._leaders
+        scanned = self.scanned + 1
         seen: set[int] = set()
-        for key in self._keys((x0, y0, x1, y1)):
-            for index in self._cells.get(key, ()):
-                if index in seen or (labels_only and index in self._leaders):
-                    continue
-                seen.add(index)
-                self.scanned += 1
-                b = self._bounds[index]
-                if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0:
-                    g = self.geometries[index]
-                    if geometry.intersects(g) if distance <= 0.0 else shapely.dwithin(geometry, g, distance):
-                        return True
-        return False
+        rows = range(math.floor(y0 / c), math.floor(y1 / c) + 1)
+        try:
+            for i in range(math.floor(x0 / c), math.floor(x1 / c) + 1):  # the cells of ``_keys``, in its order
+                for j in rows:
+                    for index in cells.get((i, j), ()):
+                        if index in seen or (labels_only and index in leaders):
+                            continue
+                        seen.add(index)
+                        scanned += 1
+                        b = all_bounds[index]
+                        if b[0] <= x1 and b[2] >= x0 and b[1] <= y1 and b[3] >= y0:
+                            if box and distance <= 0.0 and index not in leaders:
+                                return True
+                            g = self.geometries[index]
+                            if geometry.intersects(g) if distance <= 0.0 else shapely.dwithin(geometry, g, distance):
+                                return True
+            return False
+        finally:
+            self.scanned = scanned
 
     def near(self, bounds: Box, distance: float = 0.0) -> list[int]:
         """The indexes of the placed geometries whose bounds come within ``distance`` of ``bounds``; counted in
@@ -276,15 +301,22 @@ class Placer:
 
     _candidates: int | None = None
     """How many of a label's near places are made, nearest first (None: all)."""
+    _tested: tuple[Sequence[Box], Any, set[int]] | None = None
+    """The boxes ``_free_of`` tested last against the drawing, grown by the clearance, and those that touch it."""
 
     def __init__(self, region: Box, hard: list[Any], soft: list[Any], placed: _Placed) -> None:
         """``hard``: what is drawn near the region (``item_pieces``), which a label may not touch; ``soft``: the
         light shading there, which it avoids where it can; ``placed``: the labels placed so far."""
+        import numpy as np
+        import shapely
         from shapely import STRtree
 
         self.region = region
         self._hard, self._soft = hard, soft
         self._hard_tree = STRtree(self._hard)
+        self._hard_array = np.asarray(self._hard, dtype=object).reshape(-1)
+        self._hard_bounds = shapely.bounds(self._hard_array).reshape(-1, 4)
+        self._hard_areas = shapely.area(self._hard)
         self._soft_tree = STRtree(self._soft)
         self._placed = placed
         self._start = 0
@@ -301,20 +333,22 @@ class Placer:
     def _free_of(self, boxes: Sequence[Box], avoid_fill: bool) -> Iterator[bool]:
         """For each of ``boxes`` in turn, whether it lies inside the region, its clearance touching nothing
         drawn (with ``avoid_fill`` no shading either) and no placed label; the drawing is tested for all
-        boxes at once, the placed labels box by box as asked (the first free one often ends the search)."""
+        boxes at once, the placed labels box by box as asked (the first free one often ends the search).
+        Asked again for the same boxes (``_near``'s second round), the drawing is not tested again."""
         import numpy as np
-        import shapely
 
         if not boxes:
             return
-        c = CLEARANCE_MM
-        b = np.asarray(boxes, dtype=float)
-        grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
-        taken = set(self._hard_tree.query(grown, predicate="intersects")[0].tolist())
+        if self._tested is not None and self._tested[0] is boxes:
+            _, grown, taken = self._tested
+        else:
+            grown = _grown_boxes(boxes)
+            taken = set(np.flatnonzero(_touching(self._hard_tree, self._hard_bounds, grown)).tolist())
+            self._tested = (boxes, grown, taken)
         if avoid_fill:
-            taken |= set(self._soft_tree.query(grown, predicate="intersects")[0].tolist())
+            taken = taken | set(self._soft_tree.query(grown, predicate="intersects")[0].tolist())
         for k, box in enumerate(boxes):
-            yield k not in taken and self._inside(box) and not self._placed.touches(grown[k])
+            yield k not in taken and self._inside(box) and not self._placed.touches(grown[k], box=True)
 
     def _leader_ok(self, line: Any, strict: bool) -> bool:
         """A leader (its centre line) keeps its clearance from every label (other leaders may meet it, at a spot
@@ -388,6 +422,8 @@ class Placer:
         # then one that must cross something.
         free: list[tuple[Box, Any]] = []
         for rings in _FAR_RING_GROUPS:
+            if self._spent():
+                break  # its first test would end the search: nothing more is tried (the search only grows)
             candidates = [_pushed_box(anchor, direction, size, ring) for ring in rings for direction in _DIRECTIONS]
             for b, ok in zip(candidates, self._free_of(candidates, False), strict=True):
                 if self._spent():
@@ -443,44 +479,91 @@ class Placer:
         b, leaders = b[inside], leaders[inside]
         if not len(b):
             return None
+        lined = leaders != None  # noqa: E711 (elementwise)
+        length = np.zeros(len(b))
+        length[lined] = shapely.length(leaders[lined])
+        weight = _LEADER_INK_MM2 * length
+        # In order of the leaders' weight, a chunk at a time, until the leaders alone weigh more than the best place
+        # found (the ink under a place only adds to it): the same place as all of them tested at once.
+        order = np.argsort(weight, kind="stable")
+        best: tuple[float, int, float] | None = None  # its weight, index and ink
+        start, size = 0, _INK_CHUNK
+        while start < len(order) and (best is None or weight[order[start]] <= best[0]):
+            chunk = np.sort(order[start:start + size])
+            start, size = start + size, 2 * size
+            found = self._inked(b[chunk], leaders[chunk], lined[chunk], weight[chunk],
+                                math.inf if best is None else best[0])
+            if found is not None:
+                cost, k, ink = found
+                if best is None or cost < best[0] or (cost == best[0] and chunk[k] < best[1]):
+                    best = (cost, int(chunk[k]), ink)
+        if best is None:
+            return None
+        cost, k, ink = best
+        box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
+        h = CLEARANCE_MM / 2  # nearer than that a reader sees the label touch
+        near_box = shapely.box(box[0] - h, box[1] - h, box[2] + h, box[3] + h)
+        on_ink = bool(ink) and bool(len(self._hard_tree.query(near_box, predicate="intersects")))
+        return box, leaders[k], on_ink, cost
+
+    def _inked(self, b: npt.NDArray[np.float64], leaders: npt.NDArray[np.object_], lined: npt.NDArray[np.bool_],
+               weight: npt.NDArray[np.float64], bound: float) -> tuple[float, int, float] | None:
+        """Of the boxes ``b`` inside the region (``_least_inked``), each with its leader (``lined``: it has one) and
+        the leader's weight, the first of those with the least weight and ink that are clear of the placed labels and
+        whose leaders are: its weight with the ink, its index and its ink; None when none weighing at most ``bound``
+        is clear.
+
+        The placed labels' boxes are tested first (bounds only: a label is its box), then the ink under the boxes
+        clear of them weighed, and only then the placed leaders and the boxes' own leaders tested, the lightest
+        boxes first, a few at a time, until one is clear."""
+        import numpy as np
+        import shapely
+
         c = CLEARANCE_MM
         grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
-        lined = leaders != None  # noqa: E711 (elementwise)
         reach = LEADER.width / 2 + CLEARANCE_MM
-        ok = np.ones(len(b), dtype=bool)
         e0, e1, e2, e3 = (float(v) for v in shapely.total_bounds(np.concatenate([grown, leaders[lined]])))
         near = self._placed.near((e0, e1, e2, e3), reach)
-        if near:  # clear of the placed labels and leaders, and its leader clear of the placed labels
-            placed = shapely.STRtree([self._placed.geometries[i] for i in near])
-            ok[placed.query(grown, predicate="intersects")[0]] = False
-            labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
-            tested = np.flatnonzero(ok & lined)
-            if len(tested) and labels:
-                crossed = shapely.STRtree(labels).query(leaders[tested], predicate="dwithin", distance=reach)[0]
-                ok[tested[crossed]] = False
-        b, leaders, grown, lined = b[ok], leaders[ok], grown[ok], lined[ok]
-        if not len(b):
+        labels = [self._placed.geometries[i] for i in near if not self._placed.is_leader(i)]
+        lines = np.empty(len(near) - len(labels), dtype=object)
+        lines[:] = [self._placed.geometries[i] for i in near if self._placed.is_leader(i)]
+        label_tree = shapely.STRtree(labels)
+        ok = weight <= bound  # a heavier leader cannot win, whatever the ink
+        ok[label_tree.query(grown)[0]] = False  # a placed label is its box: it meets a box where their bounds do
+        kept = np.flatnonzero(ok)
+        if not len(kept):
             return None
-        ink = np.zeros(len(b))
-        which, hit = self._hard_tree.query(grown, predicate="intersects")
+        ink = np.zeros(len(kept))
+        which, hit = _meeting(self._hard_tree, self._hard_array, self._hard_bounds, grown[kept])
         if len(which):  # each piece's area times the share of its bounds the box covers: cheap, and near enough
-            pieces = np.asarray(self._hard, dtype=object)[hit]
-            bounds = shapely.bounds(pieces)
-            g = b[which]
+            bounds, areas = self._hard_bounds[hit], self._hard_areas[hit]
+            g = b[kept][which]
             wide = np.minimum(g[:, 2] + c, bounds[:, 2]) - np.maximum(g[:, 0] - c, bounds[:, 0])
             high = np.minimum(g[:, 3] + c, bounds[:, 3]) - np.maximum(g[:, 1] - c, bounds[:, 1])
             spans = np.maximum(bounds[:, 2] - bounds[:, 0], 1e-9) * np.maximum(bounds[:, 3] - bounds[:, 1], 1e-9)
             share = np.clip(wide, 0.0, None) * np.clip(high, 0.0, None) / spans
-            np.add.at(ink, which, shapely.area(pieces) * np.minimum(share, 1.0))
-        length = np.zeros(len(b))
-        length[lined] = shapely.length(leaders[lined])
-        cost = ink + _LEADER_INK_MM2 * length
-        k = int(np.argmin(cost))  # the first of the least
-        box: Box = (float(b[k, 0]), float(b[k, 1]), float(b[k, 2]), float(b[k, 3]))
-        h = c / 2  # nearer than that a reader sees the label touch
-        near_box = shapely.box(box[0] - h, box[1] - h, box[2] + h, box[3] + h)
-        on_ink = bool(ink[k]) and bool(len(self._hard_tree.query(near_box, predicate="intersects")))
-        return box, leaders[k], on_ink, float(cost[k])
+            np.add.at(ink, which, areas * np.minimum(share, 1.0))
+        cost = ink + weight[kept]
+        order = np.argsort(cost, kind="stable")  # the least first, the first of equals first
+        order = order[cost[order] <= bound]
+        line_tree = shapely.STRtree(lines) if len(lines) else None
+        line_bounds = shapely.bounds(lines).reshape(-1, 4)
+        start, size = 0, _CLEAR_CHUNK
+        while start < len(order):
+            part = order[start:start + size]
+            start, size = start + size, 2 * size
+            boxes = kept[part]
+            clear = np.ones(len(part), dtype=bool)
+            if line_tree is not None:  # clear of the placed leaders
+                clear[_touching(line_tree, line_bounds, grown[boxes])] = False
+            tested = np.flatnonzero(clear & lined[boxes])
+            if len(tested) and labels:  # its leader clear of the placed labels
+                clear[tested[label_tree.query(leaders[boxes[tested]], predicate="dwithin", distance=reach)[0]]] = False
+            found = np.flatnonzero(clear)
+            if len(found):
+                j = part[found[0]]
+                return float(cost[j]), int(kept[j]), float(ink[j])
+        return None
 
     def _anywhere(self, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
                   shift: Point) -> tuple[Box, Any, bool, float] | None:
@@ -582,6 +665,57 @@ class Placer:
                          shaft=(start, end))
 
 
+def _within(inner: npt.NDArray[np.float64], outer: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
+    """Whether each of the bounds ``inner`` (n x 4) lies within the bounds ``outer`` (n x 4), edges included."""
+    return ((inner[:, 0] >= outer[:, 0]) & (inner[:, 1] >= outer[:, 1])
+            & (inner[:, 2] <= outer[:, 2]) & (inner[:, 3] <= outer[:, 3]))
+
+
+def _meeting(tree: Any, geometries: npt.NDArray[np.object_], bounds: npt.NDArray[np.float64],
+             boxes: Any) -> tuple[npt.NDArray[np.intp], npt.NDArray[np.intp]]:
+    """``tree.query(boxes, predicate="intersects")`` (``geometries`` the tree's, ``bounds`` theirs; ``boxes`` an
+    array of polygons): the same pairs in the same order, with less work. A geometry whose bounds lie within a box's
+    meets it; only the other pairs whose bounds meet are tested exactly."""
+    import numpy as np
+    import shapely
+
+    which, hit = tree.query(boxes)  # the pairs whose bounds meet, in the order the predicate keeps
+    if not len(which):
+        return which, hit
+    keep = _within(bounds[hit], shapely.bounds(boxes)[which])
+    rest = np.flatnonzero(~keep)
+    keep[rest] = shapely.intersects(boxes[which[rest]], geometries[hit[rest]])
+    return which[keep], hit[keep]
+
+
+def _touching(tree: Any, bounds: npt.NDArray[np.float64], boxes: Any) -> npt.NDArray[np.bool_]:
+    """For each of ``boxes`` (an array of polygons), whether it meets any of the geometries of ``tree`` (``bounds``
+    theirs): as ``tree.query(boxes, predicate="intersects")`` finds, with less work. A box that holds a geometry's
+    bounds within its own meets it; only the other boxes are tested exactly."""
+    import numpy as np
+    import shapely
+
+    met = np.zeros(len(boxes), dtype=bool)
+    which, hit = tree.query(boxes)  # the pairs whose bounds meet
+    if not len(which):
+        return met
+    met[which[_within(bounds[hit], shapely.bounds(boxes)[which])]] = True
+    rest = np.unique(which[~met[which]])
+    if len(rest):
+        met[rest[tree.query(boxes[rest], predicate="intersects")[0]]] = True
+    return met
+
+
+def _grown_boxes(boxes: Sequence[Box]) -> Any:
+    """The boxes grown by the clearance, as shapely polygons."""
+    import numpy as np
+    import shapely
+
+    c = CLEARANCE_MM
+    b = np.asarray(boxes, dtype=float)
+    return shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
+
+
 def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
                     shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
     """The places a label of ``size`` set out is tried at: on every far ring (``_FAR_RINGS_MM``, then
@@ -602,6 +736,11 @@ _SHAFT_SPAN = (0.1, 0.9)
 """Where along a vector's shaft a leader from a place anywhere in the region may start."""
 _GRID_CHUNK = 1000
 """How many of the grid's places ``Placer._anywhere`` tests at a time."""
+_INK_CHUNK = 128
+"""How many places ``Placer._least_inked`` tests first (the lightest leaders), twice as many each time after."""
+_CLEAR_CHUNK = 8
+"""How many of them, the lightest first, ``Placer._inked`` tests against the placed leaders at first, twice as many
+each time after."""
 
 
 def _region_places(region: Box, size: tuple[float, float], anchor: Point,
@@ -859,7 +998,10 @@ def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dic
         if not set_out or len(set_out) > _FEW:
             break  # none set out, or so many that the polygon's own points crowd: moving them first cannot help
         first = [k for k in order if requests[k].role in set_out]
-        order = first + [k for k in order if k not in first]
+        again = first + [k for k in order if k not in first]
+        if again == order:
+            break  # the same order again (every label set out was first already): the same placement
+        order = again
     assert best is not None
     return best
 
