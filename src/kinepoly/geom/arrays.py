@@ -113,9 +113,9 @@ def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLi
     return Crossing(point, w / (norm1 * norm2), along, offset_conjugate, direction1, w)
 
 
-def circle_circle(c1: PointsLike, r1: Reals | float, c2: PointsLike, r2: float) -> tuple[Points, Points, Reals, Reals,
-                                                                                  Reals]:
-    """The two points where two circles meet, the one left of c1->c2 first; the slack h^2.
+def circle_circle(c1: Points, r1: Reals | float, c2: Points, r2: float) -> tuple[Points, Points, Reals, Reals, Reals]:
+    """The two points where two circles meet, the one left of c1->c2 first; the slack h^2. The centres are
+    arrays of rows (one row or many): the steps write into the arrays they make.
 
     Returns (left, right, slack, d, h): slack < 0 where they do not meet (the points are then the
     foot on c1c2), d = |c1 c2|, h the half chord. Coincident centres give a slack that is not
