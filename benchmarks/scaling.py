@@ -13,7 +13,8 @@ For each chain length N (2N + 2 links) it times, in-process and best of a few ru
 then fits time = c N^p by least squares on log-log (load, solve and sweep over the lengths of at least
 10 loops, draw and handout over all) and prints each growth exponent p (1 is linear). The issue's targets: the solve
 of 400 loops under 2 s and at most 6 times that of 100; the 10-loop handout (PDF and HTML, together and each) at most
-14 times the 1-loop one.
+14 times the 1-loop one, judged by CPU time (each figure is printed as wall time and CPU time, the least of the
+runs; on a shared machine the wall time of a short run swings widely).
 
     python benchmarks/scaling.py [--quick] [--sizes 1,10,100,400,800] [--draw-max 40] [--handout-max 10]
                                  [--tasks load,solve,sweep,draw,handout,handout-pdf,handout-html]
@@ -34,13 +35,16 @@ from kinepoly.scene.loader import loads_scene
 from kinepoly.solution import solve
 
 
-def _best(work: Callable[[], object], repeat: int) -> float:
-    best = math.inf
+def _best(work: Callable[[], object], repeat: int) -> tuple[float, float]:
+    """The least wall time and the least CPU time of this process over ``repeat`` runs of ``work`` (seconds). The
+    CPU time is what the handout's targets are judged by: on a machine shared with other work the wall time of a
+    run of 50 ms swings by half or more, its CPU time much less."""
+    wall = cpu = math.inf
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         work()
-        best = min(best, time.perf_counter() - t0)
-    return best
+        wall, cpu = min(wall, time.perf_counter() - t0), min(cpu, time.process_time() - c0)
+    return wall, cpu
 
 
 def _load(n: int) -> Callable[[], object]:
@@ -130,16 +134,20 @@ def main() -> None:
         ("handout", _handout, args.handout_max), ("handout-pdf", _handout_pdf, args.handout_max),
         ("handout-html", _handout_html, args.handout_max)]
     results: dict[str, tuple[list[int], list[float]]] = {}
+    cpu_results: dict[str, tuple[list[int], list[float]]] = {}
     for name, make, limit in (task for task in tasks if task[0] in wanted):
         ns = [n for n in sizes if n <= limit] or sizes[:1]
         if name.startswith("handout"):
             ns = sorted({*ns, *(k for k in (1, 2, 5, 10) if k <= limit)})
-        times = []
+        times, cpus = [], []
         for n in ns:
             work = make(n)
-            times.append(_best(work, repeat if n <= 100 else 1))
-            print(f"{name:12s} N = {n:4d}: {1e3 * times[-1]:10.1f} ms", flush=True)
+            wall, cpu = _best(work, repeat if n <= 100 else 1)
+            times.append(wall)
+            cpus.append(cpu)
+            print(f"{name:12s} N = {n:4d}: {1e3 * wall:10.1f} ms  (CPU {1e3 * cpu:10.1f} ms)", flush=True)
         results[name] = (ns, times)
+        cpu_results[name] = (ns, cpus)
     print("\ngrowth exponents (time ~ N^p; load, solve and sweep fitted over N >= 10, draw and handout over every N):")
     for name, (ns, times) in results.items():
         least = 10 if name in ("load", "solve", "sweep") else 1
@@ -149,9 +157,11 @@ def main() -> None:
         print(f"  solve: 400 loops in {by_n[400]:.2f} s, {by_n[400] / by_n[100]:.1f} times 100 loops "
               "(targets: under 2 s, at most 6 times)")
     for name in ("handout", "handout-pdf", "handout-html"):
-        hand = dict(zip(*results.get(name, ([], [])), strict=True))
+        hand = dict(zip(*cpu_results.get(name, ([], [])), strict=True))
+        wall = dict(zip(*results.get(name, ([], [])), strict=True))
         if 1 in hand and 10 in hand:
-            print(f"  {name}: 10 loops {hand[10] / hand[1]:.1f} times 1 loop (target: at most 14 times)")
+            print(f"  {name}: 10 loops {hand[10] / hand[1]:.1f} times 1 loop by CPU time (target: at most 14 times; "
+                  f"by wall time {wall[10] / wall[1]:.1f})")
 
 
 if __name__ == "__main__":
