@@ -87,7 +87,7 @@ def _follow(doc: TOMLDocument, solution: Solution) -> bool:
     for name in list(guess.keys()):
         try:
             at = solution.position(str(name))
-        except (KeyError, StopIteration):
+        except KeyError:  # a guess point that no solved link holds
             continue
         new = pair(solution, at)
         if _numbers(guess[name]) != new:

@@ -136,12 +136,7 @@ def _largest(*values: Reals | float) -> Reals | float:
 
 def _closes(slack: Reals, scale: Reals | float) -> Bools:
     """The rows where a circle meets (or, within ``ASSEMBLY_REL_TOL``, just touches) the other curve."""
-    floor = -ASSEMBLY_REL_TOL * scale
-    if isinstance(floor, np.ndarray):
-        floor *= scale  # in place: the same product (``geom.arrays``: arrays made in place)
-    else:
-        floor = floor * scale
-    return np.asarray(slack >= floor)
+    return np.asarray(slack >= -ASSEMBLY_REL_TOL * scale * scale)
 
 
 def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple[Reals, ...] = ()) -> Closure:

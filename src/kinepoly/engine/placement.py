@@ -92,7 +92,7 @@ class Positions(Struct):
             if link in poses:
                 found = points[name] = poses[link].world_at(at)
                 return found
-        raise StopIteration(name)
+        raise KeyError(f"no solved link holds point {name}")
 
     def chord(self, start: str, end: str) -> tuple[Points, Points]:
         """The vector from point ``start`` to point ``end`` at every row, and that vector turned a quarter
