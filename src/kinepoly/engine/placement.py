@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
+import numpy as np
 from msgspec import Struct, field
 
 from kinepoly.engine.gears import Rolled
@@ -77,6 +78,8 @@ class Positions(Struct):
     _chords: dict[int, tuple[str, str]] = field(default_factory=dict)
     """Each turned chord made (``chord``), by the array's identity (the chord is kept, so the identity is its own)."""
     _products: dict[tuple[tuple[str, str], tuple[str, str]], Points] = field(default_factory=dict)
+    _sines: dict[tuple[int, float, float], Reals] = field(default_factory=dict)
+    """Each sine made (``chord_sine``), by its product's identity (the product is kept) and the chords' lengths."""
 
     @property
     def n(self) -> int:
@@ -120,6 +123,20 @@ class Positions(Struct):
         if key in products:
             return products[key]
         found = products[key] = first.conjugate() * second
+        return found
+
+    def chord_sine(self, product: Points | None, length1: float | None, length2: float | None) -> Reals | None:
+        """The sine of the angle between two turned chords whose product is ``product`` (``chord_product``) and whose
+        lengths are the constants ``length1`` and ``length2``: their cross product over the lengths, as
+        ``geom.arrays.cross_lines`` makes it; made once for the velocity and acceleration polygons' crossing of the
+        same two lines (None where there is no product, or a length is measured or differs by row: a family's)."""
+        if product is None or not isinstance(length1, float) or not isinstance(length2, float):
+            return None
+        key = (id(product), length1, length2)
+        sines = self._sines
+        if key in sines:
+            return sines[key]
+        found = sines[key] = np.asarray(product.imag) / (length1 * length2)
         return found
 
     def world(self, link: str, point: str) -> Points:

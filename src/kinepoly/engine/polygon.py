@@ -432,9 +432,12 @@ class Polygon:
         how well they cross; a strict polygon raises ``SingularityError`` where they are parallel."""
         d1, d2 = first[1], second[1]
         if self.crossing is cross_lines and not isinstance(d1, complex) and not isinstance(d2, complex):
-            # lines square to two chords: their product is made once for both polygons (``Positions.chord_product``)
-            crossing = cross_lines(first[0], d1, second[0], d2, first[2], second[2],
-                                   self.positions.chord_product(d1, d2))
+            # lines square to two chords: their product and sine are made once for both polygons
+            # (``Positions.chord_product``, ``Positions.chord_sine``)
+            positions = self.positions
+            product = positions.chord_product(d1, d2)
+            crossing = cross_lines(first[0], d1, second[0], d2, first[2], second[2], product,
+                                   positions.chord_sine(product, first[2], second[2]))
         else:
             crossing = self.crossing(first[0], first[1], second[0], second[1], first[2], second[2])
         self.crossings.append(LineCrossing(self.kind, group, what, crossing.sin_angle, crossing.along_first))

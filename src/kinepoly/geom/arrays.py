@@ -20,6 +20,8 @@ rounds differently from its loop for a new array (a solve is a batch of one row)
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import numpy.typing as npt
 from msgspec import Struct
@@ -27,8 +29,10 @@ from msgspec import Struct
 __all__ = [
     "Bools",
     "Crossing",
+    "DEGREES_PER_RADIAN",
     "Points",
     "PointsLike",
+    "RADIANS_PER_DEGREE",
     "Reals",
     "circle_circle",
     "circle_line",
@@ -45,6 +49,12 @@ Reals = npt.NDArray[np.float64]
 Bools = npt.NDArray[np.bool_]
 PointsLike = Points | complex
 """Points that may be one constant of the scene (a point of the frame, a line in a guide's frame)."""
+
+RADIANS_PER_DEGREE = math.pi / 180.0
+"""The factor of ``np.radians`` (numpy's ``deg2rad`` is x * (pi / 180)): an array multiplied by it holds
+``np.radians``' values bit for bit, made by numpy's loop for products rather than a call per element."""
+DEGREES_PER_RADIAN = 180.0 / math.pi
+"""The factor of ``np.degrees`` (``rad2deg`` is x * (180 / pi)), as ``RADIANS_PER_DEGREE``."""
 
 
 def cross(a: PointsLike, b: PointsLike) -> Reals:
@@ -91,7 +101,7 @@ class Crossing(Struct, frozen=True):
 
 def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLike, direction2: PointsLike,
                 length1: float | None = None, length2: float | None = None,
-                product: Points | None = None) -> Crossing:
+                product: Points | None = None, sin_angle: Reals | None = None) -> Crossing:
     """Cross line 1 (through1, direction1) with line 2, in homogeneous coordinates relative to through1.
 
     With the first line l1 = (-d1y, d1x, 0) through the local origin and the second
@@ -99,18 +109,21 @@ def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLi
     the crossing l1 x l2 is (d1x c2, d1y c2, w) with w = d1 x d2: the point through1 + d1 c2 / w.
     ``length1``, ``length2``: the directions' lengths where the caller knows them (a link's
     length, 1 for a slide), else they are measured. ``product``: conj(direction1) * direction2
-    where the caller has it (its imaginary part is w).
+    where the caller has it (its imaginary part is w); ``sin_angle``: w / (length1 length2) where the
+    caller has it too (the lengths are then not needed).
     """
     offset = np.asarray(through2 - through1)
     offset_conjugate = np.conjugate(offset, out=offset)  # a new array: conjugated where it is
     c2 = (offset_conjugate * direction2).imag  # cross(offset, direction2), cross(direction1, direction2)
     w = np.asarray((direction1.conjugate() * direction2 if product is None else product).imag)
-    norm1 = length(direction1) if length1 is None else length1
-    norm2 = length(direction2) if length2 is None else length2
+    if sin_angle is None:
+        norm1 = length(direction1) if length1 is None else length1
+        norm2 = length(direction2) if length2 is None else length2
+        sin_angle = w / (norm1 * norm2)
     along = c2 / w
     point = np.asarray(direction1 * along)
     np.add(through1, point, out=point)  # through1 + direction1 along, in place (see the module)
-    return Crossing(point, w / (norm1 * norm2), along, offset_conjugate, direction1, w)
+    return Crossing(point, sin_angle, along, offset_conjugate, direction1, w)
 
 
 def circle_circle(c1: Points, r1: Reals | float, c2: Points, r2: float) -> tuple[Points, Points, Reals, Reals, Reals]:

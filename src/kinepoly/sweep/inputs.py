@@ -37,7 +37,7 @@ from kinepoly.engine.groups import NewtonGroup, PositionPlan
 from kinepoly.engine.policy import Continuity
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
-from kinepoly.geom.arrays import Bools, Reals
+from kinepoly.geom.arrays import RADIANS_PER_DEGREE, Bools, Reals
 from kinepoly.geom.tolerances import ANGLE_SAME_RAD, NEWTON_CLOSED_REL, ROUNDING_REL, SAME_REL
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
@@ -107,7 +107,7 @@ def _full_turn(mechanism: Mechanism) -> float | None:
 
 def _internal(mechanism: Mechanism, values: Reals) -> Reals:
     if isinstance(mechanism.scene.input, LinkInput) and mechanism.scene.units.angle == "deg":
-        return np.radians(values)
+        return np.multiply(values, RADIANS_PER_DEGREE)  # np.radians(values), bit for bit
     return np.asarray(values, np.float64)
 
 

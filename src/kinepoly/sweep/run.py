@@ -44,7 +44,7 @@ from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.transmission import TransmissionPair, transmission_pairs
 from kinepoly.engine.velocity import VelocityResult, construct_velocity
 from kinepoly.errors import AssemblyError, KinepolyError, SceneError, SingularityError
-from kinepoly.geom.arrays import Bools, Points, Reals
+from kinepoly.geom.arrays import DEGREES_PER_RADIAN, Bools, Points, Reals
 from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import LinkPose
@@ -137,9 +137,11 @@ class _RowCondition:
 
 
 def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineCrossing | JointSolve],
-                    condition: _RowCondition) -> None:
+                    condition: _RowCondition, clear: set[int]) -> None:
     """Singular and near-singular rows, as ``PolygonBuilder.cross_lines`` (and ``construct.group``) tell them
-    (``every``: whether every row is ``ok``), a near-singular row with its estimated error (``condition``)."""
+    (``every``: whether every row is ``ok``), a near-singular row with its estimated error (``condition``).
+    ``clear``: the identities of the sines found well clear of parallel at every row, added to as they are found (the
+    acceleration polygon's crossing of the velocity polygon's lines has its very sine: ``Positions.chord_sine``)."""
     for crossing in crossings:
         if isinstance(crossing, JointSolve):
             where = f"group {crossing.group}"
@@ -149,8 +151,7 @@ def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineC
                            "velocity and acceleration are not determined")
             flags.raise_to(near, _NEAR, _condition_text(where, crossing.condition, condition))
             continue
-        if every and (np.minimum.reduce(crossing.sin_angle) >= NEAR_SINGULAR_SIN
-                      or np.maximum.reduce(crossing.sin_angle) <= -NEAR_SINGULAR_SIN) \
+        if every and _clear_sine(crossing.sin_angle, clear) \
                 and math.isfinite(np.add.reduce(crossing.along)):  # the lines cross well at every row (of one sense)
             continue
         sine = np.abs(crossing.sin_angle)
@@ -162,6 +163,17 @@ def _crossing_flags(flags: _Flags, ok: Bools, every: bool, crossings: list[LineC
                        _near_text(where, sine, condition))
         flags.raise_to(ok & ~singular & ~np.isfinite(crossing.along), _SINGULAR,
                        f"singular: the {crossing.kind} of {crossing.what} overflowed")
+
+
+def _clear_sine(sine: Reals, clear: set[int]) -> bool:
+    """Whether two lines cross at a sine of one sense beyond ``NEAR_SINGULAR_SIN`` at every row (the identity of
+    each sine so found kept in ``clear``, each sine judged once)."""
+    if id(sine) in clear:
+        return True
+    if np.minimum.reduce(sine) >= NEAR_SINGULAR_SIN or np.maximum.reduce(sine) <= -NEAR_SINGULAR_SIN:
+        clear.add(id(sine))
+        return True
+    return False
 
 
 def _near_text(where: str, sine: Reals, condition: _RowCondition) -> object:
@@ -492,10 +504,11 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
     condition = _RowCondition(positions, grid.internal, member or (lambda _: mechanism), layout.polygons)
     if layout.velocity:
         velocity = construct_velocity(positions, plan, asked.velocity)
-        _crossing_flags(flags, ok, every_ok, velocity.polygon.crossings, condition)
+        clear: set[int] = set()  # the sines judged clear (the crossings hold them: their identities stay theirs)
+        _crossing_flags(flags, ok, every_ok, velocity.polygon.crossings, condition, clear)
         if layout.acceleration:
             acceleration = construct_acceleration(velocity, plan, asked.acceleration)
-            _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings, condition)
+            _crossing_flags(flags, ok, every_ok, acceleration.polygon.crossings, condition, clear)
     name = layout.input_column
     out = ColumnBuilder(mechanism, positions)
     _columns(out, layout, asked, velocity, acceleration)
@@ -512,7 +525,9 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
             out.add(column, kind, values, valid)  # type: ignore[arg-type]
     for column, pair in layout.transmissions:
         angle = pair.radians(positions)
-        out.add(column, "transmission", np.degrees(angle, out=angle) if layout.degrees else angle)  # its own array
+        if layout.degrees:
+            angle *= DEGREES_PER_RADIAN  # np.degrees(angle), bit for bit, in place: the angle is its own array
+        out.add(column, "transmission", angle)
     if not every_ok and gaps:
         notices += gap_notices(grid, ok, name, input_unit(scene))
     _overflow_flags(flags, ok, out)
