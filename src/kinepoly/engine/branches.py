@@ -132,7 +132,7 @@ def _no_switch_possible(c: tuple[Points, Points], ok: Bools, periodic: bool, lab
     two assemblies: then, with p[k-1] and p[k-2] on that label, the prediction misses its point
     by at most two steps and the other point by at least the gap less that, so the rule never
     switches (and the rows beyond a gap resume on it too)."""
-    every = bool(ok.all())
+    every = bool(np.logical_and.reduce(ok))  # ok.all(), and the reductions below, without their Python wrappers
     if not every and not ok.any():
         return True
     own = c[label]
@@ -141,12 +141,12 @@ def _no_switch_possible(c: tuple[Points, Points], ok: Bools, periodic: bool, lab
     step2 += step.imag * step.imag
     if not every:
         step2 = step2[ok[1:] & ok[:-1]]
-    longest2 = float(step2.max()) if step2.size else 0.0
+    longest2 = float(np.maximum.reduce(step2)) if step2.size else 0.0
     if periodic and ok[0] and ok[-1]:
         longest2 = max(longest2, abs(complex(own[0]) - complex(own[-1])) ** 2)
     if gap is None:
         gap = np.abs(c[0] - c[1])
-    shortest = float(gap.min() if every else gap[ok].min())
+    shortest = float(np.minimum.reduce(gap if every else gap[ok]))
     return bool(16.0 * longest2 < shortest * shortest)
 
 

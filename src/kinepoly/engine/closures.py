@@ -153,15 +153,16 @@ def _rrr(mech: Mechanism, poses: dict[str, ArrayPose], dyad: Dyad, values: tuple
     if drive is not None:  # the inner joint in the carrier's frame, row by row
         local2 = carried_local(mech, drive, i, mech.local_at(i, p2), values[drive.index])
     span = local2 - mech.local_at(outer, p1)
-    r1 = np.abs(span)
+    r1 = np.abs(span)  # numpy's modulus, not the hypot of Python's abs: they differ in the last bit
     r2 = abs(mech.local_at(j, p2) - mech.local_at(j, p3))
     left, right, slack, d, h = circle_circle(w1, r1, w3, r2)
-    longer = np.maximum(r1, r2)  # one number, unless a driven joint makes r1 vary by row
+    # one number (as Python's max finds it), or per row where a driven joint or a family's members vary a length
+    longer = max(r1, r2) if isinstance(r1, float) and isinstance(r2, float) else np.maximum(r1, r2)
     apart = np.asarray(d > ASSEMBLY_REL_TOL * longer)
     singular = np.invert(apart)
     ok = _closes(slack, np.maximum(d, longer))
     ok &= apart  # closes, and not singular
-    if np.ndim(r1) or not r1 > 0:
+    if not isinstance(r1, float) or not r1 > 0:
         ok &= r1 > 0
 
     def place(choice: Choice) -> dict[str, ArrayPose]:

@@ -17,7 +17,7 @@ from kinepoly.engine.inputs import describe_input, input_values
 from kinepoly.engine.placement import Failure, Placement, Positions
 from kinepoly.engine.policy import Policy
 from kinepoly.engine.table import kind_of
-from kinepoly.geom.arrays import Points, Reals, turn
+from kinepoly.geom.arrays import Points, Reals, trues, turn
 from kinepoly.model.array_pose import ArrayPose, local_point, pose_at, pose_from_point, still_pose
 from kinepoly.model.family import FamilyMechanism
 from kinepoly.model.mechanism import Mechanism
@@ -93,7 +93,7 @@ def place_groups(mechanism: Mechanism, groups: tuple[Group, ...], placed: Placem
 def solve_positions(mechanism: Mechanism, plan: PositionPlan, inputs: Reals, policy: Policy) -> Positions:
     """Poses of the driven links and of every group in the plan at each input, as ``policy`` chooses."""
     values = drive_values(mechanism, inputs)
-    start = Placement(driver_poses(mechanism, values or (inputs,)), np.ones(len(inputs), np.bool_), values=values)
+    start = Placement(driver_poses(mechanism, values or (inputs,)), trues(len(inputs)), values=values)
     if isinstance(mechanism.scene.input, GivenInput):
         return Positions(mechanism, start.poses, start.ok)
     placed = place_groups(mechanism, plan.groups, start, policy)

@@ -21,6 +21,7 @@ rounds differently from its loop for a new array (a solve is a batch of one row)
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -40,6 +41,7 @@ __all__ = [
     "cross_lines",
     "dot",
     "length",
+    "trues",
     "turn",
 ]
 
@@ -68,6 +70,14 @@ def dot(a: PointsLike, b: PointsLike) -> Reals:
 
 def length(a: PointsLike) -> Reals:
     return np.asarray(np.abs(a))
+
+
+def trues(n: int | np.integer[Any]) -> Bools:
+    """``np.ones(n, np.bool_)``: every row's mask, made by numpy's C functions (``np.ones`` is a Python function
+    over them, and a sweep makes a few masks per call)."""
+    out = np.empty(n, np.bool_)
+    out.fill(True)
+    return out
 
 
 def turn(angle_rad: float) -> complex:

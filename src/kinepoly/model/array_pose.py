@@ -98,7 +98,7 @@ class ArrayPose(Struct, frozen=True):
         if degrees:
             angle *= 180 / math.pi
         half = 180.0 if degrees else math.pi
-        if len(angle) and angle.min() == -half:  # one reduction where none is at -half, the usual case
+        if len(angle) and np.minimum.reduce(angle) == -half:  # one reduction where none is at -half, the usual case
             angle[angle == -half] = half
         return np.asarray(angle)
 

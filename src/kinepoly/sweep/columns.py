@@ -9,11 +9,14 @@ import numpy.typing as npt
 from msgspec import Struct, field
 
 from kinepoly.engine.position import Positions
-from kinepoly.geom.arrays import Bools, Points, Reals
+from kinepoly.geom.arrays import Bools, Points, Reals, trues
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.sweep.result import NEAR_SINGULAR, ORDER, SINGULAR, Column, Kind
 
 __all__ = ["ColumnBuilder", "Raw"]
+
+_FLOAT = np.dtype(np.float64)
+"""The dtype of doubles: numpy's one instance of it, which a column's values already have unless a stage gave others."""
 
 Raw = tuple[str, Kind, Reals, Bools | None]
 """A column as a stage gives it: its name, kind, values at every row, and the rows where it has a value besides
@@ -30,18 +33,26 @@ class ColumnBuilder(Struct):
     """The highest order of the columns added (``ORDER``)."""
     tops: list[Reals | Points] = field(default_factory=list)
     """What the columns of the highest order were read from, each once: the arrays whose sums tell overflow."""
+    extra: bool = False
+    """Whether a column has rows of its own without a value (``Raw``)."""
 
     def add(self, name: str, kind: Kind, values: Reals, extra: Bools | None = None) -> None:
-        self.extend(((name, kind, values, extra),), ((kind, values),))
+        self.extend(((name, kind, values, extra),), ((kind, values),), extra is not None)
 
     def pair(self, name: str, kind: Kind, values: Points, extra: Bools | None = None) -> None:
         """A point's two columns, ``<name>_x`` and ``<name>_y``."""
         self.extend(((f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)),
-                    ((kind, values),))
+                    ((kind, values),), extra is not None)
 
-    def extend(self, raw: Iterable[Raw], sources: Iterable[tuple[Kind, Reals | Points]]) -> None:
-        """Columns, and what they were read from (each array once: a point's, for its two columns)."""
+    def extend(self, raw: Iterable[Raw], sources: Iterable[tuple[Kind, Reals | Points]],
+               extra: bool | None = None) -> None:
+        """Columns, and what they were read from (each array once: a point's, for its two columns); ``extra``:
+        whether a column of ``raw`` has rows of its own without a value (None: look)."""
+        raw = list(raw) if extra is None else raw
         self.raw += raw
+        if extra is None:
+            extra = any(rows is not None for _, _, _, rows in raw)
+        self.extra = self.extra or extra
         for kind, values in sources:
             order = ORDER[kind]
             if order > self.top:
@@ -55,7 +66,7 @@ class ColumnBuilder(Struct):
             plain = self._plain(shown, every)
             if plain is not None:
                 return plain
-            everywhere = (np.ones(len(shown) if every else np.count_nonzero(shown), np.bool_), True)
+            everywhere = (trues(len(shown) if every else np.count_nonzero(shown)), True)
             masks = {SINGULAR: everywhere, NEAR_SINGULAR: everywhere}
         else:
             masks = {}
@@ -71,14 +82,17 @@ class ColumnBuilder(Struct):
                 clean = bool(valid.all())
             if not clean:
                 values = np.where(valid, values, 0.0)
-            out.append(Column(name, kind, np.asarray(values, np.float64), valid))
+            out.append(Column(name, kind, values if values.dtype is _FLOAT else np.asarray(values, np.float64), valid))
         return tuple(out)
 
     def _plain(self, shown: Bools, every: bool) -> tuple[Column, ...] | None:
         """The columns where every row is ok and no column has rows of its own without a value: each column's shown
-        values as they are, one mask for all (None where a column has such rows)."""
-        if any(extra is not None for _, _, _, extra in self.raw):
+        values as they are (doubles: most are already), one mask for all (None where a column has such rows)."""
+        if self.extra:
             return None
-        everywhere = np.ones(len(shown) if every else np.count_nonzero(shown), np.bool_)
-        return tuple(Column(name, kind, np.asarray(values if every else values[shown], np.float64), everywhere)
-                     for name, kind, values, _ in self.raw)
+        everywhere = trues(len(shown) if every else np.count_nonzero(shown))
+        if every:
+            return tuple([Column(name, kind, values if values.dtype is _FLOAT else np.asarray(values, np.float64),
+                                 everywhere) for name, kind, values, _ in self.raw])
+        return tuple([Column(name, kind, np.asarray(values[shown], np.float64), everywhere)
+                      for name, kind, values, _ in self.raw])

@@ -37,7 +37,7 @@ from kinepoly.engine.groups import NewtonGroup, PositionPlan
 from kinepoly.engine.policy import Continuity
 from kinepoly.engine.position import Positions, solve_positions
 from kinepoly.errors import AssemblyError, SceneError
-from kinepoly.geom.arrays import RADIANS_PER_DEGREE, Bools, Reals
+from kinepoly.geom.arrays import RADIANS_PER_DEGREE, Bools, Reals, trues
 from kinepoly.geom.tolerances import ANGLE_SAME_RAD, NEWTON_CLOSED_REL, ROUNDING_REL, SAME_REL
 from kinepoly.model.mechanism import Mechanism
 from kinepoly.model.pose import LinkPose
@@ -126,7 +126,7 @@ def _with_seed(shown: Reals, seed: float, periodic: bool, full: float | None) ->
     nearest = min(max(round((seed - first) / interval) if len(shown) > 1 else 0, 0),
                   len(shown) - 1)  # the rows are evenly spaced: the one nearest the seed by arithmetic
     if abs(float(shown[nearest]) - seed) <= SAME_REL * step:
-        return shown, np.ones(len(shown), np.bool_), nearest
+        return shown, trues(len(shown)), nearest
     ascending = shown[-1] >= shown[0]
     low, high = (shown[0], shown[-1]) if ascending else (shown[-1], shown[0])
     if periodic or low < seed < high:

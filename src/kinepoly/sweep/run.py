@@ -44,7 +44,7 @@ from kinepoly.engine.sliders import slider_motion
 from kinepoly.engine.transmission import TransmissionPair, transmission_pairs
 from kinepoly.engine.velocity import VelocityResult, construct_velocity
 from kinepoly.errors import AssemblyError, KinepolyError, SceneError, SingularityError
-from kinepoly.geom.arrays import DEGREES_PER_RADIAN, Bools, Points, Reals
+from kinepoly.geom.arrays import DEGREES_PER_RADIAN, Bools, Points, Reals, trues
 from kinepoly.geom.tolerances import NEAR_SINGULAR_SIN, PARALLEL_SIN, TINY_POSITIVE, UNIT_ROUNDOFF
 from kinepoly.model.mechanism import Mechanism, build_mechanism
 from kinepoly.model.pose import LinkPose
@@ -292,7 +292,7 @@ def _columns(out: ColumnBuilder, layout: _Layout, asked: Asked, velocity: Veloci
             at = tips_of_rates[label]
             raw += ((a[0], "acceleration", at.real, None), (a[1], "acceleration", at.imag, None))
             sources += (("acceleration", at),)
-    out.extend(raw, sources)
+    out.extend(raw, sources, False)  # every row of these has a value where its level allows
     if not asked.sliders:
         return
     input_column = layout.input_column
@@ -433,7 +433,7 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
         if trial is not None and not prepared.layout.newton:
             policy = Continuity(trial.seed_row, lambda: prepared.seed, True, progress, dict(mechanism.scene.guess))
             positions = solve_positions(mechanism, plan, trial.internal, policy)
-            grid, positions = (trial, positions) if positions.ok.all() else (None, None)
+            grid, positions = (trial, positions) if np.logical_and.reduce(positions.ok) else (None, None)
         if grid is None:
             grid = input_grid(mechanism, plan, prepared.seed, steps, start, stop,
                               prepared.default_range if start is None else None)
@@ -499,7 +499,7 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
         end[row] = True
         flags.raise_to(end & positions.ok, _NEAR, why)
     ok = positions.ok
-    every_ok = bool(ok.all())
+    every_ok = bool(np.logical_and.reduce(ok))  # ok.all() without its Python wrapper
     velocity = acceleration = None
     condition = _RowCondition(positions, grid.internal, member or (lambda _: mechanism), layout.polygons)
     if layout.velocity:
@@ -532,9 +532,9 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
         notices += gap_notices(grid, ok, name, input_unit(scene))
     _overflow_flags(flags, ok, out)
     shown = grid.shown
-    every = bool(shown.all())
+    every = bool(np.logical_and.reduce(shown))
     input_column = Column(name, "input", grid.values if every else grid.values[shown],
-                          np.ones(len(grid.values) if every else np.count_nonzero(shown), np.bool_))
+                          trues(len(grid.values) if every else np.count_nonzero(shown)))
     return SweepResult(scene, input_column, out.columns(flags.level if flags.reasons else None, shown, every),
                        flags.level if every else flags.level[shown], flags.texts(shown) if flags.reasons else {},
                        tuple(notices), grid.periodic, float(grid.values[grid.seed_row]), grid.seed_row,

@@ -276,7 +276,7 @@ def place(mechanism: Mechanism, group: Dyad, placed: Placement, policy: Policy, 
     if closure.near is not None:
         placed = replace(placed, near=(*placed.near, Failure(group.name, closure.joint, closure.near[0],
                                                              closure.near[1])))
-    if not closure.ok.all():
+    if not np.logical_and.reduce(closure.ok):  # closure.ok.all() without its Python wrapper
         bad = placed.ok & ~closure.ok
         policy.cannot_close(lambda: closing_error(mechanism, closure))
         placed = replace(placed, ok=placed.ok & closure.ok,

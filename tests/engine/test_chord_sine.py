@@ -1,0 +1,54 @@
+"""The sine of two turned chords' crossing is made once per pair of chords and lengths (``Positions.chord_sine``):
+the bits ``geom.arrays.cross_lines`` makes of them, the same array for the velocity and the acceleration polygon's
+crossing of the same two lines, and none where a length is measured or differs by row."""
+
+from __future__ import annotations
+
+import numpy as np
+from tests.scenes import EXAMPLES
+
+from kinepoly.engine.acceleration import construct_acceleration
+from kinepoly.engine.placement import Positions
+from kinepoly.engine.polygon import LineCrossing
+from kinepoly.engine.velocity import construct_velocity
+from kinepoly.geom.arrays import cross_lines
+from kinepoly.scene.loader import load_scene
+from kinepoly.sweep import PreparedSweep, prepare_sweep, run_sweep
+
+
+def _positions() -> tuple[PreparedSweep, Positions]:
+    prepared = prepare_sweep(load_scene(EXAMPLES / "four-bar.toml"))
+    result = run_sweep(prepared, steps=36, start=0.0, stop=360.0)
+    assert result.positions is not None
+    return prepared, result.positions
+
+
+def test_the_sine_is_cross_lines_own_and_made_once_per_lengths() -> None:
+    _, positions = _positions()
+    first, second = positions.chord("A", "B")[1], positions.chord("B0", "B")[1]
+    product = positions.chord_product(first, second)
+    assert product is not None
+    sine = positions.chord_sine(product, 120.0, 80.0)
+    assert sine is not None
+    own = cross_lines(positions.point("A"), first, positions.point("B0"), second, 120.0, 80.0, product).sin_angle
+    assert sine.tobytes() == own.tobytes()
+    assert positions.chord_sine(product, 120.0, 80.0) is sine
+    other = positions.chord_sine(product, 1.0, 80.0)  # other lengths: another sine, not the one kept
+    assert other is not None and other.tobytes() == (product.imag / 80.0).tobytes()
+    assert other.tobytes() != sine.tobytes()
+    assert positions.chord_sine(product, None, 80.0) is None
+    assert positions.chord_sine(product, np.full(36, 120.0), 80.0) is None  # type: ignore[arg-type]
+    assert positions.chord_sine(None, 120.0, 80.0) is None
+
+
+def test_both_polygons_cross_the_same_lines_at_one_sine_of_the_plain_bits() -> None:
+    prepared, positions = _positions()
+    velocity = construct_velocity(positions, prepared.plan)
+    acceleration = construct_acceleration(velocity, prepared.plan)
+    (v,), (a,) = velocity.polygon.crossings, acceleration.polygon.crossings
+    assert isinstance(v, LineCrossing) and isinstance(a, LineCrossing)
+    assert v.sin_angle is a.sin_angle
+    first, second = positions.chord("A", "B")[1], positions.chord("B0", "B")[1]
+    plain = (first.conjugate() * second).imag / (np.abs(first) * np.abs(second))  # lengths measured: near, not same
+    assert np.allclose(v.sin_angle, plain, rtol=1e-13, atol=0.0)
+    assert v.sin_angle.tobytes() == ((first.conjugate() * second).imag / (120.0 * 80.0)).tobytes()
