@@ -80,10 +80,20 @@ class Positions(Struct):
     _products: dict[tuple[tuple[str, str], tuple[str, str]], Points] = field(default_factory=dict)
     _sines: dict[tuple[int, float, float], Reals] = field(default_factory=dict)
     """Each sine made (``chord_sine``), by its product's identity (the product is kept) and the chords' lengths."""
+    _zeros: tuple[Points, Reals] | None = None
 
     @property
     def n(self) -> int:
         return len(self.ok)
+
+    def zeros(self) -> tuple[Points, Reals]:
+        """0 at every row, as points and as rates: made once for the polygons built on these positions (the pole, the
+        tip of every point of the frame; the frame's rate). Do not change them in place."""
+        zeros = self._zeros
+        if zeros is None:
+            n = len(self.ok)
+            zeros = self._zeros = (np.zeros(n, np.complex128), np.zeros(n))
+        return zeros
 
     def point(self, name: str) -> Points:
         """World position of a named point (through the first solved link that has it)."""
@@ -105,10 +115,18 @@ class Positions(Struct):
         turned = self._turned
         if key in turned:
             return turned[key]
-        r: Points = self.point(end) - self.point(start)
+        r, at = self.point(end), self.point(start)
+        if at is not self._frame_origin():  # from the frame's origin, +0 at every row, r is the end itself: r - 0 is r
+            r = r - at
         found = turned[key] = (r, 1j * r)
         self._chords[id(found[1])] = key
         return found
+
+    def _frame_origin(self) -> Points | None:
+        """The frame's point at its origin, where one was made (+0 at every row: ``ArrayPose.world_at``)."""
+        ground = self.mechanism.ground
+        frame = self.poses.get(ground) if ground is not None else None
+        return frame.made(0j) if frame is not None and frame.still else None
 
     def chord_product(self, first: Points, second: Points) -> Points | None:
         """conj(first) * second where both are turned chords made here (``chord``): its imaginary part their cross

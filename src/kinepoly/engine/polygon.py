@@ -107,7 +107,7 @@ class Polygon:
         self.symbol = "v" if kind == "velocity" else "a"
         self.unit = f"{unit}/s" if kind == "velocity" else f"{unit}/s^2"
         self.n = positions.n
-        self.zero = np.zeros(self.n, np.complex128)
+        self.zero, zero_rate = positions.zeros()  # the velocity and acceleration polygons' alike (not changed)
         self.omega = omega if omega is not None else {}
         self.normal_sign = -1.0
         """-1: a normal term points from the point toward the center (``Rules.normal`` may switch it)."""
@@ -127,7 +127,7 @@ class Polygon:
         if not self._together:
             self._together.update((link, mech.turning_together(link)) for link in mech.link_names)
         if ground is not None:
-            self.set_rate(ground, np.zeros(self.n))  # and every link that slides on it without turning
+            self.set_rate(ground, zero_rate)  # and every link that slides on it without turning
             frame = self.constants.frame
             if frame is None:
                 frame = self.constants.frame = tuple(self._entries(ground, p.name)

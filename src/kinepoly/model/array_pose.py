@@ -73,7 +73,7 @@ class ArrayPose(Struct, frozen=True):
         if isinstance(at, complex):
             if at == 0 and not self.still:
                 return self.origin
-            key = (at.real, at.imag, math.copysign(1.0, at.real), math.copysign(1.0, at.imag))  # -0.0 is not 0.0
+            key = _key(at)
             found = self._found
             if key in found:
                 return found[key]
@@ -88,6 +88,10 @@ class ArrayPose(Struct, frozen=True):
         if self.still:
             return at
         return self.origin + self.rotation * at
+
+    def made(self, at: complex) -> Points | None:
+        """``world_at(at)`` of a point given as one number where it was made already, else None (nothing made)."""
+        return self._found.get(_key(at))
 
     def to_local(self, world: Points) -> Points:
         return (world - self.origin) * self.rotation.conjugate()
@@ -113,6 +117,12 @@ class ArrayPose(Struct, frozen=True):
         """(x, y, theta) of row k, for the scalar solvers."""
         z, u = complex(self.origin[k]), complex(self.rotation[k])
         return (z.real, z.imag, math.atan2(u.imag, u.real))
+
+
+def _key(at: complex) -> tuple[float, float, float, float]:
+    """A point's key among the points made (``ArrayPose.world_at``): its coordinates and their signs (-0.0 is not
+    0.0)."""
+    return (at.real, at.imag, math.copysign(1.0, at.real), math.copysign(1.0, at.imag))
 
 
 def still_pose(n: int) -> ArrayPose:

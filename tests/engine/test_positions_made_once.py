@@ -1,6 +1,7 @@
-"""The sine of two turned chords' crossing is made once per pair of chords and lengths (``Positions.chord_sine``):
-the bits ``geom.arrays.cross_lines`` makes of them, the same array for the velocity and the acceleration polygon's
-crossing of the same two lines, and none where a length is measured or differs by row."""
+"""What the positions make once for the polygons built on them: the sine of two turned chords' crossing
+(``Positions.chord_sine``: the bits ``geom.arrays.cross_lines`` makes of them, the same array for the velocity and the
+acceleration polygon's crossing of the same two lines, none where a length is measured or differs by row), a chord
+from the frame's origin (its end point itself), and the zeros of the pole and the frame's rate."""
 
 from __future__ import annotations
 
@@ -52,3 +53,31 @@ def test_both_polygons_cross_the_same_lines_at_one_sine_of_the_plain_bits() -> N
     plain = (first.conjugate() * second).imag / (np.abs(first) * np.abs(second))  # lengths measured: near, not same
     assert np.allclose(v.sin_angle, plain, rtol=1e-13, atol=0.0)
     assert v.sin_angle.tobytes() == ((first.conjugate() * second).imag / (120.0 * 80.0)).tobytes()
+
+
+def test_a_chord_from_the_frames_origin_is_its_end_point() -> None:
+    """A chord from the frame's point at its origin (+0 at every row) is its end point, bit for bit what the
+    subtraction gives; from any other point, the subtraction's own array."""
+    _, positions = _positions()
+    frame = positions.poses["1"]
+    origin = frame.made(0j)
+    assert origin is not None and origin is positions.point("A0")
+    assert not np.signbit(origin.real).any() and not np.signbit(origin.imag).any()
+    r, turned = positions.chord("A0", "A")
+    assert r is positions.point("A")
+    assert r.tobytes() == (positions.point("A") - positions.point("A0")).tobytes()
+    assert turned.tobytes() == (1j * r).tobytes()
+    r, _ = positions.chord("B0", "B")
+    assert r is not positions.point("B")
+    assert r.tobytes() == (positions.point("B") - positions.point("B0")).tobytes()
+    assert frame.made(complex(-0.0, 0.0)) is None  # -0 is another point: not made
+
+
+def test_both_polygons_share_the_zeros_of_their_positions() -> None:
+    prepared, positions = _positions()
+    velocity = construct_velocity(positions, prepared.plan)
+    acceleration = construct_acceleration(velocity, prepared.plan)
+    zero, zero_rate = positions.zeros()
+    assert velocity.polygon.zero is zero and acceleration.polygon.zero is zero
+    assert velocity.omega["1"] is zero_rate and acceleration.alpha["1"] is zero_rate
+    assert not zero.any() and not zero_rate.any() and len(zero) == len(positions.ok)
