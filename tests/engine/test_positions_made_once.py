@@ -81,3 +81,11 @@ def test_both_polygons_share_the_zeros_of_their_positions() -> None:
     assert velocity.polygon.zero is zero and acceleration.polygon.zero is zero
     assert velocity.omega["1"] is zero_rate and acceleration.alpha["1"] is zero_rate
     assert not zero.any() and not zero_rate.any() and len(zero) == len(positions.ok)
+
+
+def test_every_ok_is_ok_at_every_row() -> None:
+    _, positions = _positions()
+    assert positions.every_ok() is True
+    some = Positions(positions.mechanism, positions.poses, np.array([True] * 35 + [False]))
+    assert some.every_ok() is False and some.every_ok() is False
+    assert Positions(positions.mechanism, positions.poses, np.ones(0, np.bool_)).every_ok() is True

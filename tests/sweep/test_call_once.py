@@ -19,7 +19,8 @@ from kinepoly.sweep.result import CANNOT_ASSEMBLE, SINGULAR
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
-_ENDS = st.one_of(st.floats(-1e6, 1e6, allow_nan=False), st.sampled_from([0.0, 360.0, -180.0, 2 * np.pi, 5e-324]))
+_ENDS = st.one_of(st.floats(-1e6, 1e6, allow_nan=False),
+                  st.sampled_from([0.0, -0.0, 360.0, -180.0, 2 * np.pi, 5e-324]))
 
 
 @settings(max_examples=300, deadline=None)
@@ -28,6 +29,16 @@ def test_the_rows_are_linspace_bit_for_bit(start: float, stop: float, count: int
     made = inputs._even(start, stop, count, endpoint)
     assert made.dtype == np.float64 and made.shape == (count,)
     assert made.tobytes() == np.linspace(start, stop, count, endpoint=endpoint).tobytes()
+
+
+@pytest.mark.parametrize("start", [0.0, -0.0])
+@pytest.mark.parametrize("stop", [360.0, -360.0])
+def test_rows_from_a_zero_keep_its_sign_as_linspace_does(start: float, stop: float) -> None:
+    """Rows from 0.0 up, or from -0.0 either way, are the product alone; from 0.0 down, the first row is -0.0 made
+    +0.0 by adding the start."""
+    for count, endpoint in ((3600, False), (37, True)):
+        made = inputs._even(start, stop, count, endpoint)
+        assert made.tobytes() == np.linspace(start, stop, count, endpoint=endpoint).tobytes()
 
 
 def _builder(rows: int, extra: np.ndarray | None = None) -> ColumnBuilder:

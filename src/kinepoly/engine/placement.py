@@ -81,10 +81,21 @@ class Positions(Struct):
     _sines: dict[tuple[int, float, float], Reals] = field(default_factory=dict)
     """Each sine made (``chord_sine``), by its product's identity (the product is kept) and the chords' lengths."""
     _zeros: tuple[Points, Reals] | None = None
+    _origin: Points | bool | None = None
+    """The frame's point at its origin (``_frame_origin``), None until looked for."""
+    _every: bool | None = None
+    """Whether every row closed (``every_ok``), None until asked."""
 
     @property
     def n(self) -> int:
         return len(self.ok)
+
+    def every_ok(self) -> bool:
+        """Whether every row closed (``ok`` at every row; ``ok`` is not changed once placed): found once."""
+        every = self._every
+        if every is None:
+            every = self._every = bool(np.logical_and.reduce(self.ok))  # ok.all() without its Python wrapper
+        return every
 
     def zeros(self) -> tuple[Points, Reals]:
         """0 at every row, as points and as rates: made once for the polygons built on these positions (the pole, the
@@ -116,17 +127,22 @@ class Positions(Struct):
         if key in turned:
             return turned[key]
         r, at = self.point(end), self.point(start)
-        if at is not self._frame_origin():  # from the frame's origin, +0 at every row, r is the end itself: r - 0 is r
+        origin = self._origin
+        if origin is None:
+            origin = self._origin = self._frame_origin()
+        if at is not origin:  # from the frame's origin, +0 at every row, r is the end itself: r - 0 is r
             r = r - at
         found = turned[key] = (r, 1j * r)
         self._chords[id(found[1])] = key
         return found
 
-    def _frame_origin(self) -> Points | None:
-        """The frame's point at its origin, where one was made (+0 at every row: ``ArrayPose.world_at``)."""
+    def _frame_origin(self) -> Points | bool:
+        """The frame's point at its origin, where one was made (+0 at every row: ``ArrayPose.world_at``), else False
+        (it is looked for once: where made later, a chord from it is taken as from any point)."""
         ground = self.mechanism.ground
         frame = self.poses.get(ground) if ground is not None else None
-        return frame.made(0j) if frame is not None and frame.still else None
+        found = frame.made(0j) if frame is not None and frame.still else None
+        return False if found is None else found
 
     def chord_product(self, first: Points, second: Points) -> Points | None:
         """conj(first) * second where both are turned chords made here (``chord``): its imaginary part their cross

@@ -373,7 +373,8 @@ def _even(start: float, stop: float, count: int, endpoint: bool) -> Reals:
         return np.linspace(start, stop, count, endpoint=endpoint)
     rows = np.arange(count, dtype=np.float64)
     rows *= step
-    rows += start
+    if start != 0.0 or (step < 0.0 and math.copysign(1.0, start) > 0.0):  # adding a zero changes no row, but for
+        rows += start  # a first row of -0.0 (a step down) that +0.0 makes +0.0
     if endpoint:
         rows[-1] = stop
     return rows

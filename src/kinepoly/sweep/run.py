@@ -433,7 +433,7 @@ def run_sweep(prepared: PreparedSweep, *, steps: int, start: float | None = None
         if trial is not None and not prepared.layout.newton:
             policy = Continuity(trial.seed_row, lambda: prepared.seed, True, progress, dict(mechanism.scene.guess))
             positions = solve_positions(mechanism, plan, trial.internal, policy)
-            grid, positions = (trial, positions) if np.logical_and.reduce(positions.ok) else (None, None)
+            grid, positions = (trial, positions) if positions.every_ok() else (None, None)
         if grid is None:
             grid = input_grid(mechanism, plan, prepared.seed, steps, start, stop,
                               prepared.default_range if start is None else None)
@@ -499,7 +499,7 @@ def execute_rows(mechanism: Mechanism, prepared: PreparedSweep, grid: InputGrid,
         end[row] = True
         flags.raise_to(end & positions.ok, _NEAR, why)
     ok = positions.ok
-    every_ok = bool(np.logical_and.reduce(ok))  # ok.all() without its Python wrapper
+    every_ok = positions.every_ok()
     velocity = acceleration = None
     condition = _RowCondition(positions, grid.internal, member or (lambda _: mechanism), layout.polygons)
     if layout.velocity:
