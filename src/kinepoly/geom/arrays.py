@@ -124,14 +124,18 @@ def cross_lines(through1: PointsLike, direction1: PointsLike, through2: PointsLi
     """
     offset = np.asarray(through2 - through1)
     offset_conjugate = np.conjugate(offset, out=offset)  # a new array: conjugated where it is
-    c2 = (offset_conjugate * direction2).imag  # cross(offset, direction2), cross(direction1, direction2)
+    crossed = np.asarray(offset_conjugate * direction2)
+    c2 = crossed.imag  # cross(offset, direction2), cross(direction1, direction2)
     w = np.asarray((direction1.conjugate() * direction2 if product is None else product).imag)
     if sin_angle is None:
         norm1 = length(direction1) if length1 is None else length1
         norm2 = length(direction2) if length2 is None else length2
         sin_angle = w / (norm1 * norm2)
     along = c2 / w
-    point = np.asarray(direction1 * along)
+    if crossed.shape == along.shape:  # direction1 along, in the array c2 was read from (not needed after)
+        point = np.multiply(direction1, along, out=crossed)
+    else:
+        point = np.asarray(direction1 * along)
     np.add(through1, point, out=point)  # through1 + direction1 along, in place (see the module)
     return Crossing(point, sin_angle, along, offset_conjugate, direction1, w)
 
