@@ -81,6 +81,7 @@ class Positions(Struct):
     _sines: dict[tuple[int, float, float], Reals] = field(default_factory=dict)
     """Each sine made (``chord_sine``), by its product's identity (the product is kept) and the chords' lengths."""
     _zeros: tuple[Points, Reals] | None = None
+    """0 at every row as points and as rates (``zeros``), None until asked."""
     _origin: Points | bool | None = None
     """The frame's point at its origin (``_frame_origin``), None until looked for."""
     _every: bool | None = None
