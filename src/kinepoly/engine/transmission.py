@@ -90,10 +90,9 @@ class TransmissionPair(Struct, frozen=True):
         if product is None:
             product = np.conjugate(first) * second  # its imaginary part the cross product, its real part the dot
         across, along = np.abs(product.imag), np.abs(product.real)
-        clear = (np.minimum.reduce(across) >= _CLEAR or np.minimum.reduce(along) >= _CLEAR) \
-            and math.isfinite(np.add.reduce(across) + np.add.reduce(along))
-        turn = np.arctan2(across, along, out=across)  # in across' own array: not needed after
-        if clear:
+        turn = np.arctan2(across, along)
+        if (np.minimum.reduce(across) >= _CLEAR or np.minimum.reduce(along) >= _CLEAR) \
+                and math.isfinite(np.add.reduce(across) + np.add.reduce(along)):
             return turn  # every direction has a length: no row is taken as 90 degrees
         return np.where(length(first) * length(second) > 0.0, turn, np.pi / 2)
 
