@@ -118,3 +118,26 @@ def test_what_every_call_reads_alike_is_found_once(monkeypatch: pytest.MonkeyPat
         (angle,) = transmission_angles(result.positions, prepared.plan)  # the solve's way, every row
         mu = result.column("mu_B")
         assert np.array_equal(mu.values, np.degrees(angle.angle)[result.shown])
+
+
+def test_a_triads_shape_is_found_once_for_the_plan(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A triad's ternary, legs and Assur point are found when the plan is made and once by its first construction,
+    not again by each polygon of each call; the calls after give what the first gives."""
+    from kinepoly.engine import triad as triads
+
+    scene = kinepoly.load_scene(EXAMPLES / "triad.toml")
+    prepared = prepare_sweep(scene)
+    found: list[object] = []
+    triad_of = triads.triad_of
+
+    def counting(*args: object) -> object:
+        found.append(args)
+        return triad_of(*args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(triads, "triad_of", counting)
+    first = run_sweep(prepared, steps=36, start=10.0, stop=80.0)
+    assert len(found) == 1  # the first construction's; both polygons read it
+    again = run_sweep(prepared, steps=36, start=10.0, stop=80.0)
+    assert len(found) == 1
+    for a, b in zip(first.columns, again.columns, strict=True):
+        assert a.name == b.name and a.values.tobytes() == b.values.tobytes()

@@ -8,6 +8,7 @@ from kinepoly.engine import triad as triads
 from kinepoly.engine.groups import TriadGroup
 from kinepoly.engine.kind import Kind
 from kinepoly.engine.kinds import newton
+from kinepoly.engine.polygon import Polygon
 from kinepoly.engine.results import AccelerationContext, VelocityContext
 from kinepoly.model.mechanism import Mechanism
 
@@ -24,16 +25,22 @@ def find(mechanism: Mechanism, known: set[str]) -> TriadGroup | None:
 
 def velocity(state: VelocityContext, group: TriadGroup) -> None:
     """Through the Assur point: each leg's line, the ternary's image, the point where they meet."""
-    triad = triads.triad_of(state.polygon.mechanism, group)
-    assert triad is not None, "a TriadGroup is a triad (find)"
-    triads.velocity_by_assur_point(state.polygon, triad, state.sliding, state.equivalent)
+    triads.velocity_by_assur_point(state.polygon, _triad(state.polygon, group), state.sliding, state.equivalent)
 
 
 def acceleration(ctx: AccelerationContext, group: TriadGroup) -> None:
     """As ``velocity`` constructs it, with the normal (and Coriolis) terms laid first."""
-    triad = triads.triad_of(ctx.b.mechanism, group)
-    assert triad is not None, "a TriadGroup is a triad (find)"
-    triads.acceleration_by_assur_point(ctx, triad)
+    triads.acceleration_by_assur_point(ctx, _triad(ctx.b, group))
+
+
+def _triad(polygon: Polygon, group: TriadGroup) -> triads.Triad:
+    """The triad the group is (its ternary, legs and Assur point's name), found once for the plan (``PlanConstants``)
+    and read by every construction of its polygons."""
+    found = polygon.constants.groups.get(id(group))
+    if found is None:
+        found = polygon.constants.groups[id(group)] = triads.triad_of(polygon.mechanism, group)
+        assert found is not None, "a TriadGroup is a triad (find)"
+    return found
 
 
 KIND: Kind[TriadGroup] = Kind(find, newton.place, velocity, acceleration)
