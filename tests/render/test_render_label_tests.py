@@ -108,7 +108,7 @@ def test_the_least_inked_place_is_the_one_all_places_weighed_at_once_give(
             placed.append(shapely.LineString([(x - 3.0, y - 3.0), (x - 0.2, y - 0.2)]).buffer(labels.LEADER.width / 2),
                           leader=True)
     points = [anchor] + [(anchor[0] + 2.0 * k, anchor[1] - 1.5 * k) for k in range(1, feet + 1)]
-    boxes, leaders = labels._set_out_places(points, size, (0.0, 0.0))
+    boxes, leaders = labels._set_out_places(points, size)
     expected = _least_inked_at_once(placer, boxes, leaders)
     found = placer._least_inked(boxes, leaders, budgeted=False)
     if expected is None:
@@ -133,7 +133,7 @@ def test_a_place_beyond_the_first_chunk_is_found_where_the_lighter_ones_lie_on_i
         x, y = 45.0 * math.cos(math.radians(angle)), 45.0 * math.sin(math.radians(angle))
         placed.append(shapely.box(x, y, x + 4.0, y + 2.5))
     placer = labels.Placer((-120.0, -120.0, 120.0, 120.0), hard, [], placed)
-    boxes, leaders = labels._set_out_places([(0.0, 0.0), (1.0, -0.5)], (4.0, 2.5), (0.0, 0.0))
+    boxes, leaders = labels._set_out_places([(0.0, 0.0), (1.0, -0.5)], (4.0, 2.5))
     expected = _least_inked_at_once(placer, boxes, leaders)
     found = placer._least_inked(boxes, leaders, budgeted=False)
     assert expected is not None and found is not None

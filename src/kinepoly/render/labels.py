@@ -398,7 +398,7 @@ class Placer:
         return None
 
     def _far(self, runs: tuple[Run, ...], color: str, role: str, anchor: Point, bold: bool,
-             size: tuple[float, float], shift: Point, optional: bool = False, near: Sequence[Box] = (),
+             size: tuple[float, float], optional: bool = False, near: Sequence[Box] = (),
              feet: Sequence[Point] = (), shaft: tuple[Point, Point] | None = None) -> list[Item]:
         """The label set out from ``anchor`` with a leader, at the nearest place free of everything; where there is
         none, at the place clear of every other label that the least ink drawn lies under (``_least_inked``): one
@@ -407,16 +407,6 @@ class Placer:
         those is clear of the other labels, one on a grid over the whole region (``_region_places``), its leader
         from ``anchor`` or from the nearest point of ``shaft`` (the vector the label names)."""
         import numpy as np
-        from shapely.geometry import LineString
-
-        def leader_to(b: Box) -> Any:
-            near = (min(max(anchor[0], b[0]), b[2]), min(max(anchor[1], b[1]), b[3]))  # the box's nearest point
-            length = math.hypot(near[0] - anchor[0], near[1] - anchor[1])
-            if length <= 0.6:
-                return None
-            k = (length - 0.3) / length
-            start = (anchor[0] + shift[0], anchor[1] + shift[1])
-            return LineString([start, (anchor[0] + k * (near[0] - anchor[0]), anchor[1] + k * (near[1] - anchor[1]))])
 
         # A leader that crosses nothing drawn first, ring after ring (the nearest that has one ends the search),
         # then one that must cross something.
@@ -428,7 +418,7 @@ class Placer:
             for b, ok in zip(candidates, self._free_of(candidates, False), strict=True):
                 if self._spent():
                     break
-                leader = leader_to(b) if ok else None
+                leader = _leader(anchor, b) if ok else None
                 if leader is None:
                     continue
                 if self._leader_ok(leader, True):
@@ -444,12 +434,12 @@ class Placer:
         # Nowhere free within reach of the anchor: the place clear of the other labels with the least ink under it,
         # out from the anchor or from a foot; one on ink counts as crowded.
         self.set_out.append(role)
-        boxes, leaders = _set_out_places((anchor, *feet), size, shift)
+        boxes, leaders = _set_out_places((anchor, *feet), size)
         spent = self._spent()
         choice = self._least_inked(np.concatenate([np.asarray(near, dtype=float).reshape(-1, 4), boxes]),
                                    np.concatenate([np.full(len(near), None, dtype=object), leaders]))
         if choice is None and not spent:  # none of those clear of the other labels: anywhere in the region (once)
-            choice = self._anywhere(size, anchor, shaft, shift)
+            choice = self._anywhere(size, anchor, shaft)
         if choice is not None:
             if choice[2]:
                 self.crowded.append(role)
@@ -520,7 +510,7 @@ class Placer:
         import shapely
 
         c = CLEARANCE_MM
-        grown = shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
+        grown = _grown_boxes(b)
         reach = LEADER.width / 2 + CLEARANCE_MM
         e0, e1, e2, e3 = (float(v) for v in shapely.total_bounds(np.concatenate([grown, leaders[lined]])))
         near = self._placed.near((e0, e1, e2, e3), reach)
@@ -565,8 +555,8 @@ class Placer:
                 return float(cost[j]), int(kept[j]), float(ink[j])
         return None
 
-    def _anywhere(self, size: tuple[float, float], anchor: Point, shaft: tuple[Point, Point] | None,
-                  shift: Point) -> tuple[Box, Any, bool, float] | None:
+    def _anywhere(self, size: tuple[float, float], anchor: Point,
+                  shaft: tuple[Point, Point] | None) -> tuple[Box, Any, bool, float] | None:
         """``_least_inked`` of the places on a grid over the whole region (``_region_places``), whatever the search
         spent: tried in order of their leader's length, ``_GRID_CHUNK`` at a time, until the leaders alone weigh
         more than the best place found (the ink under a place only adds to its leader's weight)."""
@@ -578,9 +568,9 @@ class Placer:
         best: tuple[Box, Any, bool, float] | None = None
         for start in range(0, len(order), _GRID_CHUNK):
             chunk = order[start:start + _GRID_CHUNK]
-            if best is not None and _LEADER_INK_MM2 * (reach[chunk[0]] - 0.6 - math.hypot(*shift)) >= best[3]:
+            if best is not None and _LEADER_INK_MM2 * (reach[chunk[0]] - 0.6) >= best[3]:
                 break
-            found = self._least_inked(boxes[chunk], _leaders(boxes[chunk], feet[chunk], shift), budgeted=False)
+            found = self._least_inked(boxes[chunk], _leaders(boxes[chunk], feet[chunk]), budgeted=False)
             if found is not None and (best is None or found[3] < best[3]):
                 best = found
         return best
@@ -590,8 +580,6 @@ class Placer:
         """The label at the place of ``was`` (the label it grew from, as placed on the sheet before): its box's top
         left corner kept, and its leader, if it had one, from the same point; None when that place is not free of
         everything or its leader not clear of the other labels."""
-        from shapely.geometry import LineString
-
         self._start = self._placed.scanned
         text = was[-1]
         if not isinstance(text, Text):
@@ -601,16 +589,9 @@ class Placer:
         if not next(self._free_of([b], False)):
             return None
         line = next((item for item in was if isinstance(item, Path) and item.role.startswith("leader ")), None)
-        leader = None
-        if line is not None:
-            start = line.points[0]
-            near = (min(max(start[0], b[0]), b[2]), min(max(start[1], b[1]), b[3]))
-            length = math.hypot(near[0] - start[0], near[1] - start[1])
-            if length > 0.6:
-                k = (length - 0.3) / length
-                leader = LineString([start, (start[0] + k * (near[0] - start[0]), start[1] + k * (near[1] - start[1]))])
-                if not self._leader_ok(leader, False):
-                    return None
+        leader = None if line is None else _leader(line.points[0], b)
+        if leader is not None and not self._leader_ok(leader, False):
+            return None
         return self._accept(b, runs, color, role, anchor, False, leader)
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
@@ -627,7 +608,7 @@ class Placer:
                                             for u in _DIRECTIONS), self._candidates))
         found = None if far else self._near(candidates)
         if found is None:
-            items = self._far(runs, color, role, anchor, bold, outer, (0.0, 0.0), optional, () if far else candidates)
+            items = self._far(runs, color, role, anchor, bold, outer, optional, () if far else candidates)
             if not items:
                 return []
             corner = _box_of(items)
@@ -661,7 +642,7 @@ class Placer:
         if found is not None:
             return self._accept(found, runs, color, role, _mid(start, end), False)
         feet = [(start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])) for t in _ALONG_T[1:]]
-        return self._far(runs, color, role, _mid(start, end), False, size, (0.0, 0.0), near=candidates, feet=feet,
+        return self._far(runs, color, role, _mid(start, end), False, size, near=candidates, feet=feet,
                          shaft=(start, end))
 
 
@@ -706,7 +687,7 @@ def _touching(tree: Any, bounds: npt.NDArray[np.float64], boxes: Any) -> npt.NDA
     return met
 
 
-def _grown_boxes(boxes: Sequence[Box]) -> Any:
+def _grown_boxes(boxes: Sequence[Box] | npt.NDArray[np.float64]) -> Any:
     """The boxes grown by the clearance, as shapely polygons."""
     import numpy as np
     import shapely
@@ -716,8 +697,8 @@ def _grown_boxes(boxes: Sequence[Box]) -> Any:
     return shapely.box(b[:, 0] - c, b[:, 1] - c, b[:, 2] + c, b[:, 3] + c)
 
 
-def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
-                    shift: Point) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
+def _set_out_places(feet: Sequence[Point],
+                    size: tuple[float, float]) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.object_]]:
     """The places a label of ``size`` set out is tried at: on every far ring (``_FAR_RINGS_MM``, then
     ``_FURTHEST_RINGS_MM``) round each of ``feet``, each with its leader from the foot (``_leaders``). The boxes
     (n x 4) and the leaders."""
@@ -727,7 +708,7 @@ def _set_out_places(feet: Sequence[Point], size: tuple[float, float],
     offsets = np.array([_pushed_box((0.0, 0.0), direction, size, ring) for ring in rings for direction in _DIRECTIONS])
     foot = np.repeat(np.asarray(feet, dtype=float), len(offsets), axis=0)
     boxes = np.tile(offsets, (len(feet), 1)) + np.hstack([foot, foot])
-    return boxes, _leaders(boxes, foot, shift)
+    return boxes, _leaders(boxes, foot)
 
 
 _GRID_MM = 2.0
@@ -767,6 +748,19 @@ def _region_places(region: Box, size: tuple[float, float], anchor: Point,
     return np.tile(boxes, (len(feet), 1)), np.concatenate(feet)
 
 
+def _leader(foot: Point, b: Box) -> Any:
+    """A label's leader: from ``foot`` to 0.3 mm short of the point of the box ``b`` nearest it; None within 0.6 mm
+    of the foot (the label is beside it)."""
+    from shapely.geometry import LineString
+
+    near = (min(max(foot[0], b[0]), b[2]), min(max(foot[1], b[1]), b[3]))  # the box's nearest point
+    length = math.hypot(near[0] - foot[0], near[1] - foot[1])
+    if length <= 0.6:
+        return None
+    k = (length - 0.3) / length
+    return LineString([foot, (foot[0] + k * (near[0] - foot[0]), foot[1] + k * (near[1] - foot[1]))])
+
+
 def _leader_reach(boxes: npt.NDArray[np.float64],
                   foot: npt.NDArray[np.float64]) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Each box's point nearest its foot, and how far it is."""
@@ -776,10 +770,9 @@ def _leader_reach(boxes: npt.NDArray[np.float64],
     return nearest, np.hypot(*(nearest - foot).T)
 
 
-def _leaders(boxes: npt.NDArray[np.float64], foot: npt.NDArray[np.float64],
-             shift: Point) -> npt.NDArray[np.object_]:
-    """Each box's leader as ``Placer._far`` draws it: from its foot, moved by ``shift``, to 0.3 mm short of the box's
-    nearest point; None within 0.6 mm of the foot."""
+def _leaders(boxes: npt.NDArray[np.float64], foot: npt.NDArray[np.float64]) -> npt.NDArray[np.object_]:
+    """Each box's leader (``_leader``, for many boxes at once): from its foot to 0.3 mm short of the box's nearest
+    point; None within 0.6 mm of the foot."""
     import numpy as np
     import shapely
 
@@ -788,7 +781,7 @@ def _leaders(boxes: npt.NDArray[np.float64], foot: npt.NDArray[np.float64],
     leaders = np.full(len(boxes), None, dtype=object)
     k = ((length[drawn] - 0.3) / length[drawn])[:, None]
     ends = foot[drawn] + k * (nearest[drawn] - foot[drawn])
-    leaders[drawn] = shapely.linestrings(np.stack([foot[drawn] + np.asarray(shift), ends], axis=1))
+    leaders[drawn] = shapely.linestrings(np.stack([foot[drawn], ends], axis=1))
     return leaders
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -17,6 +17,13 @@ __all__ = ["ColumnBuilder", "Raw"]
 
 _FLOAT = np.dtype(np.float64)
 """The dtype of doubles: numpy's one instance of it, which a column's values already have unless a stage gave others."""
+
+
+def _doubles(values: Reals) -> Reals:
+    """``np.asarray(values, np.float64)``: the values themselves where they are doubles already (most are), without
+    numpy's call."""
+    return values if values.dtype is _FLOAT else np.asarray(values, np.float64)
+
 
 Raw = tuple[str, Kind, Reals, Bools | None]
 """A column as a stage gives it: its name, kind, values at every row, and the rows where it has a value besides
@@ -37,22 +44,17 @@ class ColumnBuilder(Struct):
     """Whether a column has rows of its own without a value (``Raw``)."""
 
     def add(self, name: str, kind: Kind, values: Reals, extra: Bools | None = None) -> None:
-        self.extend(((name, kind, values, extra),), ((kind, values),), extra is not None)
+        self.extend(((name, kind, values, extra),), ((kind, values),))
 
     def pair(self, name: str, kind: Kind, values: Points, extra: Bools | None = None) -> None:
         """A point's two columns, ``<name>_x`` and ``<name>_y``."""
         self.extend(((f"{name}_x", kind, values.real, extra), (f"{name}_y", kind, values.imag, extra)),
-                    ((kind, values),), extra is not None)
+                    ((kind, values),))
 
-    def extend(self, raw: Iterable[Raw], sources: Iterable[tuple[Kind, Reals | Points]],
-               extra: bool | None = None) -> None:
-        """Columns, and what they were read from (each array once: a point's, for its two columns); ``extra``:
-        whether a column of ``raw`` has rows of its own without a value (None: look)."""
-        raw = list(raw) if extra is None else raw
+    def extend(self, raw: Sequence[Raw], sources: Iterable[tuple[Kind, Reals | Points]]) -> None:
+        """Columns, and what they were read from (each array once: a point's, for its two columns)."""
         self.raw += raw
-        if extra is None:
-            extra = any(rows is not None for _, _, _, rows in raw)
-        self.extra = self.extra or extra
+        self.extra = self.extra or any(rows is not None for _, _, _, rows in raw)
         for kind, values in sources:
             order = ORDER[kind]
             if order > self.top:
@@ -82,7 +84,7 @@ class ColumnBuilder(Struct):
                 clean = bool(valid.all())
             if not clean:
                 values = np.where(valid, values, 0.0)
-            out.append(Column(name, kind, values if values.dtype is _FLOAT else np.asarray(values, np.float64), valid))
+            out.append(Column(name, kind, _doubles(values), valid))
         return tuple(out)
 
     def _plain(self, shown: Bools, every: bool) -> tuple[Column, ...] | None:
@@ -92,7 +94,6 @@ class ColumnBuilder(Struct):
             return None
         everywhere = trues(len(shown) if every else np.count_nonzero(shown))
         if every:
-            return tuple([Column(name, kind, values if values.dtype is _FLOAT else np.asarray(values, np.float64),
-                                 everywhere) for name, kind, values, _ in self.raw])
+            return tuple([Column(name, kind, _doubles(values), everywhere) for name, kind, values, _ in self.raw])
         return tuple([Column(name, kind, np.asarray(values[shown], np.float64), everywhere)
                       for name, kind, values, _ in self.raw])

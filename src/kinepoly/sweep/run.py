@@ -292,7 +292,7 @@ def _columns(out: ColumnBuilder, layout: _Layout, asked: Asked, velocity: Veloci
             at = tips_of_rates[label]
             raw += ((a[0], "acceleration", at.real, None), (a[1], "acceleration", at.imag, None))
             sources += (("acceleration", at),)
-    out.extend(raw, sources, False)  # every row of these has a value where its level allows
+    out.extend(raw, sources)
     if not asked.sliders:
         return
     input_column = layout.input_column
