@@ -34,6 +34,8 @@ from kinepoly.scene.spec import CamSpec, SliderSpec
 __all__ = ["RowClosure", "group_reach", "group_size", "newton_row", "start_poses"]
 
 _MAX_STEPS = 100
+_Turned = tuple[float, float, float, float, float]
+"""A link's x, y, theta, cos theta and sin theta."""
 
 
 class _RowSystem:
@@ -47,7 +49,7 @@ class _RowSystem:
     def __init__(self, mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, LinkPose], size: float,
                  values: Mapping[int, float]) -> None:
         self.known = known
-        self._turned: dict[str, tuple[float, float, float, float, float]] = {}
+        self._turned: dict[str, _Turned] = {}
         self.index = {link: 3 * k for k, link in enumerate(group.links)}
         self.size = 3 * len(group.links) + len(group.cams)
         self.scale = size
@@ -64,21 +66,23 @@ class _RowSystem:
         self.cams = [(cam, cam.flat[0] if cam.flat is not None and cam.kind == "flat" else
                       mechanism.local(cam.follower, cam.point or "")) for cam in group.cams]
         self.count = 2 * (len(self.pins) + len(self.slides) + len(self.cams)) + len(self.drives)
-        self._scratch = np.zeros((self.count, self.size))
-        """Where the rows that write their Jacobian entries as they go write them when none is wanted."""
 
-    def _point(self, q: Reals, link: str, local: tuple[float, float]) -> tuple[float, float, float, float, float]:
-        """World point of ``local`` on ``link``, its lever r = R local, and the link's theta."""
-        k = self.index.get(link)
-        if k is None:
-            x, y, theta, c, s = self._known_turned(link)
-        else:
-            x, y, theta = float(q[k]), float(q[k + 1]), float(q[k + 2])
-            c, s = math.cos(theta), math.sin(theta)
+    def _turns(self, v: list[float]) -> dict[str, _Turned]:
+        """Each unknown link's x, y, theta, cos theta and sin theta at the unknowns ``v`` (``q.tolist()``: the same
+        doubles as ``float(q[k])``): worked out once for all its joints."""
+        return {link: (v[k], v[k + 1], v[k + 2], math.cos(v[k + 2]), math.sin(v[k + 2]))
+                for link, k in self.index.items()}
+
+    def _point(self, turns: dict[str, _Turned], link: str,
+               local: tuple[float, float]) -> tuple[float, float, float, float, float]:
+        """World point of ``local`` on ``link``, its lever r = R local, and the link's theta (``turns``: the unknown
+        links' at this iterate, ``_turns``)."""
+        found = turns.get(link)
+        x, y, theta, c, s = self._known_turned(link) if found is None else found
         rx, ry = c * local[0] - s * local[1], s * local[0] + c * local[1]
         return x + rx, y + ry, rx, ry, theta
 
-    def _known_turned(self, link: str) -> tuple[float, float, float, float, float]:
+    def _known_turned(self, link: str) -> _Turned:
         """A known link's x, y, theta, cos theta and sin theta, worked out once per row (they do not move while
         the iteration runs)."""
         found = self._turned.get(link)
@@ -93,81 +97,95 @@ class _RowSystem:
         return self.evaluate(q, jacobian=False)[0]
 
     def evaluate(self, q: Reals, jacobian: bool = True) -> tuple[Reals, Reals]:
-        out = np.zeros(self.count)
-        jac = np.zeros((self.count, self.size)) if jacobian else self._scratch
+        """The joint residual at ``q`` and (with ``jacobian``) its Jacobian, in closed form. Both are summed as
+        Python floats (the same doubles, in the same order, as numpy's element by element) and made arrays once."""
+        v = q.tolist()
+        turns = self._turns(v)
+        n = self.size
+        out = [0.0] * self.count
+        jac = [0.0] * (self.count * n) if jacobian else None
         row = 0
         for a, local_a, b, local_b in self.pins:
-            ax, ay, arx, ary, _ = self._point(q, a, local_a)
-            bx, by, brx, bry, _ = self._point(q, b, local_b)
+            ax, ay, arx, ary, _ = self._point(turns, a, local_a)
+            bx, by, brx, bry, _ = self._point(turns, b, local_b)
             out[row], out[row + 1] = ax - bx, ay - by
-            if not jacobian:
-                row += 2
-                continue
-            for link, sign, rx, ry in ((a, 1.0, arx, ary), (b, -1.0, brx, bry)):
-                k = self.index.get(link)
-                if k is not None:
-                    jac[row, k] += sign
-                    jac[row + 1, k + 1] += sign
-                    jac[row, k + 2] -= sign * ry
-                    jac[row + 1, k + 2] += sign * rx
+            if jac is not None:
+                i, j = row * n, (row + 1) * n
+                for link, sign, rx, ry in ((a, 1.0, arx, ary), (b, -1.0, brx, bry)):
+                    k = self.index.get(link)
+                    if k is not None:
+                        jac[i + k] += sign
+                        jac[j + k + 1] += sign
+                        jac[i + k + 2] -= sign * ry
+                        jac[j + k + 2] += sign * rx
             row += 2
         for joint, local in self.slides:
-            sx, sy, bx, by, theta_b = self._point(q, joint.block, local)
-            tx, ty, lx, ly, theta_g = self._point(q, joint.guide, joint.through)
+            sx, sy, bx, by, theta_b = self._point(turns, joint.block, local)
+            tx, ty, lx, ly, theta_g = self._point(turns, joint.guide, joint.through)
             turn_rel = theta_b - theta_g - joint.angle_rad
             ex, ey = math.cos(theta_g + joint.angle_rad), math.sin(theta_g + joint.angle_rad)
             nx, ny = -ey, ex
             out[row] = self.scale * math.atan2(math.sin(turn_rel), math.cos(turn_rel))
             out[row + 1] = nx * (sx - tx) + ny * (sy - ty)
-            k = self.index.get(joint.block)
-            if k is not None:
-                jac[row, k + 2] += self.scale
-                jac[row + 1, k:k + 3] += (nx, ny, -nx * by + ny * bx)
-            k = self.index.get(joint.guide)
-            if k is not None:
-                jac[row, k + 2] -= self.scale
-                jac[row + 1, k:k + 3] += (-nx, -ny, -(ex * (sx - tx) + ey * (sy - ty)) + nx * ly - ny * lx)
+            if jac is not None:
+                i, j = row * n, (row + 1) * n
+                k = self.index.get(joint.block)
+                if k is not None:
+                    jac[i + k + 2] += self.scale
+                    jac[j + k] += nx
+                    jac[j + k + 1] += ny
+                    jac[j + k + 2] += -nx * by + ny * bx
+                k = self.index.get(joint.guide)
+                if k is not None:
+                    jac[i + k + 2] -= self.scale
+                    jac[j + k] += -nx
+                    jac[j + k + 1] += -ny
+                    jac[j + k + 2] += -(ex * (sx - tx) + ey * (sy - ty)) + nx * ly - ny * lx
             row += 2
         for drive, value in self.drives:
-            self._drive_row(q, drive, value, row, out, jac)
+            self._drive_row(turns, drive, value, row, out, jac)
             row += 1
         for c, (cam, local) in enumerate(self.cams):
             rows = self._face_rows if cam.kind == "flat" else self._contact_rows
-            rows(q, cam, local, self.size - len(self.cams) + c, row, out, jac)
+            rows(v, turns, cam, local, self.size - len(self.cams) + c, row, out, jac)
             row += 2
-        return out, jac
+        residual = np.array(out)
+        return residual, (np.array(jac).reshape(self.count, n) if jac is not None else residual)
 
-    def _contact_rows(self, q: Reals, cam: CamSpec, local: tuple[float, float], column: int, row: int,
-                      out: Reals, jac: Reals) -> None:
+    def _contact_rows(self, v: list[float], turns: dict[str, _Turned], cam: CamSpec, local: tuple[float, float],
+                      column: int, row: int, out: list[float], jac: list[float] | None) -> None:
         """W - (r_cam + A_cam X(u)) = 0, with dX/du = r'(u) (1 - rho kappa) (the offset curve runs along r)."""
-        u = float(q[column])
+        u = v[column]
         r, first, second = (complex(z[0]) for z in cam_spline(cam).derivatives(np.array([u])))
         speed = abs(first)
         rho = offset_of(cam)
         x_cam = r + rho * 1j * first / speed
         slope = first * (1.0 - rho * (first.conjugate() * second).imag / speed**3)
-        wx, wy, rx, ry, _ = self._point(q, cam.follower, local)
-        cx, cy, _, _, theta_c = self._point(q, cam.cam, (x_cam.real, x_cam.imag))
+        wx, wy, rx, ry, _ = self._point(turns, cam.follower, local)
+        cx, cy, _, _, theta_c = self._point(turns, cam.cam, (x_cam.real, x_cam.imag))
         out[row], out[row + 1] = wx - cx, wy - cy
+        if jac is None:
+            return
+        i, j = row * self.size, (row + 1) * self.size
         k = self.index.get(cam.follower)
         if k is not None:
-            jac[row, k] += 1.0
-            jac[row + 1, k + 1] += 1.0
-            jac[row, k + 2] -= ry
-            jac[row + 1, k + 2] += rx
+            jac[i + k] += 1.0
+            jac[j + k + 1] += 1.0
+            jac[i + k + 2] -= ry
+            jac[j + k + 2] += rx
         along = complex(math.cos(theta_c), math.sin(theta_c)) * slope
-        jac[row, column] -= along.real
-        jac[row + 1, column] -= along.imag
+        jac[i + column] -= along.real
+        jac[j + column] -= along.imag
 
-    def _face_rows(self, q: Reals, cam: CamSpec, local: tuple[float, float], column: int, row: int,
-                   out: Reals, jac: Reals) -> None:
+    def _face_rows(self, v: list[float], turns: dict[str, _Turned], cam: CamSpec, local: tuple[float, float],
+                   column: int, row: int, out: list[float], jac: list[float] | None) -> None:
         """A flat face (through T, direction e; the cam on its left) on the profile point P(u): P on the face's
         line, cross(e, P - T) = 0, and the tangent along it, size cross(e, r'(u)) / |r'(u)| = 0."""
         assert cam.flat is not None
-        u = float(q[column])
+        u = v[column]
         r, first, second = (complex(z[0]) for z in cam_spline(cam).derivatives(np.array([u])))
-        cx, cy, _, _, theta_c = self._point(q, cam.cam, (r.real, r.imag))
-        tx, ty, _, _, theta_f = self._point(q, cam.follower, local)
+        cx, cy, _, _, theta_c = self._point(turns, cam.cam, (r.real, r.imag))
+        tx, ty, _, _, theta_f = self._point(turns, cam.follower, local)
         turn_c = complex(math.cos(theta_c), math.sin(theta_c))
         tangent, bend = turn_c * first, turn_c * second
         e = complex(math.cos(theta_f + cam.flat[1]), math.sin(theta_f + cam.flat[1]))
@@ -176,24 +194,29 @@ class _RowSystem:
         sine = (e.conjugate() * tangent).imag / speed
         out[row] = (e.conjugate() * gap).imag
         out[row + 1] = self.scale * sine
+        if jac is None:
+            return
+        i, j = row * self.size, (row + 1) * self.size
         k = self.index.get(cam.follower)
         if k is not None:
-            origin = self._pose(q, cam.follower)
-            jac[row, k] += e.imag
-            jac[row, k + 1] -= e.real
-            jac[row, k + 2] -= (e.conjugate() * (complex(cx, cy) - complex(origin.x, origin.y))).real
-            jac[row + 1, k + 2] -= self.scale * (e.conjugate() * tangent).real / speed
-        jac[row, column] += (e.conjugate() * tangent).imag
-        jac[row + 1, column] += self.scale * ((e.conjugate() * bend).imag / speed
-                                              - sine * (tangent.conjugate() * bend).real / speed**2)
+            origin = self._pose(v, cam.follower)
+            jac[i + k] += e.imag
+            jac[i + k + 1] -= e.real
+            jac[i + k + 2] -= (e.conjugate() * (complex(cx, cy) - complex(origin.x, origin.y))).real
+            jac[j + k + 2] -= self.scale * (e.conjugate() * tangent).real / speed
+        jac[i + column] += (e.conjugate() * tangent).imag
+        jac[j + column] += self.scale * ((e.conjugate() * bend).imag / speed
+                                         - sine * (tangent.conjugate() * bend).real / speed**2)
 
     def start_parameters(self, q: Reals) -> Reals:
         """Each contact's parameter to start from at the start poses: the point of the offset curve nearest W, or
         for a flat face the point whose tangent runs along the face."""
+        v = q.tolist()
+        turns = self._turns(v)
         out = []
         for cam, local in self.cams:
-            wx, wy, _, _, theta_f = self._point(q, cam.follower, local)
-            pose = self._pose(q, cam.cam)
+            wx, wy, _, _, theta_f = self._point(turns, cam.follower, local)
+            pose = self._pose(v, cam.cam)
             to_cam = complex(math.cos(pose.theta), -math.sin(pose.theta))
             at = (complex(wx, wy) - complex(pose.x, pose.y)) * to_cam
             if cam.kind == "flat":
@@ -204,34 +227,43 @@ class _RowSystem:
                 out.append(nearest_parameter(cam_spline(cam), at, offset_of(cam)))
         return np.array(out)
 
-    def _pose(self, q: Reals, link: str) -> LinkPose:
+    def _pose(self, v: list[float], link: str) -> LinkPose:
         k = self.index.get(link)
-        return self.known[link] if k is None else LinkPose(float(q[k]), float(q[k + 1]), float(q[k + 2]))
+        return self.known[link] if k is None else LinkPose(v[k], v[k + 1], v[k + 2])
 
-    def _drive_row(self, q: Reals, drive: Drive, value: float, row: int, out: Reals, jac: Reals) -> None:
+    def _drive_row(self, turns: dict[str, _Turned], drive: Drive, value: float, row: int, out: list[float],
+                   jac: list[float] | None) -> None:
         """A motor: (theta_moving - theta_base - value) times the size; a cylinder: e . (s - t) - value."""
         joint = drive.joint
+        i = row * self.size
         if isinstance(joint, Revolute):
-            theta_m = self._point(q, drive.moving, (0.0, 0.0))[4]
-            theta_b = self._point(q, drive.base, (0.0, 0.0))[4]
+            theta_m = self._point(turns, drive.moving, (0.0, 0.0))[4]
+            theta_b = self._point(turns, drive.base, (0.0, 0.0))[4]
             out[row] = self.scale * math.remainder(theta_m - theta_b - value, math.tau)
+            if jac is None:
+                return
             for link, sign in ((drive.moving, 1.0), (drive.base, -1.0)):
                 k = self.index.get(link)
                 if k is not None:
-                    jac[row, k + 2] += sign * self.scale
+                    jac[i + k + 2] += sign * self.scale
             return
         local = self._block_point[joint.name]
-        sx, sy, bx, by, _ = self._point(q, joint.block, local)
-        tx, ty, lx, ly, theta_g = self._point(q, joint.guide, joint.through)
+        sx, sy, bx, by, _ = self._point(turns, joint.block, local)
+        tx, ty, lx, ly, theta_g = self._point(turns, joint.guide, joint.through)
         ex, ey = math.cos(theta_g + joint.angle_rad), math.sin(theta_g + joint.angle_rad)
         out[row] = ex * (sx - tx) + ey * (sy - ty) - value
+        if jac is None:
+            return
         k = self.index.get(joint.block)
         if k is not None:
-            jac[row, k:k + 3] += (ex, ey, -ex * by + ey * bx)
+            jac[i + k] += ex
+            jac[i + k + 1] += ey
+            jac[i + k + 2] += -ex * by + ey * bx
         k = self.index.get(joint.guide)
         if k is not None:
-            jac[row, k:k + 3] += (-ex, -ey, (-ey * (sx - tx) + ex * (sy - ty)) + ex * ly - ey * lx)
-
+            jac[i + k] += -ex
+            jac[i + k + 1] += -ey
+            jac[i + k + 2] += (-ey * (sx - tx) + ex * (sy - ty)) + ex * ly - ey * lx
 
 def group_size(mechanism: Mechanism, group: NewtonGroup, points: Mapping[str, complex]) -> float:
     """The group's length scale: its links' local coordinates and the known or guessed points."""
@@ -318,6 +350,12 @@ def _cut(step: Reals, links: int, reach: float | None) -> float:
     return min(1.0, _CREEP * reach / move) if move > 0.0 else 1.0
 
 
+def _norm(r: Reals) -> float:
+    """``float(np.linalg.norm(r))`` of a vector, bit for bit (numpy's is the square root of ``r.dot(r)``), without
+    its checks of shape and kind: a row's iteration takes one for every trial."""
+    return math.sqrt(r.dot(r))
+
+
 class RowClosure(Struct, frozen=True):
     """What Newton's method made of one row: the group's poses (None where it does not close), the final
     joint residual, and the sign of the Jacobian's determinant there (0 where it is not square)."""
@@ -337,7 +375,7 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
     system = _RowSystem(mechanism, group, known, size, values or {})
     q = np.concatenate((start, system.start_parameters(start))) if group.cams else start
     r, jac = system.evaluate(q)
-    norm_r = float(np.linalg.norm(r))
+    norm_r = _norm(r)
     stalled = 0
     for _ in range(_MAX_STEPS):
         if not norm_r > 0.0 or (stalled >= 3 and norm_r > NEWTON_CLOSED_REL * size):
@@ -348,7 +386,7 @@ def newton_row(mechanism: Mechanism, group: NewtonGroup, known: Mapping[str, Lin
         t = 1.0
         while t > NEWTON_LEAST_STEP:
             trial = system.residual(q + t * step)
-            norm_trial = float(np.linalg.norm(trial))
+            norm_trial = _norm(trial)
             if norm_trial < norm_r:
                 stalled = stalled + 1 if norm_trial > 0.5 * norm_r and cut == 1.0 else 0
                 q = q + t * step
