@@ -70,15 +70,16 @@ class _RowSystem:
     def _turns(self, v: list[float]) -> dict[str, _Turned]:
         """Each unknown link's x, y, theta, cos theta and sin theta at the unknowns ``v`` (``q.tolist()``: the same
         doubles as ``float(q[k])``): worked out once for all its joints."""
-        return {link: (v[k], v[k + 1], v[k + 2], math.cos(v[k + 2]), math.sin(v[k + 2]))
-                for link, k in self.index.items()}
+        turns = dict(self._turned)  # the known links met so far (``_known_turned``)
+        for link, k in self.index.items():
+            turns[link] = (v[k], v[k + 1], v[k + 2], math.cos(v[k + 2]), math.sin(v[k + 2]))
+        return turns
 
     def _point(self, turns: dict[str, _Turned], link: str,
                local: tuple[float, float]) -> tuple[float, float, float, float, float]:
-        """World point of ``local`` on ``link``, its lever r = R local, and the link's theta (``turns``: the unknown
-        links' at this iterate, ``_turns``)."""
-        found = turns.get(link)
-        x, y, theta, c, s = self._known_turned(link) if found is None else found
+        """World point of ``local`` on ``link``, its lever r = R local, and the link's theta (``turns``: the links'
+        at this iterate, ``_turns``)."""
+        x, y, theta, c, s = turns.get(link) or self._known_turned(link)
         rx, ry = c * local[0] - s * local[1], s * local[0] + c * local[1]
         return x + rx, y + ry, rx, ry, theta
 
@@ -105,10 +106,12 @@ class _RowSystem:
         out = [0.0] * self.count
         jac = [0.0] * (self.count * n) if jacobian else None
         row = 0
-        for a, local_a, b, local_b in self.pins:
-            ax, ay, arx, ary, _ = self._point(turns, a, local_a)
-            bx, by, brx, bry, _ = self._point(turns, b, local_b)
-            out[row], out[row + 1] = ax - bx, ay - by
+        for a, local_a, b, local_b in self.pins:  # ``_point`` of each side, written out: most of the calls are here
+            xa, ya, _, ca, sa = turns.get(a) or self._known_turned(a)
+            xb, yb, _, cb, sb = turns.get(b) or self._known_turned(b)
+            arx, ary = ca * local_a[0] - sa * local_a[1], sa * local_a[0] + ca * local_a[1]
+            brx, bry = cb * local_b[0] - sb * local_b[1], sb * local_b[0] + cb * local_b[1]
+            out[row], out[row + 1] = (xa + arx) - (xb + brx), (ya + ary) - (yb + bry)
             if jac is not None:
                 i, j = row * n, (row + 1) * n
                 for link, sign, rx, ry in ((a, 1.0, arx, ary), (b, -1.0, brx, bry)):
