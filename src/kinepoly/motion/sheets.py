@@ -24,14 +24,14 @@ from msgspec.structs import replace
 
 from kinepoly.errors import KinepolyError
 from kinepoly.geom.tolerances import PAPER_SAME_MM, TINY_POSITIVE, TRACKED_REL, TRACKED_TURN_RAD
-from kinepoly.handout.notation import quantity_name, runs_of, text_width, typographic, wrap
+from kinepoly.handout.notation import quantity_name, runs_of, text_width, typographic
 from kinepoly.motion.frames import NO_POLYGON, Frames
 from kinepoly.present.clean import format_number
 from kinepoly.render.labels import LabelCache
 from kinepoly.render.layout import Panel
 from kinepoly.render.polygons import Kind, figure_box, polygon_figure
 from kinepoly.render.primitives import Item, Layer, Path, Sheet, Stroke, Text
-from kinepoly.render.sheet import Layout, build_sheet, motion_layout
+from kinepoly.render.sheet import MARGIN_MM, Layout, build_sheet, motion_layout
 from kinepoly.render.style import INK, LABEL_MM, MUTED_INK, PATH, RULE, SMALL_MM, THIN, link_label_color
 from kinepoly.render.text import Run
 from kinepoly.scene.spec import GearSpec, LinkInput, Scene, SliderInput
@@ -167,31 +167,94 @@ def _value_text(name: str, value: float, unit: str, ground: str) -> str:
     return f"{quantity_name(name, ground)} = {amount}{'°' if unit == 'deg' else ' ' + unit}"
 
 
+def _width(runs: tuple[Run, ...], bold: bool = False) -> float:
+    return max((r.dx + text_width(r.text, r.size, bold) for r in runs), default=0.0)
+
+
 def _runs(text: str, size: float, room: float, bold: bool = False) -> tuple[Run, ...]:
     """``text`` typeset at ``size``, or smaller where it would be wider than ``room``."""
     text = typographic(text)
     runs = runs_of(text, size, bold)
-    width = max((r.dx + text_width(r.text, r.size, bold) for r in runs), default=0.0)
+    width = _width(runs, bold)
     return runs if width <= room else runs_of(text, size * room / width, bold)
+
+
+_VALUES_GAP = "    "
+"""Between two values of a caption."""
+_CAPTION_ROW_MM = 4.0
+"""How far apart the caption's lines of values are."""
+_CAPTION_ROWS = 2
+"""The most lines of values a caption's strip grows to hold at full size (``_foot``); more are set smaller."""
+_SMALLEST_SHARE = 0.5
+"""The smallest type the values are set in, a share of ``LABEL_MM``, where even that many lines cannot hold them."""
+
+
+def _packed(values: list[str], size: float, room: float) -> list[str]:
+    """``values`` (``name = value unit`` each) in lines no wider than ``room`` at ``size``, one after another as
+    many as fit (a value never broken from its name, nor a line left with half of one)."""
+    lines: list[str] = []
+    for value in values:
+        trial = f"{lines[-1]}{_VALUES_GAP}{value}" if lines else value
+        if lines and _width(runs_of(typographic(trial), size)) <= room:
+            lines[-1] = trial
+        else:
+            lines.append(value)
+    return lines
+
+
+def _value_lines(values: list[str], room: float, rows: int) -> tuple[list[str], float]:
+    """The caption's values in at most ``rows`` lines no wider than ``room``, and the size to set them at:
+    ``LABEL_MM`` where they fit, else as much smaller as they need (down to ``_SMALLEST_SHARE`` of it, below which
+    the last values are left out)."""
+    size = LABEL_MM
+    lines = _packed(values, size, room)
+    while len(lines) > rows and size > _SMALLEST_SHARE * LABEL_MM:
+        size = max(0.95 * size, _SMALLEST_SHARE * LABEL_MM)
+        lines = _packed(values, size, room)
+    return lines[:rows], size
+
+
+def _caption_values(frames: Frames, k: int, ground: str) -> list[str]:
+    """The values a frame's caption gives (by the number rule): each rate and acceleration asked, where valid."""
+    row = int(frames.rows[k])
+    return [_value_text(v.name, float(v.values[row]), v.unit, ground) for v in frames.values[1:]
+            if v.valid[row] and v.order >= 1 and not v.name.startswith("|")]
+
+
+def _ground(frames: Frames) -> str:
+    return frames.scene.ground or "" if frames.scene is not None else ""
+
+
+def _caption_room(rect: tuple[float, float, float, float], share: float) -> float:
+    """How wide the caption's lines may be in the foot strip ``rect`` (its left ``share``)."""
+    return share * (rect[2] - rect[0]) - 6.0
+
+
+def _foot(frames: Frames) -> float:
+    """The foot strip's height without the functions: room for the title and as many lines of values as the widest
+    frame's caption takes at full size, up to ``_CAPTION_ROWS``."""
+    room = _caption_room((MARGIN_MM, 0.0, SHEET_MM[0] - MARGIN_MM, 0.0), 1.0)
+    ground = _ground(frames)
+    rows = max((len(_packed(_caption_values(frames, k, ground), LABEL_MM, room)) for k in range(frames.count)),
+               default=1)
+    return _FOOT_MM + _CAPTION_ROW_MM * (min(max(rows, 1), _CAPTION_ROWS) - 1)
 
 
 def _caption(frames: Frames, k: int, rect: tuple[float, float, float, float], share: float) -> list[Item]:
     """The title, where the input stands and the values there, in the foot strip (its left ``share``)."""
     row = int(frames.rows[k])
     x0, y0, x1, y1 = rect
-    room = share * (x1 - x0) - 6.0
-    ground = frames.scene.ground or "" if frames.scene is not None else ""
+    room = _caption_room(rect, share)
+    ground = _ground(frames)
     status = ("", " (near-singular)", " (singular: polygons not determined)", "")[int(frames.status[row])]
     where = _value_text(frames.input_name, float(frames.inputs[row]), frames.input_unit, ground)
     head = f"{frames.title}: {where}, position {row + 1} of {len(frames.inputs)}{status}"
-    shown = [_value_text(v.name, float(v.values[row]), v.unit, ground) for v in frames.values[1:]  # by the number rule
-             if v.valid[row] and v.order >= 1 and not v.name.startswith("|")]
     items: list[Item] = [Text(x0 + 3.0, y1 - 4.6, _runs(head, 3.2, room, True), INK, "caption title",
                               None, True)]
-    lines = wrap(typographic("    ".join(shown)), LABEL_MM, room) if shown else []
-    rows = max(1, int((y1 - y0 - 6.0) / 4.0))
-    for n, line in enumerate(lines[:rows]):
-        items.append(Text(x0 + 3.0, y1 - 8.8 - 4.0 * n, _runs(line, LABEL_MM, room), INK, "caption values"))
+    lines, size = _value_lines(_caption_values(frames, k, ground), room,
+                               max(1, int((y1 - y0 - 6.0) / _CAPTION_ROW_MM)))
+    for n, line in enumerate(lines):
+        items.append(Text(x0 + 3.0, y1 - 8.8 - _CAPTION_ROW_MM * n, _runs(line, size, room), INK, "caption values"))
     return items
 
 
@@ -300,7 +363,7 @@ def _sizing(frames: Frames, solutions: list[Solution]) -> list[Solution]:
 def frame_sheets(frames: Frames, solutions: list[Solution]) -> Iterator[Sheet]:
     """Each frame's sheet, on one layout."""
     functions = "functions" in frames.parts
-    foot = _FOOT_FUNCTIONS_MM if functions else _FOOT_MM
+    foot = _FOOT_FUNCTIONS_MM if functions else _foot(frames)
     layout = motion_layout(_sizing(frames, solutions), SHEET_MM, foot)
     mechanism = layout.panel("mechanism")
     assert mechanism is not None
