@@ -29,9 +29,9 @@ def _counting(monkeypatch: pytest.MonkeyPatch) -> Counter[str]:
         return at_point(self, anchor, runs, color, role, *args, **kwargs)
 
     def counted_along(self: labels.Placer, start: Any, end: Any, runs: Any, color: str = "#000000",
-                      role: str = "") -> Any:
+                      role: str = "", **kwargs: Any) -> Any:
         calls[role] += 1
-        return along(self, start, end, runs, color, role)
+        return along(self, start, end, runs, color, role, **kwargs)
 
     monkeypatch.setattr(labels.Placer, "at_point", counted_at_point)
     monkeypatch.setattr(labels.Placer, "along", counted_along)

@@ -27,7 +27,7 @@ from kinepoly.geom.tolerances import PAPER_SAME_MM, TINY_POSITIVE, TRACKED_REL, 
 from kinepoly.handout.notation import quantity_name, runs_of, text_width, typographic
 from kinepoly.motion.frames import NO_POLYGON, Frames
 from kinepoly.present.clean import format_number
-from kinepoly.render.labels import LabelCache
+from kinepoly.render.labels import Hint, LabelCache
 from kinepoly.render.layout import Panel
 from kinepoly.render.polygons import Kind, figure_box, polygon_figure
 from kinepoly.render.primitives import Item, Layer, Path, Sheet, Stroke, Text
@@ -367,11 +367,14 @@ def frame_sheets(frames: Frames, solutions: list[Solution]) -> Iterator[Sheet]:
     layout = motion_layout(_sizing(frames, solutions), SHEET_MM, foot)
     mechanism = layout.panel("mechanism")
     assert mechanism is not None
+    taken: dict[str, Hint] = {}
     for k, solution in enumerate(solutions):
         shown = all(p is None or bool(p.valid[k]) for p in (frames.velocity, frames.acceleration))
         figures = _figures(solution, layout) if shown else ()
-        frame = replace(layout, figures=figures, labels=LabelCache())
+        labels = LabelCache(taken)  # each label tried first where it was on the frame before: it stays while it can
+        frame = replace(layout, figures=figures, labels=labels)
         sheet = build_sheet(solution, SHEET_MM, layout=frame, title_block=False)
+        taken = labels.taken
         extra: dict[str, list[Item]] = {
             "mechanism": _paths(frames, k, mechanism) if "paths" in frames.parts else [],
             "title": _caption(frames, k, layout.title_rect, _CAPTION_SHARE if functions else 1.0)

@@ -10,6 +10,10 @@ still kept clear of every other label: it takes the place, near or out on a lead
 from a point along its vector's shaft), under which the least ink lies, and counts as crowded when that
 is not none. Where the other labels wall in every such place (or every leader to it), the places tried lie
 on a grid over the whole region, their leaders from the point or from the shaft's nearest point.
+
+On an animation's frames a label is tried first where it was on the frame before (the same place near its
+point, along its arrow or out on its ring, ``LabelCache.hints``), and where that is taken, at the free place
+nearest it: labels move with their points instead of jumping about.
 """
 
 from __future__ import annotations
@@ -17,7 +21,7 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from msgspec import Struct
@@ -32,11 +36,14 @@ if TYPE_CHECKING:
     import numpy.typing as npt
     from shapely.geometry.base import BaseGeometry
 
-__all__ = ["BACKGROUND_ROLES", "CLEARANCE_MM", "FEW", "LEADER", "LabelCache", "Placer", "Request", "draft_place",
-           "fill_geometry", "item_geometry", "place", "wrapped"]
+__all__ = ["BACKGROUND_ROLES", "CLEARANCE_MM", "FEW", "LEADER", "Hint", "LabelCache", "Placer", "Request",
+           "draft_place", "fill_geometry", "item_geometry", "place", "wrapped"]
 
 Point = tuple[float, float]
 Box = tuple[float, float, float, float]
+Hint = tuple[str, int]
+"""Where a label was put on an animation's frame before (``LabelCache.hints``): ``("near", k)``, the k-th of its
+places near its anchor, or ``("far", k)``, the k-th of its far rings' places, with a leader (``Placer.taken``)."""
 
 CLEARANCE_MM = 0.35
 """The least gap kept between a label's box and anything drawn."""
@@ -325,6 +332,8 @@ class Placer:
         self.set_out: list[str] = []
         """The roles of labels that found no free place within reach of their anchor (``_far``'s last resorts):
         the crowded ones, and those set clear of the other labels where a little ink, or none, lies under them."""
+        self.taken: Hint | None = None
+        """Where the label placed last was put: one of its near places or of its far rings' (None: elsewhere)."""
 
     def _inside(self, b: Box) -> bool:
         x0, y0, x1, y1 = self.region
@@ -410,24 +419,28 @@ class Placer:
 
         # A leader that crosses nothing drawn first, ring after ring (the nearest that has one ends the search),
         # then one that must cross something.
-        free: list[tuple[Box, Any]] = []
+        free: list[tuple[Box, Any, int]] = []
+        first = 0  # the index of the group's first place among all the far rings' (``_far_places``)
         for rings in _FAR_RING_GROUPS:
             if self._spent():
                 break  # its first test would end the search: nothing more is tried (the search only grows)
             candidates = [_pushed_box(anchor, direction, size, ring) for ring in rings for direction in _DIRECTIONS]
-            for b, ok in zip(candidates, self._free_of(candidates, False), strict=True):
+            for k, (b, ok) in enumerate(zip(candidates, self._free_of(candidates, False), strict=True)):
                 if self._spent():
                     break
                 leader = _leader(anchor, b) if ok else None
                 if leader is None:
                     continue
                 if self._leader_ok(leader, True):
+                    self.taken = ("far", first + k)
                     return self._accept(b, runs, color, role, anchor, bold, leader)
-                free.append((b, leader))
-        for b, leader in free:
+                free.append((b, leader, first + k))
+            first += len(candidates)
+        for b, leader, k in free:
             if self._spent():
                 break
             if self._leader_ok(leader, False):
+                self.taken = ("far", k)
                 return self._accept(b, runs, color, role, anchor, bold, leader)
         if optional:
             return []
@@ -575,6 +588,26 @@ class Placer:
                 best = found
         return best
 
+    def _hinted(self, hint: Hint | None, near: Sequence[Box], runs: tuple[Run, ...], color: str, role: str,
+                anchor: Point, bold: bool, size: tuple[float, float]) -> list[Item] | None:
+        """The label at the place ``hint`` names (where it was on the frame before: one of ``near``, or of the far
+        rings round ``anchor`` with a leader), where that place is free of everything and its leader clear of the
+        labels; None where not, or without a hint."""
+        if hint is None:
+            return None
+        kind, k = hint
+        places = near if kind == "near" else _far_places(anchor, size)
+        if k >= len(places):
+            return None
+        b = places[k]
+        leader = None if kind == "near" else _leader(anchor, b)
+        if kind == "far" and leader is None:
+            return None
+        if not next(self._free_of([b], False)) or (leader is not None and not self._leader_ok(leader, False)):
+            return None
+        self.taken = hint
+        return self._accept(b, runs, color, role, anchor, bold, leader)
+
     def where_it_was(self, was: list[Item], runs: tuple[Run, ...], color: str, role: str,
                      anchor: Point) -> list[Item] | None:
         """The label at the place of ``was`` (the label it grew from, as placed on the sheet before): its box's top
@@ -596,24 +629,28 @@ class Placer:
 
     def at_point(self, anchor: Point, runs: tuple[Run, ...], color: str = "#000000", role: str = "",
                  bold: bool = False, gap: float = 0.0, ring: bool = False, optional: bool = False,
-                 far: bool = False) -> list[Item]:
+                 far: bool = False, hint: Hint | None = None) -> list[Item]:
         """A label near a point (a joint, a tip): the nearest free place around it; ``far``: set out with a
-        leader from the start (a point among many, whose near places would wall the others in)."""
+        leader from the start (a point among many, whose near places would wall the others in). ``hint``: where it
+        was on the frame before, tried first (``_hinted``)."""
         self._start = self._placed.scanned
+        self.taken = None
         x0, y0, x1, y1 = runs_box(runs, bold)
         size = (x1 - x0, y1 - y0)
         radius = math.hypot(*size) / 2 + 0.35
         outer = (2 * radius, 2 * radius) if ring else size
         candidates = list(itertools.islice((_pushed_box(anchor, u, outer, gap + distance) for distance in _RINGS_MM
                                             for u in _DIRECTIONS), self._candidates))
-        found = None if far else self._near(candidates)
+        hinted = self._hinted(hint, candidates, runs, color, role, anchor, bold, outer)
+        found = None if far or hinted is not None else self._near(_nearest_first(candidates, hint))
         if found is None:
-            items = self._far(runs, color, role, anchor, bold, outer, optional, () if far else candidates)
+            items = hinted or self._far(runs, color, role, anchor, bold, outer, optional, () if far else candidates)
             if not items:
                 return []
             corner = _box_of(items)
             found = (corner[0], corner[1], corner[0] + outer[0], corner[1] + outer[1])
         else:
+            self.taken = ("near", next(k for k, b in enumerate(candidates) if b is found))
             items = self._accept(found, runs, color, role, anchor, bold)
         if not ring:
             return items
@@ -624,9 +661,11 @@ class Placer:
         return [*items[:-1], Circle((cx, cy), radius, Stroke(color, 0.18), role=f"ring {role}"), centred]
 
     def along(self, start: Point, end: Point, runs: tuple[Run, ...], color: str = "#000000",
-              role: str = "") -> list[Item]:
-        """A label beside a vector's shaft, either side, near its middle first."""
+              role: str = "", hint: Hint | None = None) -> list[Item]:
+        """A label beside a vector's shaft, either side, near its middle first; ``hint``: where it was on the frame
+        before, tried first (``_hinted``)."""
         self._start = self._placed.scanned
+        self.taken = None
         x0, y0, x1, y1 = runs_box(runs)
         size = (x1 - x0, y1 - y0)
         length = math.hypot(end[0] - start[0], end[1] - start[1])
@@ -638,8 +677,12 @@ class Placer:
                                                         (-side * uy, side * ux), size, ring)
                                             for ring in _RINGS_MM[:3] for t in _ALONG_T for side in (1.0, -1.0)),
                                            self._candidates))
-        found = self._near(candidates)
+        hinted = self._hinted(hint, candidates, runs, color, role, _mid(start, end), False, size)
+        if hinted is not None:
+            return hinted
+        found = self._near(_nearest_first(candidates, hint))
         if found is not None:
+            self.taken = ("near", next(k for k, b in enumerate(candidates) if b is found))
             return self._accept(found, runs, color, role, _mid(start, end), False)
         feet = [(start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])) for t in _ALONG_T[1:]]
         return self._far(runs, color, role, _mid(start, end), False, size, near=candidates, feet=feet,
@@ -709,6 +752,21 @@ def _set_out_places(feet: Sequence[Point],
     foot = np.repeat(np.asarray(feet, dtype=float), len(offsets), axis=0)
     boxes = np.tile(offsets, (len(feet), 1)) + np.hstack([foot, foot])
     return boxes, _leaders(boxes, foot)
+
+
+def _nearest_first(places: list[Box], hint: Hint | None) -> list[Box]:
+    """``places`` (a label's near ones) in the order they are tried: as they are, or, where the label was at one of
+    them on the frame before (``hint``), the nearest to that one first (the label moves as little as it can)."""
+    if hint is None or hint[0] != "near" or hint[1] >= len(places):
+        return places
+    x0, y0, x1, y1 = places[hint[1]]
+    return sorted(places, key=lambda b: math.hypot(b[0] + b[2] - x0 - x1, b[1] + b[3] - y0 - y1))
+
+
+def _far_places(anchor: Point, size: tuple[float, float]) -> list[Box]:
+    """The places of a label of ``size`` on the far rings round ``anchor``, in the order ``Placer._far`` tries
+    them."""
+    return [_pushed_box(anchor, direction, size, ring) for ring in _FAR_RINGS_MM for direction in _DIRECTIONS]
 
 
 _GRID_MM = 2.0
@@ -821,7 +879,12 @@ class LabelCache:
     new on the sheet: each page costs what it adds, and a label stays where the reader saw it.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, hints: Mapping[str, Hint] | None = None) -> None:
+        self.hints: Mapping[str, Hint] = hints or {}
+        """Where each label was put on the frame before (an animation's, by layer and role): tried first, so that a
+        label stays where it was while that place is free."""
+        self.taken: dict[str, Hint] = {}
+        """Where each label placed with this cache was put (the next frame's ``hints``)."""
         self._geometry: dict[Item, tuple[Any, Any, Box]] = {}
         self._pieces: dict[Item, list[Any]] = {}
         self._fitted: dict[Request, Request] = {}
@@ -941,8 +1004,9 @@ def _place_region(cache: LabelCache, region: Box, requests: Sequence[Request], n
             base.add(entry)
         hard = [g for item in near for g in cache.pieces(item)]
         soft = [g for g in (cache.geometry(item)[1] for item in near) if g is not None]
-        placed, crowded, set_out = _tries(region, requests, order, kept, hard, soft, base,
-                                          _grown(cache, region, requests, kept))
+        placed, crowded, set_out, taken = _tries(region, requests, order, kept, hard, soft, base,
+                                                 _grown(cache, region, requests, kept), cache.hints)
+        cache.taken.update(taken)
     else:
         placed, crowded, set_out = [kept[k] for k in range(len(requests))], [], []
     for entry in placed:
@@ -978,16 +1042,18 @@ def _grown(cache: LabelCache, region: Box, requests: Sequence[Request],
 
 
 def _tries(region: Box, requests: Sequence[Request], order: list[int], kept: dict[int, Placed], hard: list[Any],
-           soft: list[Any], base: _Placed,
-           grown: dict[int, list[Item]] | None = None) -> tuple[list[Placed], list[str], list[str]]:
+           soft: list[Any], base: _Placed, grown: dict[int, list[Item]] | None = None,
+           hints: Mapping[str, Hint] | None = None) -> tuple[list[Placed], list[str], list[str], dict[str, Hint]]:
     """The best of up to ``_TRIES`` placements of the requests not kept, each with the labels that found no free
-    place before (``Placer.set_out``) moved to the front; its labels, the roles crowded and the roles set out."""
-    best: tuple[list[Placed], list[str], list[str]] | None = None
+    place before (``Placer.set_out``) moved to the front; its labels, the roles crowded and the roles set out, and
+    where each label was put (``Placer.taken``)."""
+    best: tuple[list[Placed], list[str], list[str], dict[str, Hint]] | None = None
     for _ in range(_TRIES):
-        placed, crowded, set_out = _attempt(region, requests, order, kept, hard, soft, base.copy(), grown)
+        placed, crowded, set_out, taken = _attempt(region, requests, order, kept, hard, soft, base.copy(), grown,
+                                                   hints)
         if best is not None and len(set_out) >= len(best[2]):
             break  # moving the labels set out first did not help
-        best = (placed, crowded, set_out)
+        best = (placed, crowded, set_out, taken)
         if not set_out or len(set_out) > _FEW:
             break  # none set out, or so many that the polygon's own points crowd: moving them first cannot help
         first = [k for k in order if requests[k].role in set_out]
@@ -1023,13 +1089,20 @@ def _crowd(requests: Sequence[Request]) -> set[int]:
     return out
 
 
+def _label_key(request: Request) -> str:
+    """What names a label from one frame of an animation to the next: its layer and role."""
+    return f"{request.layer} {request.role}"
+
+
 def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kept: dict[int, Placed],
-             hard: list[Any], soft: list[Any], placed_so_far: _Placed,
-             grown: dict[int, list[Item]] | None = None) -> tuple[list[Placed], list[str], list[str]]:
+             hard: list[Any], soft: list[Any], placed_so_far: _Placed, grown: dict[int, list[Item]] | None = None,
+             hints: Mapping[str, Hint] | None = None) -> tuple[list[Placed], list[str], list[str], dict[str, Hint]]:
     """One placement of the requests not kept, in ``order``; every request's label, the roles crowded and the roles
-    set out (``Placer.set_out``). A label in ``grown`` (``_grown``) is tried first where its shorter text was."""
+    set out (``Placer.set_out``), and where each label was put (``Placer.taken``). A label in ``grown``
+    (``_grown``) is tried first where its shorter text was; one in ``hints`` where it was on the frame before."""
     placer = Placer(region, hard, soft, placed_so_far)
     out: dict[int, Placed] = dict(kept)
+    taken: dict[str, Hint] = {}
     crowd = _crowd(requests)
     for k in order:
         request = requests[k]
@@ -1037,15 +1110,19 @@ def _attempt(region: Box, requests: Sequence[Request], order: Sequence[int], kep
         was = (grown or {}).get(k)
         found = None if was is None else placer.where_it_was(was, request.runs, request.color, request.role,
                                                               _mid(request.anchor, request.end or request.anchor))
+        key = _label_key(request)
+        hint = hints.get(key) if hints else None
         if found is not None:
             items = found
         elif request.end is None:
             items = placer.at_point(request.anchor, request.runs, request.color, request.role, request.bold,
-                                    request.gap, request.ring, request.optional, far=k in crowd)
+                                    request.gap, request.ring, request.optional, far=k in crowd, hint=hint)
         else:
-            items = placer.along(request.anchor, request.end, request.runs, request.color, request.role)
+            items = placer.along(request.anchor, request.end, request.runs, request.color, request.role, hint=hint)
+        if found is None and placer.taken is not None:
+            taken[key] = placer.taken
         out[k] = (request.layer, items, placed_so_far.geometries[before:], placed_so_far._bounds[before:])
-    return [out[k] for k in range(len(requests))], placer.crowded, placer.set_out
+    return [out[k] for k in range(len(requests))], placer.crowded, placer.set_out, taken
 
 
 _WRAP_MM = 40.0
