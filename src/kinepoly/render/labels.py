@@ -632,7 +632,7 @@ class Placer:
                  far: bool = False, hint: Hint | None = None) -> list[Item]:
         """A label near a point (a joint, a tip): the nearest free place around it; ``far``: set out with a
         leader from the start (a point among many, whose near places would wall the others in). ``hint``: where it
-        was on the frame before, tried first (``_hinted``)."""
+        was on the frame before (``_hinted``): a near place tried first, a far one where no near place is free."""
         self._start = self._placed.scanned
         self.taken = None
         x0, y0, x1, y1 = runs_box(runs, bold)
@@ -641,10 +641,12 @@ class Placer:
         outer = (2 * radius, 2 * radius) if ring else size
         candidates = list(itertools.islice((_pushed_box(anchor, u, outer, gap + distance) for distance in _RINGS_MM
                                             for u in _DIRECTIONS), self._candidates))
-        hinted = self._hinted(hint, candidates, runs, color, role, anchor, bold, outer)
+        near, out = _kinds(hint)
+        hinted = self._hinted(near, candidates, runs, color, role, anchor, bold, outer)
         found = None if far or hinted is not None else self._near(_nearest_first(candidates, hint))
         if found is None:
-            items = hinted or self._far(runs, color, role, anchor, bold, outer, optional, () if far else candidates)
+            items = hinted or self._hinted(out, candidates, runs, color, role, anchor, bold, outer) or \
+                self._far(runs, color, role, anchor, bold, outer, optional, () if far else candidates)
             if not items:
                 return []
             corner = _box_of(items)
@@ -663,7 +665,7 @@ class Placer:
     def along(self, start: Point, end: Point, runs: tuple[Run, ...], color: str = "#000000",
               role: str = "", hint: Hint | None = None) -> list[Item]:
         """A label beside a vector's shaft, either side, near its middle first; ``hint``: where it was on the frame
-        before, tried first (``_hinted``)."""
+        before (``_hinted``): a near place tried first, a far one where no near place is free."""
         self._start = self._placed.scanned
         self.taken = None
         x0, y0, x1, y1 = runs_box(runs)
@@ -677,13 +679,17 @@ class Placer:
                                                         (-side * uy, side * ux), size, ring)
                                             for ring in _RINGS_MM[:3] for t in _ALONG_T for side in (1.0, -1.0)),
                                            self._candidates))
-        hinted = self._hinted(hint, candidates, runs, color, role, _mid(start, end), False, size)
+        near, out = _kinds(hint)
+        hinted = self._hinted(near, candidates, runs, color, role, _mid(start, end), False, size)
         if hinted is not None:
             return hinted
         found = self._near(_nearest_first(candidates, hint))
         if found is not None:
             self.taken = ("near", next(k for k, b in enumerate(candidates) if b is found))
             return self._accept(found, runs, color, role, _mid(start, end), False)
+        hinted = self._hinted(out, candidates, runs, color, role, _mid(start, end), False, size)
+        if hinted is not None:
+            return hinted
         feet = [(start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])) for t in _ALONG_T[1:]]
         return self._far(runs, color, role, _mid(start, end), False, size, near=candidates, feet=feet,
                          shaft=(start, end))
@@ -752,6 +758,12 @@ def _set_out_places(feet: Sequence[Point],
     foot = np.repeat(np.asarray(feet, dtype=float), len(offsets), axis=0)
     boxes = np.tile(offsets, (len(feet), 1)) + np.hstack([foot, foot])
     return boxes, _leaders(boxes, foot)
+
+
+def _kinds(hint: Hint | None) -> tuple[Hint | None, Hint | None]:
+    """``hint`` as a near place's and a far one's: a label set out on the frame before is tried there only where no
+    place near its anchor is free (a leader only where one is needed)."""
+    return (hint, None) if hint is not None and hint[0] == "near" else (None, hint)
 
 
 def _nearest_first(places: list[Box], hint: Hint | None) -> list[Box]:
