@@ -68,8 +68,9 @@ class _RowSystem:
         self.count = 2 * (len(self.pins) + len(self.slides) + len(self.cams)) + len(self.drives)
 
     def _turns(self, v: list[float]) -> dict[str, _Turned]:
-        """Each unknown link's x, y, theta, cos theta and sin theta at the unknowns ``v`` (``q.tolist()``: the same
-        doubles as ``float(q[k])``): worked out once for all its joints."""
+        """Each link's x, y, theta, cos theta and sin theta at the unknowns ``v`` (``q.tolist()``: the same doubles
+        as ``float(q[k])``): an unknown link's worked out once for all its joints, a known one's as found before
+        (``_known_turned``)."""
         turns = dict(self._turned)  # the known links met so far (``_known_turned``)
         for link, k in self.index.items():
             turns[link] = (v[k], v[k + 1], v[k + 2], math.cos(v[k + 2]), math.sin(v[k + 2]))
@@ -98,8 +99,9 @@ class _RowSystem:
         return self.evaluate(q, jacobian=False)[0]
 
     def evaluate(self, q: Reals, jacobian: bool = True) -> tuple[Reals, Reals]:
-        """The joint residual at ``q`` and (with ``jacobian``) its Jacobian, in closed form. Both are summed as
-        Python floats (the same doubles, in the same order, as numpy's element by element) and made arrays once."""
+        """The joint residual at ``q`` and (with ``jacobian``) its Jacobian, in closed form; without it the residual
+        again in the Jacobian's place (``residual`` takes the first). Both are summed as Python floats (the same
+        doubles, in the same order, as numpy's element by element) and made arrays once."""
         v = q.tolist()
         turns = self._turns(v)
         n = self.size

@@ -168,6 +168,7 @@ def _value_text(name: str, value: float, unit: str, ground: str) -> str:
 
 
 def _width(runs: tuple[Run, ...], bold: bool = False) -> float:
+    """How wide typeset ``runs`` are (mm)."""
     return max((r.dx + text_width(r.text, r.size, bold) for r in runs), default=0.0)
 
 
@@ -233,7 +234,7 @@ def _caption_room(rect: tuple[float, float, float, float], share: float) -> floa
 def _foot(frames: Frames) -> float:
     """The foot strip's height without the functions: room for the title and as many lines of values as the widest
     frame's caption takes at full size, up to ``_CAPTION_ROWS``."""
-    room = _caption_room((MARGIN_MM, 0.0, SHEET_MM[0] - MARGIN_MM, 0.0), 1.0)
+    room = _caption_room((MARGIN_MM, 0.0, SHEET_MM[0] - MARGIN_MM, 0.0), 1.0)  # the strip: between the margins
     ground = _ground(frames)
     rows = max((len(_packed(_caption_values(frames, k, ground), LABEL_MM, room)) for k in range(frames.count)),
                default=1)

@@ -11,9 +11,10 @@ from a point along its vector's shaft), under which the least ink lies, and coun
 is not none. Where the other labels wall in every such place (or every leader to it), the places tried lie
 on a grid over the whole region, their leaders from the point or from the shaft's nearest point.
 
-On an animation's frames a label is tried first where it was on the frame before (the same place near its
-point, along its arrow or out on its ring, ``LabelCache.hints``), and where that is taken, at the free place
-nearest it: labels move with their points instead of jumping about.
+On an animation's frames a label is tried first where it was on the frame before (``LabelCache.hints``): at the
+same place beside its point or along its arrow, else at the free place there nearest it; a label that was set out
+goes back beside its point where a place there is free, and else out on the same leader. Labels move with their
+points instead of jumping about.
 """
 
 from __future__ import annotations
@@ -641,11 +642,11 @@ class Placer:
         outer = (2 * radius, 2 * radius) if ring else size
         candidates = list(itertools.islice((_pushed_box(anchor, u, outer, gap + distance) for distance in _RINGS_MM
                                             for u in _DIRECTIONS), self._candidates))
-        near, out = _kinds(hint)
-        hinted = self._hinted(near, candidates, runs, color, role, anchor, bold, outer)
+        near_hint, far_hint = _kinds(hint)
+        hinted = self._hinted(near_hint, candidates, runs, color, role, anchor, bold, outer)
         found = None if far or hinted is not None else self._near(_nearest_first(candidates, hint))
         if found is None:
-            items = hinted or self._hinted(out, candidates, runs, color, role, anchor, bold, outer) or \
+            items = hinted or self._hinted(far_hint, candidates, runs, color, role, anchor, bold, outer) or \
                 self._far(runs, color, role, anchor, bold, outer, optional, () if far else candidates)
             if not items:
                 return []
@@ -679,15 +680,15 @@ class Placer:
                                                         (-side * uy, side * ux), size, ring)
                                             for ring in _RINGS_MM[:3] for t in _ALONG_T for side in (1.0, -1.0)),
                                            self._candidates))
-        near, out = _kinds(hint)
-        hinted = self._hinted(near, candidates, runs, color, role, _mid(start, end), False, size)
+        near_hint, far_hint = _kinds(hint)
+        hinted = self._hinted(near_hint, candidates, runs, color, role, _mid(start, end), False, size)
         if hinted is not None:
             return hinted
         found = self._near(_nearest_first(candidates, hint))
         if found is not None:
             self.taken = ("near", next(k for k, b in enumerate(candidates) if b is found))
             return self._accept(found, runs, color, role, _mid(start, end), False)
-        hinted = self._hinted(out, candidates, runs, color, role, _mid(start, end), False, size)
+        hinted = self._hinted(far_hint, candidates, runs, color, role, _mid(start, end), False, size)
         if hinted is not None:
             return hinted
         feet = [(start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1])) for t in _ALONG_T[1:]]
