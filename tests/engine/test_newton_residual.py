@@ -19,19 +19,37 @@ from kinepoly.engine.position import input_values
 from kinepoly.model.mechanism import build_mechanism
 from kinepoly.scene.loader import loads_scene
 
+_OFF_ORIGIN = {"6 = { points = { P = [0, 0] } }": "6 = { points = { P = [30, 10] } }",
+               "line = { through = [0, 0], angle = 0 }": "line = { through = [0, 20], angle = 0 }"}
+"""The lifting platform with its cylinder's rod point and axis off the links' origins: the drive's and the slide's
+entries in the links' angles are not zero there (they are in the example)."""
 
-def _systems(name: str) -> list[tuple[_RowSystem, np.ndarray]]:
-    mechanism = build_mechanism(kinepoly.load_scene(EXAMPLES / f"{name}.toml"))
+
+def _scene(name: str) -> kinepoly.Scene:
+    if name != "platform-lift-off-origin":
+        return kinepoly.load_scene(EXAMPLES / f"{name}.toml")
+    text = (EXAMPLES / "platform-lift.toml").read_text()
+    for old, new in _OFF_ORIGIN.items():
+        assert old in text
+        text = text.replace(old, new)
+    return loads_scene(text, "platform-lift-off-origin.toml")
+
+
+def _systems(name: str, cams: bool = False) -> list[tuple[_RowSystem, np.ndarray]]:
+    """The Newton groups of an example (``_scene``) at its input, each with its poses there; ``cams``: the groups
+    with a cam's contact too, its parameter appended to the poses."""
+    mechanism = build_mechanism(_scene(name))
     plan = make_plan(mechanism, set(mechanism.link_names))
     positions = position_at_input(mechanism, plan)
     known = positions.row(0)
     values = {index: float(v[0]) for index, v in enumerate(positions.values)} or {0: float(input_values(mechanism)[0])}
     out = []
     for group in plan.groups:
-        if isinstance(group, NewtonGroup) and not group.gears and not group.cams:
+        if isinstance(group, NewtonGroup) and not group.gears and (cams or not group.cams):
             q = np.array([c for link in group.links for c in (known[link].x, known[link].y, known[link].theta)])
             others = {link: pose for link, pose in known.items() if link not in group.links}
-            out.append((_RowSystem(mechanism, group, others, group_size(mechanism, group, {}), values), q))
+            system = _RowSystem(mechanism, group, others, group_size(mechanism, group, {}), values)
+            out.append((system, np.concatenate((q, system.start_parameters(q))) if group.cams else q))
     return out
 
 
@@ -49,39 +67,6 @@ def test_the_residual_alone_is_the_full_evaluations(name: str, nudge: list[float
             assert jacobian.shape == (system.count, system.size) and np.isfinite(jacobian).all()
 
 
-_OFF_ORIGIN = {"6 = { points = { P = [0, 0] } }": "6 = { points = { P = [30, 10] } }",
-               "line = { through = [0, 0], angle = 0 }": "line = { through = [0, 20], angle = 0 }"}
-"""The lifting platform with its cylinder's rod point and axis off the links' origins: the drive's and the slide's
-entries in the links' angles are not zero there (they are in the example)."""
-
-
-def _scene(name: str) -> kinepoly.Scene:
-    if name != "platform-lift-off-origin":
-        return kinepoly.load_scene(EXAMPLES / f"{name}.toml")
-    text = (EXAMPLES / "platform-lift.toml").read_text()
-    for old, new in _OFF_ORIGIN.items():
-        assert old in text
-        text = text.replace(old, new)
-    return loads_scene(text, "platform-lift-off-origin.toml")
-
-
-def _contact_systems(name: str) -> list[tuple[_RowSystem, np.ndarray]]:
-    """The Newton groups of an example, cams' included (their contact parameters appended to the poses)."""
-    mechanism = build_mechanism(_scene(name))
-    plan = make_plan(mechanism, set(mechanism.link_names))
-    positions = position_at_input(mechanism, plan)
-    known = positions.row(0)
-    values = {index: float(v[0]) for index, v in enumerate(positions.values)} or {0: float(input_values(mechanism)[0])}
-    out = []
-    for group in plan.groups:
-        if isinstance(group, NewtonGroup) and not group.gears:
-            q = np.array([c for link in group.links for c in (known[link].x, known[link].y, known[link].theta)])
-            others = {link: pose for link, pose in known.items() if link not in group.links}
-            system = _RowSystem(mechanism, group, others, group_size(mechanism, group, {}), values)
-            out.append((system, np.concatenate((q, system.start_parameters(q))) if group.cams else q))
-    return out
-
-
 @pytest.mark.parametrize("name", ["platform-lift", "platform-lift-off-origin", "triad", "crank-rocker-cylinder",
                                   "triad-slot", "kc0-six-bar", "spline-cam-floating-flat", "spline-cam-floating-sleeve",
                                   "spline-cam-floating-triad"])
@@ -90,7 +75,7 @@ def _contact_systems(name: str) -> list[tuple[_RowSystem, np.ndarray]]:
 def test_the_jacobian_is_the_residuals_derivative(name: str, nudge: list[float]) -> None:
     """The closed-form Jacobian (pins, slides, drives, a cam's contact or flat face) against 4-point central
     differences of the residual, column by column: an independent check of every entry the rows write."""
-    systems = _contact_systems(name)
+    systems = _systems(name, cams=True)
     assert systems, "the example has a group closed by Newton's method"
     for system, q in systems:
         point = q + np.array(nudge[: len(q)])

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from msgspec import Struct, field
 
-from kinepoly.geom.arrays import Points, Reals, length
+from kinepoly.geom.arrays import DEGREES_PER_RADIAN, Points, Reals, length
 from kinepoly.model.pose import LinkPose
 
 __all__ = ["ArrayPose", "is_origin", "local_point", "pose_at", "pose_from_point", "pose_from_two_points",
@@ -100,7 +100,7 @@ class ArrayPose(Struct, frozen=True):
         """theta in radians (or degrees), in (-pi, pi] like ``Solution.angle``."""
         angle: Reals = np.arctan2(self.rotation.imag, self.rotation.real)  # np.angle's arithmetic, without its wrapper
         if degrees:
-            angle *= 180 / math.pi
+            angle *= DEGREES_PER_RADIAN  # np.degrees' factor, as the sweep's columns use it
         half = 180.0 if degrees else math.pi
         if len(angle) and np.minimum.reduce(angle) == -half:  # one reduction where none is at -half, the usual case
             angle[angle == -half] = half

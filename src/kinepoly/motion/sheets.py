@@ -33,7 +33,7 @@ from kinepoly.render.polygons import Kind, figure_box, polygon_figure
 from kinepoly.render.primitives import Item, Layer, Path, Sheet, Stroke, Text
 from kinepoly.render.sheet import MARGIN_MM, Layout, build_sheet, motion_layout
 from kinepoly.render.style import INK, LABEL_MM, MUTED_INK, PATH, RULE, SMALL_MM, THIN, link_label_color
-from kinepoly.render.text import Run
+from kinepoly.render.text import Run, runs_box
 from kinepoly.scene.spec import GearSpec, LinkInput, Scene, SliderInput
 from kinepoly.solution import Solution, solve
 
@@ -167,16 +167,11 @@ def _value_text(name: str, value: float, unit: str, ground: str) -> str:
     return f"{quantity_name(name, ground)} = {amount}{'°' if unit == 'deg' else ' ' + unit}"
 
 
-def _width(runs: tuple[Run, ...], bold: bool = False) -> float:
-    """How wide typeset ``runs`` are (mm)."""
-    return max((r.dx + text_width(r.text, r.size, bold) for r in runs), default=0.0)
-
-
 def _runs(text: str, size: float, room: float, bold: bool = False) -> tuple[Run, ...]:
     """``text`` typeset at ``size``, or smaller where it would be wider than ``room``."""
     text = typographic(text)
     runs = runs_of(text, size, bold)
-    width = _width(runs, bold)
+    width = runs_box(runs, bold)[2]
     return runs if width <= room else runs_of(text, size * room / width, bold)
 
 
@@ -196,7 +191,7 @@ def _packed(values: list[str], size: float, room: float) -> list[str]:
     lines: list[str] = []
     for value in values:
         trial = f"{lines[-1]}{_VALUES_GAP}{value}" if lines else value
-        if lines and _width(runs_of(typographic(trial), size)) <= room:
+        if lines and runs_box(runs_of(typographic(trial), size))[2] <= room:
             lines[-1] = trial
         else:
             lines.append(value)

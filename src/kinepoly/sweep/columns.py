@@ -93,7 +93,5 @@ class ColumnBuilder(Struct):
         if self.extra:
             return None
         everywhere = trues(len(shown) if every else np.count_nonzero(shown))
-        if every:
-            return tuple([Column(name, kind, _doubles(values), everywhere) for name, kind, values, _ in self.raw])
-        return tuple([Column(name, kind, np.asarray(values[shown], np.float64), everywhere)
+        return tuple([Column(name, kind, _doubles(values if every else values[shown]), everywhere)
                       for name, kind, values, _ in self.raw])
